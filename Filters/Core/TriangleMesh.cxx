@@ -1,0 +1,358 @@
+#include "TriangleMesh.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+
+namespace meshlod
+{
+//------------------------------------------------------------------------------
+void VertexTriangleAdjacency::Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints)
+{
+  // Counting sort: count, prefix sum, fill. Filling in triangle order keeps each row sorted.
+  this->Offsets.assign(static_cast<size_t>(numberOfPoints) + 1, 0);
+  for (Id t = 0; t < numberOfTriangles; ++t)
+  {
+    const Id* tri = triangles + 3 * static_cast<size_t>(t);
+    if (tri[0] == InvalidId)
+    {
+      continue;
+    }
+    ++this->Offsets[tri[0] + 1];
+    ++this->Offsets[tri[1] + 1];
+    ++this->Offsets[tri[2] + 1];
+  }
+  for (Id v = 0; v < numberOfPoints; ++v)
+  {
+    this->Offsets[v + 1] += this->Offsets[v];
+  }
+  this->Triangles.resize(this->Offsets[numberOfPoints]);
+  std::vector<Id> cursor(this->Offsets.begin(), this->Offsets.end() - 1);
+  for (Id t = 0; t < numberOfTriangles; ++t)
+  {
+    const Id* tri = triangles + 3 * static_cast<size_t>(t);
+    if (tri[0] == InvalidId)
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      this->Triangles[cursor[tri[k]]++] = t;
+    }
+  }
+}
+
+namespace
+{
+// Index of the edge of `tri` joining a and b (edge k joins corner k and corner k+1), or -1.
+int EdgeIndexOf(const Id* tri, Id a, Id b)
+{
+  const int ca = CornerOf(tri, a);
+  const int cb = CornerOf(tri, b);
+  if (ca < 0 || cb < 0)
+  {
+    return -1;
+  }
+  return (ca + 1) % 3 == cb ? ca : cb;
+}
+
+// Walk around vertex v from triangle `start`, leaving through the edge (v, first) and then
+// always through the other edge at v, until the fan closes or hits a non-interior edge.
+// Returns the number of triangles visited (start excluded).
+Id WalkFan(const TriangleMesh& mesh, const std::vector<Id>& neighbors, Id v, Id start, Id first,
+  bool& closed)
+{
+  closed = false;
+  Id visited = 0;
+  Id t = start;
+  Id through = first; // the edge (v, through) is the one we leave t by
+  for (;;)
+  {
+    const Id* tri = mesh.Triangle(t);
+    const Id next = neighbors[3 * static_cast<size_t>(t) + EdgeIndexOf(tri, v, through)];
+    if (next < 0)
+    {
+      return visited;
+    }
+    if (next == start)
+    {
+      closed = true;
+      return visited;
+    }
+    const Id* ntri = mesh.Triangle(next);
+    // The third vertex of `next` (neither v nor `through`) names the edge we leave it by.
+    Id other = InvalidId;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (ntri[k] != v && ntri[k] != through)
+      {
+        other = ntri[k];
+      }
+    }
+    through = other;
+    t = next;
+    if (++visited > mesh.GetNumberOfTriangles())
+    {
+      return visited; // cannot happen on valid input; guards against an endless walk
+    }
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+void TriangleTopology::Build(const TriangleMesh& mesh)
+{
+  const Id nt = mesh.GetNumberOfTriangles();
+  const Id nv = mesh.GetNumberOfPoints();
+  this->VertexTriangles.Build(mesh);
+  this->EdgeNeighbors.assign(3 * static_cast<size_t>(nt), BoundaryEdge);
+
+  // Edge neighbours: for edge (a, b) of t, the other triangles in a's row that contain b.
+  const VertexTriangleAdjacency& adj = this->VertexTriangles;
+  vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
+    for (Id t = begin; t < end; ++t)
+    {
+      const Id* tri = mesh.Triangle(t);
+      if (tri[0] == InvalidId)
+      {
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        const Id a = tri[k];
+        const Id b = tri[(k + 1) % 3];
+        Id found = BoundaryEdge;
+        for (Id i = adj.Begin(a); i < adj.End(a); ++i)
+        {
+          const Id other = adj.Triangles[i];
+          if (other != t && CornerOf(mesh.Triangle(other), b) >= 0)
+          {
+            found = (found == BoundaryEdge) ? other : NonManifoldEdge;
+          }
+        }
+        this->EdgeNeighbors[3 * static_cast<size_t>(t) + k] = found;
+      }
+    }
+  });
+
+  // Vertex kinds: walk the fan of the first incident triangle; any triangle not reached means
+  // several fans meet at the vertex.
+  this->VertexKinds.assign(nv, VertexKind::Unused);
+  vtkSMPTools::For(0, nv, [&](Id begin, Id end) {
+    for (Id v = begin; v < end; ++v)
+    {
+      const Id count = adj.Count(v);
+      if (count == 0)
+      {
+        continue;
+      }
+      bool nonManifold = false;
+      Id boundaryEdges = 0;
+      for (Id i = adj.Begin(v); i < adj.End(v) && !nonManifold; ++i)
+      {
+        const Id t = adj.Triangles[i];
+        const int c = CornerOf(mesh.Triangle(t), v);
+        // The two edges of t at v: edge c (v -> next) and edge c-1 (prev -> v).
+        for (const int e : { c, (c + 2) % 3 })
+        {
+          const Id nb = this->EdgeNeighbors[3 * static_cast<size_t>(t) + e];
+          nonManifold = nonManifold || nb == NonManifoldEdge;
+          boundaryEdges += (nb == BoundaryEdge) ? 1 : 0;
+        }
+      }
+      if (!nonManifold)
+      {
+        const Id start = adj.Triangles[adj.Begin(v)];
+        const Id* tri = mesh.Triangle(start);
+        const int c = CornerOf(tri, v);
+        bool closed = false;
+        Id reached = 1 + WalkFan(mesh, this->EdgeNeighbors, v, start, tri[(c + 1) % 3], closed);
+        if (!closed)
+        {
+          reached += WalkFan(mesh, this->EdgeNeighbors, v, start, tri[(c + 2) % 3], closed);
+        }
+        nonManifold = reached != count || boundaryEdges > 2;
+      }
+      this->VertexKinds[v] = nonManifold
+        ? VertexKind::NonManifold
+        : (boundaryEdges > 0 ? VertexKind::Boundary : VertexKind::Interior);
+    }
+  });
+}
+
+//------------------------------------------------------------------------------
+Id TriangleTopology::Valence(const TriangleMesh& mesh, Id v) const
+{
+  std::vector<Id> neighbors;
+  for (Id i = this->VertexTriangles.Begin(v); i < this->VertexTriangles.End(v); ++i)
+  {
+    const Id* tri = mesh.Triangle(this->VertexTriangles.Triangles[i]);
+    for (int k = 0; k < 3; ++k)
+    {
+      if (tri[k] != v)
+      {
+        neighbors.push_back(tri[k]);
+      }
+    }
+  }
+  std::sort(neighbors.begin(), neighbors.end());
+  return static_cast<Id>(std::unique(neighbors.begin(), neighbors.end()) - neighbors.begin());
+}
+
+//------------------------------------------------------------------------------
+int TriangleTopology::TrianglesOnEdge(
+  const TriangleMesh& mesh, Id a, Id b, Id* out, int maxCount) const
+{
+  int count = 0;
+  for (Id i = this->VertexTriangles.Begin(a); i < this->VertexTriangles.End(a); ++i)
+  {
+    const Id t = this->VertexTriangles.Triangles[i];
+    if (CornerOf(mesh.Triangle(t), b) >= 0)
+    {
+      if (count < maxCount)
+      {
+        out[count] = t;
+      }
+      ++count;
+    }
+  }
+  return count;
+}
+
+//------------------------------------------------------------------------------
+TriangleTopology::EdgeCounts TriangleTopology::CountEdges(const TriangleMesh& mesh) const
+{
+  EdgeCounts counts;
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    const Id* tri = mesh.Triangle(t);
+    if (tri[0] == InvalidId)
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const Id nb = this->EdgeNeighbors[3 * static_cast<size_t>(t) + k];
+      if (nb == BoundaryEdge)
+      {
+        ++counts.Boundary;
+      }
+      else if (nb >= 0)
+      {
+        counts.Manifold += (t < nb) ? 1 : 0;
+      }
+      else
+      {
+        // Count a non-manifold edge once: from the lowest triangle id on it.
+        Id first = InvalidId;
+        this->TrianglesOnEdge(mesh, tri[k], tri[(k + 1) % 3], &first, 1);
+        counts.NonManifold += (first == t) ? 1 : 0;
+      }
+    }
+  }
+  return counts;
+}
+
+//------------------------------------------------------------------------------
+bool TriangleTopology::IsConsistentlyOriented(const TriangleMesh& mesh) const
+{
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    const Id* tri = mesh.Triangle(t);
+    if (tri[0] == InvalidId)
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const Id nb = this->EdgeNeighbors[3 * static_cast<size_t>(t) + k];
+      if (nb < 0)
+      {
+        continue;
+      }
+      // t runs a -> b, so the neighbour must run b -> a.
+      const Id* ntri = mesh.Triangle(nb);
+      const int cb = CornerOf(ntri, tri[(k + 1) % 3]);
+      if (ntri[(cb + 1) % 3] != tri[k])
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+std::int64_t TriangleTopology::CountVertices(VertexKind kind) const
+{
+  return std::count(this->VertexKinds.begin(), this->VertexKinds.end(), kind);
+}
+
+//------------------------------------------------------------------------------
+std::int64_t TriangleTopology::EulerCharacteristic(const TriangleMesh& mesh) const
+{
+  std::int64_t faces = 0;
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    faces += mesh.Triangle(t)[0] == InvalidId ? 0 : 1;
+  }
+  const std::int64_t vertices =
+    static_cast<std::int64_t>(this->VertexKinds.size()) - this->CountVertices(VertexKind::Unused);
+  return vertices - this->CountEdges(mesh).Total() + faces;
+}
+
+//------------------------------------------------------------------------------
+void CompactMesh(const TriangleMesh& in, TriangleMesh& out, CompactionMaps& maps)
+{
+  const Id nt = in.GetNumberOfTriangles();
+  const Id nv = in.GetNumberOfPoints();
+  maps.PointMap.assign(nv, InvalidId);
+  maps.TriangleMap.assign(nt, InvalidId);
+  maps.KeptTriangles.clear();
+  maps.KeptPoints.clear();
+
+  std::vector<unsigned char> used(nv, 0);
+  for (Id t = 0; t < nt; ++t)
+  {
+    const Id* tri = in.Triangle(t);
+    if (tri[0] == InvalidId)
+    {
+      continue;
+    }
+    maps.TriangleMap[t] = static_cast<Id>(maps.KeptTriangles.size());
+    maps.KeptTriangles.push_back(t);
+    used[tri[0]] = used[tri[1]] = used[tri[2]] = 1;
+  }
+  for (Id v = 0; v < nv; ++v)
+  {
+    if (used[v])
+    {
+      maps.PointMap[v] = static_cast<Id>(maps.KeptPoints.size());
+      maps.KeptPoints.push_back(v);
+    }
+  }
+
+  const Id keptTriangles = static_cast<Id>(maps.KeptTriangles.size());
+  const Id keptPoints = static_cast<Id>(maps.KeptPoints.size());
+  out.Points.resize(3 * static_cast<size_t>(keptPoints));
+  out.Triangles.resize(3 * static_cast<size_t>(keptTriangles));
+  vtkSMPTools::For(0, keptPoints, [&](Id begin, Id end) {
+    for (Id v = begin; v < end; ++v)
+    {
+      std::copy_n(in.Point(maps.KeptPoints[v]), 3, out.Point(v));
+    }
+  });
+  vtkSMPTools::For(0, keptTriangles, [&](Id begin, Id end) {
+    for (Id t = begin; t < end; ++t)
+    {
+      const Id* tri = in.Triangle(maps.KeptTriangles[t]);
+      Id* dst = out.Triangle(t);
+      for (int k = 0; k < 3; ++k)
+      {
+        dst[k] = maps.PointMap[tri[k]];
+      }
+    }
+  });
+}
+
+} // namespace meshlod

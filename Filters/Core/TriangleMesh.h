@@ -1,0 +1,132 @@
+// MeshLOD core: a flat triangle mesh and its topology.
+//
+// Everything here is plain arrays and integer ids (no pointers, no per-element heap objects), so
+// that every pass over a mesh is a loop over contiguous memory and can be split across threads.
+// The VTK filters convert a vtkPolyData into a TriangleMesh once, run the algorithm on it, and
+// convert the results back in one go.
+#ifndef meshlod_TriangleMesh_h
+#define meshlod_TriangleMesh_h
+
+#include "vtkFiltersMeshLODModule.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace meshlod
+{
+/// Vertex and triangle ids of the core. 32 bits halve the memory of the topology compared with
+/// vtkIdType; meshes are limited to 2^31 - 1 vertices and triangles (checked on input).
+using Id = std::int32_t;
+constexpr Id InvalidId = -1;
+
+/// Points (x, y, z per vertex) and triangles (three vertex ids each).
+struct VTKFILTERSMESHLOD_EXPORT TriangleMesh
+{
+  std::vector<double> Points;
+  std::vector<Id> Triangles;
+
+  Id GetNumberOfPoints() const { return static_cast<Id>(this->Points.size() / 3); }
+  Id GetNumberOfTriangles() const { return static_cast<Id>(this->Triangles.size() / 3); }
+  const double* Point(Id v) const { return this->Points.data() + 3 * static_cast<std::size_t>(v); }
+  double* Point(Id v) { return this->Points.data() + 3 * static_cast<std::size_t>(v); }
+  const Id* Triangle(Id t) const { return this->Triangles.data() + 3 * static_cast<std::size_t>(t); }
+  Id* Triangle(Id t) { return this->Triangles.data() + 3 * static_cast<std::size_t>(t); }
+};
+
+/// Vertex -> incident triangles, as offsets into one flat list (compressed rows). The triangles
+/// of each vertex are listed in increasing id order, which makes every later pass deterministic.
+struct VTKFILTERSMESHLOD_EXPORT VertexTriangleAdjacency
+{
+  std::vector<Id> Offsets;   // NumberOfPoints + 1 entries
+  std::vector<Id> Triangles; // 3 * NumberOfTriangles entries
+
+  /// Build from `numberOfTriangles` triangles (3 ids each). Triangles whose first id is
+  /// InvalidId are treated as deleted and skipped.
+  void Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints);
+  void Build(const TriangleMesh& mesh)
+  {
+    this->Build(mesh.Triangles.data(), mesh.GetNumberOfTriangles(), mesh.GetNumberOfPoints());
+  }
+
+  Id Begin(Id v) const { return this->Offsets[v]; }
+  Id End(Id v) const { return this->Offsets[v + 1]; }
+  Id Count(Id v) const { return this->Offsets[v + 1] - this->Offsets[v]; }
+  const Id* Of(Id v) const { return this->Triangles.data() + this->Offsets[v]; }
+};
+
+/// Kind of a vertex, from the edges and triangle fans around it.
+enum class VertexKind : std::uint8_t
+{
+  Unused = 0,      // no triangle uses the vertex
+  Interior = 1,    // one closed fan of triangles, every edge shared by exactly two triangles
+  Boundary = 2,    // one open fan: exactly two of its edges are boundary edges
+  NonManifold = 3, // several fans (a "bow tie"), or on an edge with more than two triangles
+};
+
+/// Marker values in TriangleTopology::EdgeNeighbors.
+constexpr Id BoundaryEdge = -1;
+constexpr Id NonManifoldEdge = -2;
+
+/// Topology of a triangle mesh: adjacency, edge neighbours, vertex kinds.
+///
+/// Edge k of triangle t runs from corner k to corner (k + 1) % 3. EdgeNeighbors[3 t + k] is the
+/// triangle on the other side of that edge, BoundaryEdge when there is none, NonManifoldEdge
+/// when more than two triangles share it.
+struct VTKFILTERSMESHLOD_EXPORT TriangleTopology
+{
+  VertexTriangleAdjacency VertexTriangles;
+  std::vector<Id> EdgeNeighbors;
+  std::vector<VertexKind> VertexKinds;
+
+  /// Build everything (data-parallel over triangles and vertices).
+  void Build(const TriangleMesh& mesh);
+
+  /// Number of distinct vertices joined to v by an edge.
+  Id Valence(const TriangleMesh& mesh, Id v) const;
+
+  /// Triangles that contain both a and b, in increasing id order; returns how many there are
+  /// (writes at most maxCount of them).
+  int TrianglesOnEdge(const TriangleMesh& mesh, Id a, Id b, Id* out, int maxCount) const;
+
+  struct EdgeCounts
+  {
+    std::int64_t Boundary = 0;
+    std::int64_t Manifold = 0;
+    std::int64_t NonManifold = 0; // distinct edges with more than two triangles
+    std::int64_t Total() const { return this->Boundary + this->Manifold + this->NonManifold; }
+  };
+  EdgeCounts CountEdges(const TriangleMesh& mesh) const;
+
+  /// True when every manifold edge is traversed in opposite directions by its two triangles.
+  bool IsConsistentlyOriented(const TriangleMesh& mesh) const;
+
+  /// V - E + F over the used vertices.
+  std::int64_t EulerCharacteristic(const TriangleMesh& mesh) const;
+
+  std::int64_t CountVertices(VertexKind kind) const;
+};
+
+/// Index of vertex v in triangle tri (0, 1, 2), or -1.
+inline int CornerOf(const Id* tri, Id v)
+{
+  return tri[0] == v ? 0 : (tri[1] == v ? 1 : (tri[2] == v ? 2 : -1));
+}
+
+/// Result of a compaction: the kept mesh and the maps from old to new ids.
+struct VTKFILTERSMESHLOD_EXPORT CompactionMaps
+{
+  std::vector<Id> PointMap;    // old vertex -> new vertex, InvalidId when dropped
+  std::vector<Id> TriangleMap; // old triangle -> new triangle, InvalidId when dropped
+  std::vector<Id> KeptPoints;  // new vertex -> old vertex
+  std::vector<Id> KeptTriangles; // new triangle -> old triangle
+};
+
+/// Remove deleted triangles (first id InvalidId) and the vertices no triangle uses any more,
+/// preserving the relative order of everything kept. `out` may not alias `in`.
+VTKFILTERSMESHLOD_EXPORT void CompactMesh(
+  const TriangleMesh& in, TriangleMesh& out, CompactionMaps& maps);
+
+} // namespace meshlod
+
+#endif

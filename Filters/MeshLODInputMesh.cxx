@@ -1,0 +1,346 @@
+#include "MeshLODInputMesh.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
+#include "vtkTriangleFilter.h"
+#include "vtkTypeInt32Array.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace meshlod
+{
+namespace
+{
+constexpr vtkIdType MaximumCount = std::numeric_limits<Id>::max();
+
+// Index of the first point with a NaN or infinite coordinate, or -1.
+vtkIdType FirstNonFinitePoint(const std::vector<double>& xyz)
+{
+  const vtkIdType n = static_cast<vtkIdType>(xyz.size() / 3);
+  vtkSMPThreadLocal<vtkIdType> firstBad(std::numeric_limits<vtkIdType>::max());
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    vtkIdType& local = firstBad.Local();
+    for (vtkIdType i = begin; i < end && i < local; ++i)
+    {
+      if (!std::isfinite(xyz[3 * i]) || !std::isfinite(xyz[3 * i + 1]) ||
+        !std::isfinite(xyz[3 * i + 2]))
+      {
+        local = i;
+      }
+    }
+  });
+  vtkIdType first = std::numeric_limits<vtkIdType>::max();
+  for (vtkIdType v : firstBad)
+  {
+    first = std::min(first, v);
+  }
+  return first == std::numeric_limits<vtkIdType>::max() ? -1 : first;
+}
+
+// Copy the connectivity of an all-triangle cell array into 32-bit ids.
+template <typename ArrayT>
+void CopyTriangles(ArrayT* connectivity, std::vector<Id>& triangles)
+{
+  const auto* src = connectivity->GetPointer(0);
+  const vtkIdType n = connectivity->GetNumberOfValues();
+  triangles.resize(n);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      triangles[i] = static_cast<Id>(src[i]);
+    }
+  });
+}
+
+// Drop triangles that repeat a vertex id; returns how many were dropped.
+vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdType>& cellIds)
+{
+  size_t kept = 0;
+  for (size_t t = 0; t < cellIds.size(); ++t)
+  {
+    const Id a = triangles[3 * t], b = triangles[3 * t + 1], c = triangles[3 * t + 2];
+    if (a == b || b == c || c == a)
+    {
+      continue;
+    }
+    triangles[3 * kept] = a;
+    triangles[3 * kept + 1] = b;
+    triangles[3 * kept + 2] = c;
+    cellIds[kept++] = cellIds[t];
+  }
+  const vtkIdType dropped = static_cast<vtkIdType>(cellIds.size() - kept);
+  triangles.resize(3 * kept);
+  cellIds.resize(kept);
+  return dropped;
+}
+
+// Merge points with equal coordinates among the vertices of boundary edges. Returns the number
+// of points merged away; triangles are re-indexed to the lowest id of each coincident group.
+vtkIdType MergeCoincidentBoundaryPoints(TriangleMesh& mesh, const TriangleTopology& topology)
+{
+  std::vector<unsigned char> onBoundary(mesh.GetNumberOfPoints(), 0);
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (topology.EdgeNeighbors[3 * static_cast<size_t>(t) + k] == BoundaryEdge)
+      {
+        onBoundary[mesh.Triangle(t)[k]] = 1;
+        onBoundary[mesh.Triangle(t)[(k + 1) % 3]] = 1;
+      }
+    }
+  }
+  std::vector<Id> candidates;
+  for (Id v = 0; v < mesh.GetNumberOfPoints(); ++v)
+  {
+    if (onBoundary[v])
+    {
+      candidates.push_back(v);
+    }
+  }
+  auto less = [&](Id a, Id b) {
+    const double* pa = mesh.Point(a);
+    const double* pb = mesh.Point(b);
+    return std::lexicographical_compare(pa, pa + 3, pb, pb + 3) || (std::equal(pa, pa + 3, pb) && a < b);
+  };
+  std::sort(candidates.begin(), candidates.end(), less);
+
+  std::vector<Id> remap(mesh.GetNumberOfPoints());
+  std::iota(remap.begin(), remap.end(), 0);
+  vtkIdType merged = 0;
+  for (size_t i = 1; i < candidates.size(); ++i)
+  {
+    const double* prev = mesh.Point(candidates[i - 1]);
+    if (std::equal(prev, prev + 3, mesh.Point(candidates[i])))
+    {
+      remap[candidates[i]] = remap[candidates[i - 1]];
+      ++merged;
+    }
+  }
+  if (merged > 0)
+  {
+    for (Id& v : mesh.Triangles)
+    {
+      v = remap[v];
+    }
+  }
+  return merged;
+}
+
+// Mark triangles that have the same three vertices as a triangle with a lower id.
+vtkIdType DropDuplicateTriangles(
+  TriangleMesh& mesh, const TriangleTopology& topology, std::vector<vtkIdType>& cellIds)
+{
+  const Id nt = mesh.GetNumberOfTriangles();
+  std::vector<unsigned char> duplicate(nt, 0);
+  vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
+    for (Id t = begin; t < end; ++t)
+    {
+      const Id* tri = mesh.Triangle(t);
+      const VertexTriangleAdjacency& adj = topology.VertexTriangles;
+      for (Id i = adj.Begin(tri[0]); i < adj.End(tri[0]); ++i)
+      {
+        const Id other = adj.Triangles[i];
+        const Id* o = mesh.Triangle(other);
+        if (other < t && CornerOf(o, tri[1]) >= 0 && CornerOf(o, tri[2]) >= 0)
+        {
+          duplicate[t] = 1;
+          break;
+        }
+      }
+    }
+  });
+  const vtkIdType count = std::count(duplicate.begin(), duplicate.end(), 1);
+  if (count > 0)
+  {
+    for (Id t = 0; t < nt; ++t)
+    {
+      if (duplicate[t])
+      {
+        mesh.Triangle(t)[0] = InvalidId;
+      }
+    }
+  }
+  return count;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkCellArray> MakeTriangleCells(const Id* triangles, Id numberOfTriangles)
+{
+  vtkNew<vtkTypeInt32Array> offsets;
+  vtkNew<vtkTypeInt32Array> connectivity;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(numberOfTriangles) + 1);
+  connectivity->SetNumberOfValues(3 * static_cast<vtkIdType>(numberOfTriangles));
+  std::int32_t* off = offsets->GetPointer(0);
+  std::int32_t* conn = connectivity->GetPointer(0);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(numberOfTriangles) + 1, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType t = b; t < e; ++t)
+    {
+      off[t] = static_cast<std::int32_t>(3 * t);
+    }
+  });
+  std::copy_n(triangles, 3 * static_cast<size_t>(numberOfTriangles), conn);
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, connectivity);
+  return cells;
+}
+
+//------------------------------------------------------------------------------
+InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& result)
+{
+  result = InputMesh();
+  if (input == nullptr || input->GetNumberOfPoints() == 0 ||
+    input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
+  {
+    if (input != nullptr && input->GetNumberOfCells() > 0)
+    {
+      vtkWarningWithObjectMacro(caller,
+        "The input has " << input->GetNumberOfVerts() << " vertices and "
+                         << input->GetNumberOfLines()
+                         << " lines but no polygons: there is nothing to simplify.");
+    }
+    return InputStatus::Empty;
+  }
+
+  result.IgnoredVerts = input->GetNumberOfVerts();
+  result.IgnoredLines = input->GetNumberOfLines();
+  if (result.IgnoredVerts > 0 || result.IgnoredLines > 0)
+  {
+    vtkWarningWithObjectMacro(caller,
+      "Ignoring " << result.IgnoredVerts << " vertex cells and " << result.IgnoredLines
+                  << " line cells: only polygons and triangle strips are simplified.");
+  }
+  if (input->GetNumberOfPoints() > MaximumCount)
+  {
+    vtkErrorWithObjectMacro(caller,
+      "The input has " << input->GetNumberOfPoints() << " points; at most " << MaximumCount
+                       << " are supported.");
+    return InputStatus::Invalid;
+  }
+
+  // Triangulate polygons and strips when they are not all triangles already.
+  vtkIdType firstPolyCellId = result.IgnoredVerts + result.IgnoredLines;
+  result.Source = input;
+  if (input->GetNumberOfStrips() > 0 || input->GetPolys()->IsHomogeneous() != 3)
+  {
+    vtkNew<vtkPolyData> surface;
+    surface->SetPoints(input->GetPoints());
+    surface->SetPolys(input->GetPolys());
+    surface->SetStrips(input->GetStrips());
+    surface->GetPointData()->ShallowCopy(input->GetPointData());
+    // Cell data of polys and strips: skip the verts and lines in front of them.
+    const vtkIdType numberOfSurfaceCells = input->GetNumberOfPolys() + input->GetNumberOfStrips();
+    surface->GetCellData()->CopyAllocate(input->GetCellData(), numberOfSurfaceCells);
+    for (vtkIdType c = 0; c < numberOfSurfaceCells; ++c)
+    {
+      surface->GetCellData()->CopyData(input->GetCellData(), firstPolyCellId + c, c);
+    }
+    vtkNew<vtkTriangleFilter> triangulate;
+    triangulate->SetInputData(surface);
+    triangulate->PassVertsOff();
+    triangulate->PassLinesOff();
+    triangulate->Update();
+    result.Source = triangulate->GetOutput();
+    firstPolyCellId = 0;
+  }
+
+  vtkCellArray* polys = result.Source->GetPolys();
+  const vtkIdType numberOfTriangles = polys->GetNumberOfCells();
+  if (numberOfTriangles > MaximumCount)
+  {
+    vtkErrorWithObjectMacro(caller,
+      "The input has " << numberOfTriangles << " triangles; at most " << MaximumCount
+                       << " are supported.");
+    return InputStatus::Invalid;
+  }
+
+  // Points as doubles, then the finiteness check.
+  const vtkIdType numberOfPoints = result.Source->GetNumberOfPoints();
+  TriangleMesh& mesh = result.Mesh;
+  mesh.Points.resize(3 * static_cast<size_t>(numberOfPoints));
+  vtkDataArray* xyz = result.Source->GetPoints()->GetData();
+  vtkSMPTools::For(0, numberOfPoints, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      xyz->GetTuple(i, mesh.Points.data() + 3 * i);
+    }
+  });
+  const vtkIdType bad = FirstNonFinitePoint(mesh.Points);
+  if (bad >= 0)
+  {
+    vtkErrorWithObjectMacro(caller,
+      "Point " << bad << " has a NaN or infinite coordinate (" << mesh.Points[3 * bad] << ", "
+               << mesh.Points[3 * bad + 1] << ", " << mesh.Points[3 * bad + 2]
+               << "); no output is produced. Remove or fix such points first.");
+    result = InputMesh();
+    return InputStatus::Invalid;
+  }
+
+  if (polys->IsStorage64Bit())
+  {
+    CopyTriangles(polys->GetConnectivityArray64(), mesh.Triangles);
+  }
+  else
+  {
+    CopyTriangles(polys->GetConnectivityArray32(), mesh.Triangles);
+  }
+  result.SourceCellIds.resize(numberOfTriangles);
+  std::iota(result.SourceCellIds.begin(), result.SourceCellIds.end(), firstPolyCellId);
+
+  bool changed = result.Source != input;
+  result.DegenerateTriangles = DropDegenerateTriangles(mesh.Triangles, result.SourceCellIds);
+  result.Topology.Build(mesh);
+
+  result.MergedPoints = MergeCoincidentBoundaryPoints(mesh, result.Topology);
+  if (result.MergedPoints > 0)
+  {
+    // Stitching can make triangles degenerate (a sliver between two coincident points).
+    result.DegenerateTriangles += DropDegenerateTriangles(mesh.Triangles, result.SourceCellIds);
+    result.Topology.Build(mesh);
+  }
+  result.DuplicateTriangles = DropDuplicateTriangles(mesh, result.Topology, result.SourceCellIds);
+  if (result.DegenerateTriangles > 0 || result.DuplicateTriangles > 0)
+  {
+    vtkWarningWithObjectMacro(caller,
+      "Dropped " << result.DegenerateTriangles << " degenerate and " << result.DuplicateTriangles
+                 << " duplicate triangles.");
+  }
+
+  // Compact away dropped triangles and unused points, keeping the maps to the source.
+  TriangleMesh compact;
+  CompactionMaps maps;
+  CompactMesh(mesh, compact, maps);
+  result.UnusedPoints = numberOfPoints - compact.GetNumberOfPoints() - result.MergedPoints;
+  changed = changed || result.MergedPoints > 0 || result.DegenerateTriangles > 0 ||
+    result.DuplicateTriangles > 0 || compact.GetNumberOfPoints() != numberOfPoints;
+  if (compact.GetNumberOfTriangles() != mesh.GetNumberOfTriangles() ||
+    compact.GetNumberOfPoints() != mesh.GetNumberOfPoints())
+  {
+    std::vector<vtkIdType> cellIds(compact.GetNumberOfTriangles());
+    for (Id t = 0; t < compact.GetNumberOfTriangles(); ++t)
+    {
+      cellIds[t] = result.SourceCellIds[maps.KeptTriangles[t]];
+    }
+    result.SourceCellIds.swap(cellIds);
+    mesh = std::move(compact);
+    result.Topology.Build(mesh);
+  }
+  result.SourcePointIds.assign(maps.KeptPoints.begin(), maps.KeptPoints.end());
+  result.SameAsInput = !changed;
+  return mesh.GetNumberOfTriangles() > 0 ? InputStatus::Valid : InputStatus::Empty;
+}
+
+} // namespace meshlod

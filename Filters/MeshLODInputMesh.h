@@ -1,0 +1,73 @@
+// Input validation shared by every MeshLOD filter: a vtkPolyData in, a clean core
+// TriangleMesh out, plus the bookkeeping to carry point and cell data back to VTK.
+//
+// Policy (documented in every filter's class comment):
+// - No points or no polygons/strips: "empty", the filter produces an empty output, no error.
+// - Polygons with more than three points and triangle strips are triangulated with
+//   vtkTriangleFilter (cell data is copied to each resulting triangle).
+// - Vertices and lines are ignored, with a warning.
+// - NaN or infinite coordinates: an error naming the first bad point, no output.
+// - More than 2^31 - 1 points or triangles: an error (the core uses 32-bit ids).
+// - Triangles that repeat a point id are dropped; a triangle with the same three points as an
+//   earlier one is dropped (both with a warning giving the count).
+// - Points with exactly equal coordinates that lie on boundary edges are merged (this stitches
+//   triangle soups such as STL files). Coincident points inside closed regions are left alone:
+//   merging them would create a non-manifold vertex. Points used by no triangle are dropped.
+// - Non-manifold edges (more than two triangles) and vertices (several fans) are kept and
+//   reported in the topology; the algorithms lock them (they never move or merge).
+#ifndef MeshLODInputMesh_h
+#define MeshLODInputMesh_h
+
+#include "Core/TriangleMesh.h"
+#include "vtkFiltersMeshLODModule.h"
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include <vector>
+
+class vtkAlgorithm;
+class vtkCellArray;
+class vtkPolyData;
+
+namespace meshlod
+{
+struct VTKFILTERSMESHLOD_EXPORT InputMesh
+{
+  TriangleMesh Mesh;
+  TriangleTopology Topology;
+  /// The polydata whose point and cell data the ids below refer to: the input itself, or its
+  /// triangulated copy.
+  vtkSmartPointer<vtkPolyData> Source;
+  std::vector<vtkIdType> SourcePointIds; // core vertex -> point of Source
+  std::vector<vtkIdType> SourceCellIds;  // core triangle -> cell of Source
+  /// True when the core mesh is exactly the input's polys: same point ids, same triangles in
+  /// the same order, every point used. Level 0 can then share the input's arrays.
+  bool SameAsInput = false;
+
+  vtkIdType IgnoredVerts = 0;
+  vtkIdType IgnoredLines = 0;
+  vtkIdType MergedPoints = 0;
+  vtkIdType DegenerateTriangles = 0;
+  vtkIdType DuplicateTriangles = 0;
+  vtkIdType UnusedPoints = 0;
+};
+
+enum class InputStatus
+{
+  Valid,
+  Empty,
+  Invalid,
+};
+
+/// Validate and convert. Errors and warnings are reported on `caller` (its observers see them
+/// like any VTK error); on Invalid the caller must produce no output.
+VTKFILTERSMESHLOD_EXPORT InputStatus ReadInputMesh(
+  vtkPolyData* input, vtkAlgorithm* caller, InputMesh& result);
+
+/// Triangles as a vtkCellArray built in one go (32-bit storage, which halves its memory).
+VTKFILTERSMESHLOD_EXPORT vtkSmartPointer<vtkCellArray> MakeTriangleCells(
+  const Id* triangles, Id numberOfTriangles);
+
+} // namespace meshlod
+
+#endif

@@ -1,0 +1,32 @@
+# The MeshLOD::FiltersMeshLOD module itself. Included from the top-level CMakeLists.txt when
+# vtk_module_build() (ours, or VTK's own for a remote module) re-enters it.
+
+set(meshlod_classes
+  )
+
+# Exported helpers that are not VTK classes: not wrapped, but usable from C++ (the tests and the
+# benchmark measure with the yardstick).
+set(meshlod_nowrap_headers
+  Filters/MeshLODSurfaceDistance.h)
+
+# Private headers (not installed): the VTK-free algorithm code under Core/ and the glue between
+# it and VTK. The tests in the build tree include them directly.
+set(meshlod_private_headers
+  Filters/Core/TriangleMesh.h
+  Filters/MeshLODInputMesh.h)
+
+set(meshlod_sources
+  Filters/Core/TriangleMesh.cxx
+  Filters/MeshLODInputMesh.cxx
+  Filters/MeshLODSurfaceDistance.cxx)
+
+list(TRANSFORM meshlod_classes PREPEND "Filters/")
+
+vtk_module_add_module(MeshLOD::FiltersMeshLOD
+  CLASSES         ${meshlod_classes}
+  SOURCES         ${meshlod_sources}
+  NOWRAP_HEADERS  ${meshlod_nowrap_headers}
+  PRIVATE_HEADERS ${meshlod_private_headers})
+vtk_module_include(MeshLOD::FiltersMeshLOD
+  PUBLIC
+    "$<BUILD_INTERFACE:${CMAKE_CURRENT_LIST_DIR}>")

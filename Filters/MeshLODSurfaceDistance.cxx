@@ -1,0 +1,195 @@
+#include "MeshLODSurfaceDistance.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkGenericCell.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPThreadLocalObject.h"
+#include "vtkSMPTools.h"
+#include "vtkStaticCellLocator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace meshlod
+{
+namespace
+{
+// Counter-based random numbers: sample i always gets the same values whatever thread draws it.
+std::uint64_t SplitMix64(std::uint64_t x)
+{
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+double Uniform(std::uint64_t seed, std::uint64_t counter)
+{
+  return (SplitMix64(seed ^ SplitMix64(counter)) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+// The triangles of a polydata's polys as flat point-id triples (larger polygons fanned).
+std::vector<vtkIdType> Triangles(vtkPolyData* mesh)
+{
+  std::vector<vtkIdType> tris;
+  tris.reserve(3 * static_cast<size_t>(mesh->GetNumberOfPolys()));
+  auto it = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    for (vtkIdType k = 1; k + 1 < n; ++k)
+    {
+      tris.insert(tris.end(), { ids[0], ids[k], ids[k + 1] });
+    }
+  }
+  return tris;
+}
+
+// Sample positions on `mesh`: area-uniform samples first, then (strided) vertices.
+struct SampleSet
+{
+  std::vector<double> Positions;
+  std::int64_t AreaSamples = 0;
+};
+
+SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
+  const SurfaceDistanceOptions& options, std::uint64_t seed)
+{
+  SampleSet samples;
+  const vtkIdType nt = static_cast<vtkIdType>(tris.size() / 3);
+  vtkPoints* points = mesh->GetPoints();
+  std::vector<double> cumulative(nt + 1, 0.0);
+  for (vtkIdType t = 0; t < nt; ++t)
+  {
+    double p[3][3];
+    for (int k = 0; k < 3; ++k)
+    {
+      points->GetPoint(tris[3 * t + k], p[k]);
+    }
+    double e1[3], e2[3], n[3];
+    vtkMath::Subtract(p[1], p[0], e1);
+    vtkMath::Subtract(p[2], p[0], e2);
+    vtkMath::Cross(e1, e2, n);
+    cumulative[t + 1] = cumulative[t] + 0.5 * vtkMath::Norm(n);
+  }
+  const double totalArea = cumulative[nt];
+  samples.AreaSamples = totalArea > 0.0 ? options.SamplesPerSurface : 0;
+
+  const vtkIdType nv = points->GetNumberOfPoints();
+  const vtkIdType stride = options.MaximumVertexSamples > 0
+    ? std::max<vtkIdType>(1, (nv + options.MaximumVertexSamples - 1) / options.MaximumVertexSamples)
+    : nv + 1;
+  const vtkIdType vertexSamples = options.MaximumVertexSamples > 0 ? (nv + stride - 1) / stride : 0;
+
+  samples.Positions.resize(3 * static_cast<size_t>(samples.AreaSamples + vertexSamples));
+  vtkSMPTools::For(0, samples.AreaSamples, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      const double pick = Uniform(seed, 3 * i) * totalArea;
+      vtkIdType t = std::upper_bound(cumulative.begin() + 1, cumulative.end(), pick) -
+        (cumulative.begin() + 1);
+      t = std::min(t, nt - 1);
+      const double r1 = std::sqrt(Uniform(seed, 3 * i + 1));
+      const double r2 = Uniform(seed, 3 * i + 2);
+      const double w[3] = { 1.0 - r1, r1 * (1.0 - r2), r1 * r2 };
+      double* out = samples.Positions.data() + 3 * i;
+      out[0] = out[1] = out[2] = 0.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        double p[3];
+        points->GetPoint(tris[3 * t + k], p);
+        for (int c = 0; c < 3; ++c)
+        {
+          out[c] += w[k] * p[c];
+        }
+      }
+    }
+  });
+  for (vtkIdType j = 0; j < vertexSamples; ++j)
+  {
+    points->GetPoint(j * stride, samples.Positions.data() + 3 * (samples.AreaSamples + j));
+  }
+  return samples;
+}
+
+// Distances from samples to a surface: the maximum over all samples and the sum of squares over
+// the area samples. Per-sample distances are stored first so the reduction order (and so the
+// result) does not depend on the thread count.
+void DistancesTo(vtkPolyData* surface, const SampleSet& samples, double& maximum, double& rms)
+{
+  vtkNew<vtkStaticCellLocator> locator;
+  locator->SetDataSet(surface);
+  locator->BuildLocator();
+  const vtkIdType count = static_cast<vtkIdType>(samples.Positions.size() / 3);
+  std::vector<double> distance(count, 0.0);
+  vtkSMPThreadLocalObject<vtkGenericCell> cells;
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    vtkGenericCell* cell = cells.Local();
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      double closest[3];
+      vtkIdType cellId;
+      int subId;
+      double dist2 = 0.0;
+      locator->FindClosestPoint(samples.Positions.data() + 3 * i, closest, cell, cellId, subId, dist2);
+      distance[i] = std::sqrt(dist2);
+    }
+  });
+  maximum = count > 0 ? *std::max_element(distance.begin(), distance.end()) : 0.0;
+  double sum = 0.0;
+  for (vtkIdType i = 0; i < samples.AreaSamples; ++i)
+  {
+    sum += distance[i] * distance[i];
+  }
+  rms = sum;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+SurfaceDistance MeasureSurfaceDistance(
+  vtkPolyData* a, vtkPolyData* b, const SurfaceDistanceOptions& options)
+{
+  SurfaceDistance result;
+  if (a == nullptr || b == nullptr)
+  {
+    return result;
+  }
+  result.Diagonal = a->GetNumberOfPoints() > 0 ? a->GetLength() : 0.0;
+  const std::vector<vtkIdType> trisA = Triangles(a);
+  const std::vector<vtkIdType> trisB = Triangles(b);
+  if (trisA.empty() || trisB.empty())
+  {
+    return result;
+  }
+
+  // Locators need the triangles alone: give them polydata with only the polys.
+  vtkNew<vtkPolyData> surfaceA, surfaceB;
+  surfaceA->SetPoints(a->GetPoints());
+  surfaceA->SetPolys(a->GetPolys());
+  surfaceB->SetPoints(b->GetPoints());
+  surfaceB->SetPolys(b->GetPolys());
+
+  const SampleSet samplesA = Sample(a, trisA, options, options.Seed);
+  const SampleSet samplesB = Sample(b, trisB, options, SplitMix64(options.Seed));
+  double sumAB = 0.0, sumBA = 0.0;
+  DistancesTo(surfaceB, samplesA, result.MaxAB, sumAB);
+  DistancesTo(surfaceA, samplesB, result.MaxBA, sumBA);
+
+  const double nA = static_cast<double>(std::max<std::int64_t>(1, samplesA.AreaSamples));
+  const double nB = static_cast<double>(std::max<std::int64_t>(1, samplesB.AreaSamples));
+  result.RmsAB = std::sqrt(sumAB / nA);
+  result.RmsBA = std::sqrt(sumBA / nB);
+  result.Hausdorff = std::max(result.MaxAB, result.MaxBA);
+  result.Rms = std::sqrt((sumAB + sumBA) / (nA + nB));
+  return result;
+}
+
+} // namespace meshlod

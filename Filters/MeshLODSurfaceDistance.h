@@ -1,0 +1,61 @@
+// The quality yardstick: symmetric surface distance between two triangle meshes.
+//
+// Each surface is sampled area-uniformly (a fixed seed, so every run and every thread count
+// gives the same samples), and every sample's distance to the closest point of the other
+// surface is found with a vtkStaticCellLocator. A subset of each mesh's vertices joins the
+// samples for the maxima, because the largest deviation of a simplified mesh usually sits at
+// one of its vertices. From both directions it reports the one-sided maxima and RMS values and
+// their symmetric combination:
+//   Hausdorff = max(MaxAB, MaxBA),  RMS = sqrt((sum of squares over both sample sets) / count).
+// RMS uses the area samples only. Values are in world units; *Percent() divides by the
+// bounding-box diagonal of the first mesh (the reference).
+//
+// Used by the tests, the benchmark and vtkTriangleCollapseDecimation::ComputeLevelError. It is
+// a measurement by sampling, not a bound: a finer sampling can only raise the maxima.
+#ifndef MeshLODSurfaceDistance_h
+#define MeshLODSurfaceDistance_h
+
+#include "vtkFiltersMeshLODModule.h"
+
+#include <cstdint>
+
+class vtkPolyData;
+
+namespace meshlod
+{
+struct VTKFILTERSMESHLOD_EXPORT SurfaceDistance
+{
+  double MaxAB = 0.0; // max over samples of A of the distance to B
+  double MaxBA = 0.0;
+  double RmsAB = 0.0;
+  double RmsBA = 0.0;
+  double Hausdorff = 0.0;
+  double Rms = 0.0;
+  double Diagonal = 0.0; // bounding-box diagonal of A
+
+  double HausdorffPercent() const { return this->Percent(this->Hausdorff); }
+  double RmsPercent() const { return this->Percent(this->Rms); }
+  double Percent(double value) const
+  {
+    return this->Diagonal > 0.0 ? 100.0 * value / this->Diagonal : 0.0;
+  }
+};
+
+struct VTKFILTERSMESHLOD_EXPORT SurfaceDistanceOptions
+{
+  /// Area-uniform samples per surface.
+  std::int64_t SamplesPerSurface = 100000;
+  /// At most this many vertices of each mesh are added to its samples for the maxima
+  /// (an evenly strided subset when the mesh has more).
+  std::int64_t MaximumVertexSamples = 100000;
+  std::uint64_t Seed = 12345;
+};
+
+/// Measure the distance between the triangles (polys) of a and b. Either mesh empty gives all
+/// zeros except Diagonal.
+VTKFILTERSMESHLOD_EXPORT SurfaceDistance MeasureSurfaceDistance(
+  vtkPolyData* a, vtkPolyData* b, const SurfaceDistanceOptions& options = SurfaceDistanceOptions());
+
+} // namespace meshlod
+
+#endif

@@ -1,0 +1,247 @@
+// The input policy shared by every filter (MeshLODInputMesh.h), case by case.
+#include "MeshLODInputMesh.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestMeshes.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkTriangleFilter.h"
+
+#include <cmath>
+#include <limits>
+
+namespace
+{
+using namespace meshlod;
+
+struct Reader
+{
+  vtkNew<vtkTriangleFilter> Caller; // any algorithm: it only carries the messages
+  vtkNew<vtkTest::ErrorObserver> Observer;
+  Reader()
+  {
+    this->Caller->AddObserver(vtkCommand::ErrorEvent, this->Observer);
+    this->Caller->AddObserver(vtkCommand::WarningEvent, this->Observer);
+  }
+  InputStatus Read(vtkPolyData* input, InputMesh& result)
+  {
+    this->Observer->Clear();
+    return ReadInputMesh(input, this->Caller, result);
+  }
+};
+
+void TestEmpty(Reader& reader)
+{
+  InputMesh result;
+  vtkNew<vtkPolyData> empty;
+  MESHLOD_CHECK(reader.Read(empty, result) == InputStatus::Empty);
+  MESHLOD_CHECK(!reader.Observer->GetError());
+  MESHLOD_CHECK(!reader.Observer->GetWarning());
+  MESHLOD_CHECK(reader.Read(nullptr, result) == InputStatus::Empty);
+}
+
+void TestCleanMeshIsShared(Reader& reader)
+{
+  InputMesh result;
+  vtkSmartPointer<vtkPolyData> octahedron = testing::MakeOctahedron();
+  MESHLOD_CHECK(reader.Read(octahedron, result) == InputStatus::Valid);
+  MESHLOD_CHECK(result.SameAsInput);
+  MESHLOD_CHECK(result.Source == octahedron);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 8);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfPoints(), 6);
+  MESHLOD_CHECK_EQ(result.Topology.EulerCharacteristic(result.Mesh), 2);
+  MESHLOD_CHECK(!reader.Observer->GetError());
+  MESHLOD_CHECK(!reader.Observer->GetWarning());
+}
+
+void TestQuadsAndStripsAreTriangulated(Reader& reader)
+{
+  // Four quads of a 2x2 grid with a cell array "Square" naming each quad.
+  vtkSmartPointer<vtkPolyData> grid = testing::MakeGrid(2, 2);
+  vtkNew<vtkCellArray> quads;
+  vtkNew<vtkIntArray> square;
+  square->SetName("Square");
+  for (vtkIdType j = 0; j < 2; ++j)
+  {
+    for (vtkIdType i = 0; i < 2; ++i)
+    {
+      const vtkIdType a = j * 3 + i;
+      const vtkIdType ids[4] = { a, a + 1, a + 4, a + 3 };
+      quads->InsertNextCell(4, ids);
+      square->InsertNextValue(static_cast<int>(j * 2 + i));
+    }
+  }
+  grid->SetPolys(quads);
+  grid->GetCellData()->AddArray(square);
+  InputMesh result;
+  MESHLOD_CHECK(reader.Read(grid, result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 8);
+  MESHLOD_CHECK(!result.SameAsInput);
+  MESHLOD_CHECK(!reader.Observer->GetWarning());
+  // Each triangle still knows its quad through the source's cell data.
+  vtkDataArray* mapped = result.Source->GetCellData()->GetArray("Square");
+  MESHLOD_CHECK(mapped != nullptr);
+  if (mapped)
+  {
+    for (Id t = 0; t < 8; ++t)
+    {
+      MESHLOD_CHECK_EQ(mapped->GetTuple1(result.SourceCellIds[t]), static_cast<double>(t / 2));
+    }
+  }
+
+  // A strip of 5 points: 3 triangles.
+  vtkSmartPointer<vtkPolyData> strip = testing::MakeGrid(2, 1);
+  vtkNew<vtkCellArray> strips;
+  const vtkIdType ids[5] = { 0, 3, 1, 4, 2 };
+  strips->InsertNextCell(5, ids);
+  strip->SetPolys(nullptr);
+  strip->SetStrips(strips);
+  MESHLOD_CHECK(reader.Read(strip, result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 3);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfPoints(), 5); // point 5 is unused
+  MESHLOD_CHECK_EQ(result.UnusedPoints, 1);
+}
+
+void TestVertsAndLinesIgnored(Reader& reader)
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeOctahedron();
+  vtkNew<vtkCellArray> verts, lines;
+  const vtkIdType v[1] = { 0 };
+  const vtkIdType l[2] = { 0, 1 };
+  verts->InsertNextCell(1, v);
+  lines->InsertNextCell(2, l);
+  lines->InsertNextCell(2, l);
+  mesh->SetVerts(verts);
+  mesh->SetLines(lines);
+  InputMesh result;
+  MESHLOD_CHECK(reader.Read(mesh, result) == InputStatus::Valid);
+  MESHLOD_CHECK(reader.Observer->GetWarning());
+  MESHLOD_CHECK(!reader.Observer->GetError());
+  MESHLOD_CHECK_EQ(result.IgnoredVerts, 1);
+  MESHLOD_CHECK_EQ(result.IgnoredLines, 2);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 8);
+  // Polys come after verts and lines in the cell numbering.
+  MESHLOD_CHECK_EQ(result.SourceCellIds[0], 3);
+
+  // Only lines: empty, with a warning, no error.
+  vtkNew<vtkPolyData> onlyLines;
+  onlyLines->SetPoints(mesh->GetPoints());
+  onlyLines->SetLines(lines);
+  MESHLOD_CHECK(reader.Read(onlyLines, result) == InputStatus::Empty);
+  MESHLOD_CHECK(!reader.Observer->GetError());
+}
+
+void TestNonFiniteRefused(Reader& reader)
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeOctahedron();
+  mesh->GetPoints()->SetPoint(3, 0.0, std::numeric_limits<double>::quiet_NaN(), 0.0);
+  InputMesh result;
+  MESHLOD_CHECK(reader.Read(mesh, result) == InputStatus::Invalid);
+  MESHLOD_CHECK(reader.Observer->GetError());
+  MESHLOD_CHECK(reader.Observer->GetErrorMessage().find("Point 3") != std::string::npos);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 0);
+
+  mesh = testing::MakeOctahedron();
+  mesh->GetPoints()->SetPoint(5, std::numeric_limits<double>::infinity(), 0.0, 0.0);
+  MESHLOD_CHECK(reader.Read(mesh, result) == InputStatus::Invalid);
+  MESHLOD_CHECK(reader.Observer->GetErrorMessage().find("Point 5") != std::string::npos);
+}
+
+void TestTriangleSoupIsStitched(Reader& reader)
+{
+  // The octahedron with three private points per triangle, as an STL file would store it.
+  vtkSmartPointer<vtkPolyData> octahedron = testing::MakeOctahedron();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  vtkIdType n;
+  const vtkIdType* ids;
+  for (vtkIdType c = 0; c < 8; ++c)
+  {
+    octahedron->GetPolys()->GetCellAtId(c, n, ids);
+    vtkIdType soup[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      soup[k] = points->InsertNextPoint(octahedron->GetPoint(ids[k]));
+    }
+    polys->InsertNextCell(3, soup);
+  }
+  vtkNew<vtkPolyData> soup;
+  soup->SetPoints(points);
+  soup->SetPolys(polys);
+  InputMesh result;
+  MESHLOD_CHECK(reader.Read(soup, result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.MergedPoints, 18);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfPoints(), 6);
+  MESHLOD_CHECK_EQ(result.Topology.CountEdges(result.Mesh).Boundary, 0);
+  MESHLOD_CHECK_EQ(result.Topology.EulerCharacteristic(result.Mesh), 2);
+  MESHLOD_CHECK(result.Topology.IsConsistentlyOriented(result.Mesh));
+  // Each kept point refers to the first soup point at its position.
+  MESHLOD_CHECK_EQ(result.SourcePointIds[0], 0);
+  for (Id v = 0; v < 6; ++v)
+  {
+    double p[3];
+    soup->GetPoint(result.SourcePointIds[v], p);
+    MESHLOD_CHECK(p[0] == result.Mesh.Point(v)[0] && p[1] == result.Mesh.Point(v)[1] &&
+      p[2] == result.Mesh.Point(v)[2]);
+  }
+}
+
+void TestDegenerateAndDuplicateDropped(Reader& reader)
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeOctahedron();
+  const vtkIdType duplicate[3] = { 2, 4, 0 }; // triangle 0 = (0, 2, 4), rotated
+  const vtkIdType degenerate[3] = { 1, 1, 3 };
+  mesh->GetPolys()->InsertNextCell(3, duplicate);
+  mesh->GetPolys()->InsertNextCell(3, degenerate);
+  InputMesh result;
+  MESHLOD_CHECK(reader.Read(mesh, result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.DuplicateTriangles, 1);
+  MESHLOD_CHECK_EQ(result.DegenerateTriangles, 1);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 8);
+  MESHLOD_CHECK(reader.Observer->GetWarning());
+  MESHLOD_CHECK_EQ(result.Topology.CountEdges(result.Mesh).NonManifold, 0);
+}
+
+void TestNonManifoldKept(Reader& reader)
+{
+  InputMesh result;
+  MESHLOD_CHECK(reader.Read(testing::MakeNonManifoldEdge(), result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 3);
+  MESHLOD_CHECK_EQ(result.Topology.CountVertices(VertexKind::NonManifold), 2);
+  MESHLOD_CHECK(!reader.Observer->GetError());
+  MESHLOD_CHECK(reader.Read(testing::MakeBowTie(), result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.Topology.CountVertices(VertexKind::NonManifold), 1);
+}
+
+void TestUnusedPointsDropped(Reader& reader)
+{
+  InputMesh result;
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeGridWithHole(); // point 12 unused
+  MESHLOD_CHECK(reader.Read(mesh, result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.UnusedPoints, 1);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfPoints(), 24);
+  MESHLOD_CHECK_EQ(result.SourcePointIds[11], 11);
+  MESHLOD_CHECK_EQ(result.SourcePointIds[12], 13);
+  MESHLOD_CHECK(!result.SameAsInput);
+}
+} // namespace
+
+int TestInputValidation(int, char*[])
+{
+  Reader reader;
+  TestEmpty(reader);
+  TestCleanMeshIsShared(reader);
+  TestQuadsAndStripsAreTriangulated(reader);
+  TestVertsAndLinesIgnored(reader);
+  TestNonFiniteRefused(reader);
+  TestTriangleSoupIsStitched(reader);
+  TestDegenerateAndDuplicateDropped(reader);
+  TestNonManifoldKept(reader);
+  TestUnusedPointsDropped(reader);
+  return meshlod::testing::Result();
+}

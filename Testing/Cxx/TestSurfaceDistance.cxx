@@ -1,0 +1,100 @@
+// The quality yardstick against distances known in closed form.
+#include "MeshLODSurfaceDistance.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestMeshes.h"
+
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+
+#include <cmath>
+
+namespace
+{
+using namespace meshlod;
+
+vtkSmartPointer<vtkPolyData> Shifted(vtkPolyData* mesh, double dz, double scale = 1.0)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(mesh);
+  for (vtkIdType i = 0; i < copy->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    copy->GetPoint(i, p);
+    copy->GetPoints()->SetPoint(i, scale * p[0], scale * p[1], scale * p[2] + dz);
+  }
+  return copy;
+}
+
+void TestIdentical()
+{
+  vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(3);
+  const SurfaceDistance d = MeasureSurfaceDistance(sphere, sphere);
+  MESHLOD_CHECK_LE(d.Hausdorff, 1e-12);
+  MESHLOD_CHECK_LE(d.Rms, 1e-12);
+  MESHLOD_CHECK_LE(std::abs(d.Diagonal - 2.0 * std::sqrt(3.0)), 0.2);
+}
+
+void TestParallelPlanes()
+{
+  // Two 4x4 squares 0.5 apart: every closest point is straight above or below.
+  vtkSmartPointer<vtkPolyData> a = testing::MakeGrid(4, 4);
+  vtkSmartPointer<vtkPolyData> b = Shifted(a, 0.5);
+  const SurfaceDistance d = MeasureSurfaceDistance(a, b);
+  MESHLOD_CHECK_LE(std::abs(d.Hausdorff - 0.5), 1e-12);
+  MESHLOD_CHECK_LE(std::abs(d.Rms - 0.5), 1e-12);
+  MESHLOD_CHECK_LE(std::abs(d.MaxAB - 0.5), 1e-12);
+  MESHLOD_CHECK_LE(std::abs(d.RmsBA - 0.5), 1e-12);
+  // Diagonal of a 4 x 4 x 0 box.
+  MESHLOD_CHECK_LE(std::abs(d.HausdorffPercent() - 100.0 * 0.5 / std::sqrt(32.0)), 1e-9);
+}
+
+void TestConcentricSpheres()
+{
+  // A fine icosphere and a copy scaled by 1.1: distances lie between 0.1 minus the facet sag
+  // and 0.1 plus it (facets of level 4 sag by less than 0.003).
+  vtkSmartPointer<vtkPolyData> a = testing::MakeIcosphere(4);
+  vtkSmartPointer<vtkPolyData> b = Shifted(a, 0.0, 1.1);
+  const SurfaceDistance d = MeasureSurfaceDistance(a, b);
+  MESHLOD_CHECK_GE(d.Hausdorff, 0.1 - 0.004);
+  MESHLOD_CHECK_LE(d.Hausdorff, 0.1 + 0.004);
+  MESHLOD_CHECK_GE(d.Rms, 0.1 - 0.004);
+  MESHLOD_CHECK_LE(d.Rms, 0.1 + 0.004);
+}
+
+void TestOneSided()
+{
+  // A 2x2 patch inside a 4x4 square: every point of the patch is on the square (A->B = 0), but
+  // the square's far corner is sqrt(2^2 + 2^2) from the patch.
+  vtkSmartPointer<vtkPolyData> square = testing::MakeGrid(4, 4);
+  vtkSmartPointer<vtkPolyData> patch = testing::MakeGrid(2, 2);
+  const SurfaceDistance d = MeasureSurfaceDistance(patch, square);
+  MESHLOD_CHECK_LE(d.MaxAB, 1e-12);
+  MESHLOD_CHECK_LE(std::abs(d.MaxBA - std::sqrt(8.0)), 1e-9); // a vertex sample hits the corner
+  MESHLOD_CHECK_GT(d.RmsBA, 0.5);
+}
+
+void TestSameForEveryBackend()
+{
+  vtkSmartPointer<vtkPolyData> a = testing::MakeIsosurface(testing::Field::Metaballs, 40);
+  vtkSmartPointer<vtkPolyData> b = testing::MakeIsosurface(testing::Field::Metaballs, 24);
+  const std::string initial = vtkSMPTools::GetBackend();
+  vtkSMPTools::SetBackend("Sequential");
+  const SurfaceDistance sequential = MeasureSurfaceDistance(a, b);
+  vtkSMPTools::SetBackend(initial.c_str());
+  const SurfaceDistance parallel = MeasureSurfaceDistance(a, b);
+  MESHLOD_CHECK_EQ(sequential.Hausdorff, parallel.Hausdorff);
+  MESHLOD_CHECK_EQ(sequential.Rms, parallel.Rms);
+  MESHLOD_CHECK_GT(sequential.Hausdorff, 0.0);
+}
+} // namespace
+
+int TestSurfaceDistance(int, char*[])
+{
+  TestIdentical();
+  TestParallelPlanes();
+  TestConcentricSpheres();
+  TestOneSided();
+  TestSameForEveryBackend();
+  return meshlod::testing::Result();
+}

@@ -1,0 +1,205 @@
+// Core topology on tiny hand-made meshes with exact expected results.
+#include "Core/TriangleMesh.h"
+#include "MeshLODInputMesh.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestMeshes.h"
+
+#include "vtkCellArray.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <vector>
+
+namespace
+{
+using namespace meshlod;
+
+// Core mesh straight from a polydata of triangles (no validation).
+TriangleMesh ToCore(vtkPolyData* poly)
+{
+  TriangleMesh mesh;
+  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    poly->GetPoint(i, p);
+    mesh.Points.insert(mesh.Points.end(), p, p + 3);
+  }
+  vtkIdType n;
+  const vtkIdType* ids;
+  for (vtkIdType c = 0; c < poly->GetNumberOfPolys(); ++c)
+  {
+    poly->GetPolys()->GetCellAtId(c, n, ids);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      mesh.Triangles.push_back(static_cast<Id>(ids[k]));
+    }
+  }
+  return mesh;
+}
+
+void TestOctahedron()
+{
+  TriangleMesh mesh = ToCore(testing::MakeOctahedron());
+  TriangleTopology topo;
+  topo.Build(mesh);
+  MESHLOD_CHECK_EQ(topo.CountVertices(VertexKind::Interior), 6);
+  for (Id v = 0; v < 6; ++v)
+  {
+    MESHLOD_CHECK_EQ(topo.Valence(mesh, v), 4);
+    MESHLOD_CHECK_EQ(topo.VertexTriangles.Count(v), 4);
+  }
+  // Rows are sorted: vertex 4 (+z) is in triangles 0..3.
+  const std::vector<Id> row4(topo.VertexTriangles.Of(4), topo.VertexTriangles.Of(4) + 4);
+  MESHLOD_CHECK(row4 == std::vector<Id>({ 0, 1, 2, 3 }));
+  // Triangle 0 = (0, 2, 4): edge (0,2) is shared with triangle 4 = (2, 0, 5), edge (2,4) with
+  // triangle 1 = (2, 1, 4), edge (4,0) with triangle 3 = (3, 0, 4).
+  MESHLOD_CHECK_EQ(topo.EdgeNeighbors[0], 4);
+  MESHLOD_CHECK_EQ(topo.EdgeNeighbors[1], 1);
+  MESHLOD_CHECK_EQ(topo.EdgeNeighbors[2], 3);
+  Id onEdge[4];
+  MESHLOD_CHECK_EQ(topo.TrianglesOnEdge(mesh, 0, 2, onEdge, 4), 2);
+  MESHLOD_CHECK_EQ(onEdge[0], 0);
+  MESHLOD_CHECK_EQ(onEdge[1], 4);
+  MESHLOD_CHECK_EQ(topo.TrianglesOnEdge(mesh, 0, 1, onEdge, 4), 0); // opposite corners
+  const TriangleTopology::EdgeCounts edges = topo.CountEdges(mesh);
+  MESHLOD_CHECK_EQ(edges.Manifold, 12);
+  MESHLOD_CHECK_EQ(edges.Boundary, 0);
+  MESHLOD_CHECK_EQ(edges.NonManifold, 0);
+  MESHLOD_CHECK_EQ(topo.EulerCharacteristic(mesh), 2);
+  MESHLOD_CHECK(topo.IsConsistentlyOriented(mesh));
+
+  // Flipping one triangle breaks the orientation.
+  std::swap(mesh.Triangle(5)[0], mesh.Triangle(5)[1]);
+  topo.Build(mesh);
+  MESHLOD_CHECK(!topo.IsConsistentlyOriented(mesh));
+  MESHLOD_CHECK_EQ(topo.EulerCharacteristic(mesh), 2);
+}
+
+void TestGrid()
+{
+  // 2x2 squares: 9 points, 8 triangles; diagonals run from (i, j) to (i+1, j+1).
+  TriangleMesh mesh = ToCore(testing::MakeGrid(2, 2));
+  TriangleTopology topo;
+  topo.Build(mesh);
+  MESHLOD_CHECK_EQ(topo.VertexKinds[4], VertexKind::Interior);
+  MESHLOD_CHECK_EQ(topo.CountVertices(VertexKind::Boundary), 8);
+  MESHLOD_CHECK_EQ(topo.Valence(mesh, 4), 6); // 1, 3, 5, 7 and the diagonals 0, 8
+  MESHLOD_CHECK_EQ(topo.Valence(mesh, 0), 3); // 1, 3, 4
+  MESHLOD_CHECK_EQ(topo.Valence(mesh, 2), 2); // 1, 5
+  const TriangleTopology::EdgeCounts edges = topo.CountEdges(mesh);
+  MESHLOD_CHECK_EQ(edges.Boundary, 8);
+  MESHLOD_CHECK_EQ(edges.Manifold, 8);
+  MESHLOD_CHECK_EQ(topo.EulerCharacteristic(mesh), 1);
+  MESHLOD_CHECK(topo.IsConsistentlyOriented(mesh));
+}
+
+void TestTetrahedron()
+{
+  TriangleMesh mesh = ToCore(testing::MakeTetrahedron());
+  TriangleTopology topo;
+  topo.Build(mesh);
+  for (Id v = 0; v < 4; ++v)
+  {
+    MESHLOD_CHECK_EQ(topo.Valence(mesh, v), 3);
+    MESHLOD_CHECK_EQ(topo.VertexKinds[v], VertexKind::Interior);
+  }
+  MESHLOD_CHECK_EQ(topo.EulerCharacteristic(mesh), 2);
+  MESHLOD_CHECK(topo.IsConsistentlyOriented(mesh));
+}
+
+void TestNonManifold()
+{
+  TriangleMesh mesh = ToCore(testing::MakeNonManifoldEdge());
+  TriangleTopology topo;
+  topo.Build(mesh);
+  MESHLOD_CHECK_EQ(topo.EdgeNeighbors[0], NonManifoldEdge); // edge (0, 1) of triangle 0
+  MESHLOD_CHECK_EQ(topo.VertexKinds[0], VertexKind::NonManifold);
+  MESHLOD_CHECK_EQ(topo.VertexKinds[1], VertexKind::NonManifold);
+  MESHLOD_CHECK_EQ(topo.VertexKinds[2], VertexKind::Boundary);
+  const TriangleTopology::EdgeCounts edges = topo.CountEdges(mesh);
+  MESHLOD_CHECK_EQ(edges.NonManifold, 1);
+  MESHLOD_CHECK_EQ(edges.Boundary, 6);
+  MESHLOD_CHECK_EQ(edges.Manifold, 0);
+
+  TriangleMesh bowTie = ToCore(testing::MakeBowTie());
+  topo.Build(bowTie);
+  MESHLOD_CHECK_EQ(topo.VertexKinds[0], VertexKind::NonManifold);
+  MESHLOD_CHECK_EQ(topo.CountVertices(VertexKind::Boundary), 6);
+  const TriangleTopology::EdgeCounts bowTieEdges = topo.CountEdges(bowTie);
+  MESHLOD_CHECK_EQ(bowTieEdges.Manifold, 2);
+  MESHLOD_CHECK_EQ(bowTieEdges.Boundary, 8);
+  MESHLOD_CHECK_EQ(topo.Valence(bowTie, 0), 6);
+
+  // Two closed tetrahedra pinched together at point 0: no boundary edge anywhere, yet two
+  // separate fans meet at point 0.
+  vtkSmartPointer<vtkPolyData> pinched = testing::MakePolyData(
+    { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1 },
+    { 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 0, 4, 5, 0, 5, 6, 0, 6, 4, 4, 6, 5 });
+  TriangleMesh twoTetrahedra = ToCore(pinched);
+  topo.Build(twoTetrahedra);
+  MESHLOD_CHECK_EQ(topo.VertexKinds[0], VertexKind::NonManifold);
+  MESHLOD_CHECK_EQ(topo.CountVertices(VertexKind::Interior), 6);
+  MESHLOD_CHECK_EQ(topo.CountEdges(twoTetrahedra).Manifold, 12);
+  MESHLOD_CHECK_EQ(topo.EulerCharacteristic(twoTetrahedra), 3);
+}
+
+void TestHole()
+{
+  TriangleMesh mesh = ToCore(testing::MakeGridWithHole());
+  TriangleTopology topo;
+  topo.Build(mesh);
+  MESHLOD_CHECK_EQ(mesh.GetNumberOfTriangles(), 24);
+  MESHLOD_CHECK_EQ(topo.VertexKinds[12], VertexKind::Unused); // the centre point
+  MESHLOD_CHECK_EQ(topo.CountVertices(VertexKind::Boundary), 24);
+  const TriangleTopology::EdgeCounts edges = topo.CountEdges(mesh);
+  MESHLOD_CHECK_EQ(edges.Boundary, 24); // 16 outside, 8 around the hole
+  MESHLOD_CHECK_EQ(edges.Manifold, 24);
+  MESHLOD_CHECK_EQ(topo.EulerCharacteristic(mesh), 0); // an annulus
+}
+
+void TestCompaction()
+{
+  // Delete the two triangles of the top-right square of a 2x2 grid: point 8 is no longer used.
+  TriangleMesh mesh = ToCore(testing::MakeGrid(2, 2));
+  mesh.Triangle(6)[0] = InvalidId;
+  mesh.Triangle(7)[0] = InvalidId;
+  TriangleMesh compact;
+  CompactionMaps maps;
+  CompactMesh(mesh, compact, maps);
+  MESHLOD_CHECK_EQ(compact.GetNumberOfTriangles(), 6);
+  MESHLOD_CHECK_EQ(compact.GetNumberOfPoints(), 8);
+  MESHLOD_CHECK_EQ(maps.PointMap[8], InvalidId);
+  MESHLOD_CHECK_EQ(maps.PointMap[7], 7);
+  MESHLOD_CHECK_EQ(maps.TriangleMap[6], InvalidId);
+  MESHLOD_CHECK(maps.KeptTriangles == std::vector<Id>({ 0, 1, 2, 3, 4, 5 }));
+  // Square (0, 1) gives triangles 4 = (3, 4, 7) and 5 = (3, 7, 6); their ids do not change.
+  MESHLOD_CHECK_EQ(compact.Triangle(5)[0], 3);
+  MESHLOD_CHECK_EQ(compact.Triangle(5)[1], 7);
+  MESHLOD_CHECK_EQ(compact.Triangle(5)[2], 6);
+  MESHLOD_CHECK_EQ(compact.Point(7)[0], 1.0);
+  MESHLOD_CHECK_EQ(compact.Point(7)[1], 2.0);
+
+  // Dropping a middle point renumbers the later ones.
+  TriangleMesh fan = ToCore(testing::MakeGrid(2, 1));
+  // Keep only triangle 1 = (0, 4, 3): points 1, 2 and 5 go, 3 and 4 become 1 and 2.
+  fan.Triangle(0)[0] = InvalidId;
+  fan.Triangle(2)[0] = InvalidId;
+  fan.Triangle(3)[0] = InvalidId;
+  CompactMesh(fan, compact, maps);
+  MESHLOD_CHECK(maps.KeptPoints == std::vector<Id>({ 0, 3, 4 }));
+  MESHLOD_CHECK_EQ(compact.Triangle(0)[0], 0);
+  MESHLOD_CHECK_EQ(compact.Triangle(0)[1], 2);
+  MESHLOD_CHECK_EQ(compact.Triangle(0)[2], 1);
+}
+} // namespace
+
+int TestTriangleMesh(int, char*[])
+{
+  TestOctahedron();
+  TestGrid();
+  TestTetrahedron();
+  TestNonManifold();
+  TestHole();
+  TestCompaction();
+  return meshlod::testing::Result();
+}

@@ -1,0 +1,305 @@
+#include "MeshLODTestMeshes.h"
+
+#include "vtkCellArray.h"
+#include "vtkFlyingEdges3D.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkRTAnalyticSource.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace meshlod
+{
+namespace testing
+{
+namespace
+{
+double FieldValue(Field field, double x, double y, double z)
+{
+  switch (field)
+  {
+    case Field::Sphere:
+      return std::sqrt(x * x + y * y + z * z) - 0.7;
+    case Field::Torus:
+    {
+      const double ring = std::sqrt(x * x + y * y) - 0.55;
+      return ring * ring + z * z - 0.25 * 0.25;
+    }
+    case Field::Metaballs:
+    {
+      // Five blobs of different sizes, close enough to fuse into one surface.
+      static const double blobs[5][4] = { { -0.35, -0.2, 0.0, 0.11 }, { 0.3, -0.25, 0.05, 0.08 },
+        { 0.0, 0.35, -0.1, 0.09 }, { 0.05, 0.0, 0.4, 0.05 }, { -0.1, 0.05, -0.4, 0.04 } };
+      double sum = 0.0;
+      for (const auto& b : blobs)
+      {
+        const double dx = x - b[0], dy = y - b[1], dz = z - b[2];
+        sum += b[3] / (dx * dx + dy * dy + dz * dz + 1e-9);
+      }
+      return 1.0 - sum;
+    }
+    case Field::Gyroid:
+    {
+      const double k = 1.5 * 3.14159265358979323846;
+      return std::sin(k * x) * std::cos(k * y) + std::sin(k * y) * std::cos(k * z) +
+        std::sin(k * z) * std::cos(k * x);
+    }
+    case Field::Wavelet:
+      break;
+  }
+  return 0.0;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+const char* FieldName(Field field)
+{
+  switch (field)
+  {
+    case Field::Sphere:
+      return "sphere";
+    case Field::Torus:
+      return "torus";
+    case Field::Metaballs:
+      return "metaballs";
+    case Field::Gyroid:
+      return "gyroid";
+    case Field::Wavelet:
+      return "wavelet";
+  }
+  return "unknown";
+}
+
+bool FieldFromName(const std::string& name, Field& field)
+{
+  for (Field f : { Field::Sphere, Field::Torus, Field::Metaballs, Field::Gyroid, Field::Wavelet })
+  {
+    if (name == FieldName(f))
+    {
+      field = f;
+      return true;
+    }
+  }
+  return false;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkImageData> SampleField(Field field, int resolution)
+{
+  const double spacing = 2.0 / (resolution - 1);
+  if (field == Field::Wavelet)
+  {
+    // VTK's wavelet source, rescaled to [-1, 1]^3 so all fields share one frame.
+    vtkNew<vtkRTAnalyticSource> wavelet;
+    const int half = (resolution - 1) / 2;
+    wavelet->SetWholeExtent(-half, half, -half, half, -half, half);
+    wavelet->SetXFreq(60.0 * 10.0 / half);
+    wavelet->SetYFreq(30.0 * 10.0 / half);
+    wavelet->SetZFreq(40.0 * 10.0 / half);
+    wavelet->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->ShallowCopy(wavelet->GetOutput());
+    image->SetSpacing(1.0 / half, 1.0 / half, 1.0 / half);
+    image->SetOrigin(0.0, 0.0, 0.0);
+    image->GetPointData()->GetScalars()->SetName("Field");
+    return image;
+  }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(resolution, resolution, resolution);
+  image->SetOrigin(-1.0, -1.0, -1.0);
+  image->SetSpacing(spacing, spacing, spacing);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("Field");
+  const vtkIdType n = static_cast<vtkIdType>(resolution) * resolution * resolution;
+  values->SetNumberOfValues(n);
+  float* out = values->GetPointer(0);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      const int ix = static_cast<int>(i % resolution);
+      const int iy = static_cast<int>((i / resolution) % resolution);
+      const int iz = static_cast<int>(i / (static_cast<vtkIdType>(resolution) * resolution));
+      out[i] = static_cast<float>(
+        FieldValue(field, -1.0 + ix * spacing, -1.0 + iy * spacing, -1.0 + iz * spacing));
+    }
+  });
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> MakeIsosurface(
+  Field field, int resolution, bool computeNormals, bool computeScalars)
+{
+  vtkNew<vtkFlyingEdges3D> contour;
+  contour->SetInputData(SampleField(field, resolution));
+  contour->SetValue(0, field == Field::Wavelet ? 157.0 : 0.0);
+  contour->SetComputeNormals(computeNormals);
+  contour->SetComputeGradients(false);
+  contour->SetComputeScalars(computeScalars);
+  contour->Update();
+  auto surface = vtkSmartPointer<vtkPolyData>::New();
+  surface->ShallowCopy(contour->GetOutput());
+  return surface;
+}
+
+int ResolutionForTriangles(Field field, double triangles)
+{
+  const int probe = 64;
+  const double probed = static_cast<double>(MakeIsosurface(field, probe)->GetNumberOfPolys());
+  return std::max(8, static_cast<int>(std::lround(probe * std::sqrt(triangles / probed))));
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> MakePolyData(
+  const std::vector<double>& points, const std::vector<long long>& triangles)
+{
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  for (size_t i = 0; i + 2 < points.size(); i += 3)
+  {
+    pts->InsertNextPoint(points[i], points[i + 1], points[i + 2]);
+  }
+  vtkNew<vtkCellArray> polys;
+  for (size_t i = 0; i + 2 < triangles.size(); i += 3)
+  {
+    const vtkIdType ids[3] = { static_cast<vtkIdType>(triangles[i]),
+      static_cast<vtkIdType>(triangles[i + 1]), static_cast<vtkIdType>(triangles[i + 2]) };
+    polys->InsertNextCell(3, ids);
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->SetPoints(pts);
+  mesh->SetPolys(polys);
+  return mesh;
+}
+
+// Grid points are numbered row by row: point (i, j) = j * (nx + 1) + i at (i, j, 0).
+// Square (i, j) becomes triangles (a, b, c) and (a, c, d), counter-clockwise seen from +z.
+vtkSmartPointer<vtkPolyData> MakeGrid(int nx, int ny)
+{
+  std::vector<double> points;
+  for (int j = 0; j <= ny; ++j)
+  {
+    for (int i = 0; i <= nx; ++i)
+    {
+      points.insert(points.end(), { double(i), double(j), 0.0 });
+    }
+  }
+  std::vector<long long> triangles;
+  for (int j = 0; j < ny; ++j)
+  {
+    for (int i = 0; i < nx; ++i)
+    {
+      const long long a = j * (nx + 1) + i, b = a + 1, c = a + nx + 2, d = a + nx + 1;
+      triangles.insert(triangles.end(), { a, b, c, a, c, d });
+    }
+  }
+  return MakePolyData(points, triangles);
+}
+
+// Points: 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z. Outward-facing triangles.
+vtkSmartPointer<vtkPolyData> MakeOctahedron()
+{
+  return MakePolyData({ 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1 },
+    { 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5 });
+}
+
+// Points: the four corners of a regular tetrahedron. Outward-facing triangles.
+vtkSmartPointer<vtkPolyData> MakeTetrahedron()
+{
+  return MakePolyData(
+    { 1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1 }, { 0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2 });
+}
+
+vtkSmartPointer<vtkPolyData> MakeIcosphere(int levels)
+{
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<double> points = { -1, t, 0, 1, t, 0, -1, -t, 0, 1, -t, 0, 0, -1, t, 0, 1, t, 0, -1,
+    -t, 0, 1, -t, t, 0, -1, t, 0, 1, -t, 0, -1, -t, 0, 1 };
+  std::vector<long long> triangles = { 0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5,
+    11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4,
+    11, 6, 2, 10, 8, 6, 7, 9, 8, 1 };
+  for (int level = 0; level < levels; ++level)
+  {
+    std::map<std::pair<long long, long long>, long long> midpoints;
+    auto midpoint = [&](long long a, long long b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      auto it = midpoints.find(key);
+      if (it != midpoints.end())
+      {
+        return it->second;
+      }
+      const long long id = static_cast<long long>(points.size() / 3);
+      for (int c = 0; c < 3; ++c)
+      {
+        points.push_back(0.5 * (points[3 * a + c] + points[3 * b + c]));
+      }
+      midpoints[key] = id;
+      return id;
+    };
+    std::vector<long long> finer;
+    for (size_t i = 0; i < triangles.size(); i += 3)
+    {
+      const long long a = triangles[i], b = triangles[i + 1], c = triangles[i + 2];
+      const long long ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      finer.insert(finer.end(), { a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca });
+    }
+    triangles.swap(finer);
+  }
+  for (size_t i = 0; i < points.size(); i += 3)
+  {
+    const double r =
+      std::sqrt(points[i] * points[i] + points[i + 1] * points[i + 1] + points[i + 2] * points[i + 2]);
+    for (int c = 0; c < 3; ++c)
+    {
+      points[i + c] /= r;
+    }
+  }
+  return MakePolyData(points, triangles);
+}
+
+// Points 0 and 1 form the shared edge; 2, 3, 4 are the three apexes.
+vtkSmartPointer<vtkPolyData> MakeNonManifoldEdge()
+{
+  return MakePolyData(
+    { 0, 0, 0, 1, 0, 0, 0.5, 1, 0, 0.5, -1, 0, 0.5, 0, 1 }, { 0, 1, 2, 1, 0, 3, 0, 1, 4 });
+}
+
+// Point 0 is the shared apex; 1-2-3 and 4-5-6 are the rims of two open fans.
+vtkSmartPointer<vtkPolyData> MakeBowTie()
+{
+  return MakePolyData({ 0, 0, 0, 1, 1, 0, 1, 0, 0, 1, -1, 0, -1, -1, 0, -1, 0, 0, -1, 1, 0 },
+    { 0, 3, 2, 0, 2, 1, 0, 6, 5, 0, 5, 4 });
+}
+
+vtkSmartPointer<vtkPolyData> MakeGridWithHole()
+{
+  vtkSmartPointer<vtkPolyData> grid = MakeGrid(4, 4);
+  vtkNew<vtkCellArray> polys;
+  vtkIdType n;
+  const vtkIdType* ids;
+  vtkCellArray* all = grid->GetPolys();
+  for (vtkIdType c = 0; c < all->GetNumberOfCells(); ++c)
+  {
+    all->GetCellAtId(c, n, ids);
+    const vtkIdType square = c / 2; // squares are numbered row by row, 4 per row
+    const int i = static_cast<int>(square % 4), j = static_cast<int>(square / 4);
+    if (i >= 1 && i <= 2 && j >= 1 && j <= 2)
+    {
+      continue;
+    }
+    polys->InsertNextCell(n, ids);
+  }
+  grid->SetPolys(polys);
+  return grid;
+}
+
+} // namespace testing
+} // namespace meshlod

@@ -1,0 +1,64 @@
+// Meshes for the tests, the demo and the benchmark: marching-cubes (flying edges) isosurfaces of
+// analytic fields at a chosen resolution, and tiny hand-made meshes with known topology.
+#ifndef MeshLODTestMeshes_h
+#define MeshLODTestMeshes_h
+
+#include "vtkSmartPointer.h"
+
+#include <string>
+#include <vector>
+
+class vtkImageData;
+class vtkPolyData;
+
+namespace meshlod
+{
+namespace testing
+{
+/// Analytic scalar fields on [-1, 1]^3, contoured at 0.
+enum class Field
+{
+  Sphere,    // closed, genus 0
+  Torus,     // closed, genus 1
+  Metaballs, // closed, genus 0, one component of five fused blobs with varied curvature
+  Gyroid,    // open (cut by the volume box), high genus, no flat parts
+  Wavelet,   // vtkRTAnalyticSource-like field: open wavy sheets
+};
+
+const char* FieldName(Field field);
+bool FieldFromName(const std::string& name, Field& field);
+
+/// The sampled field on a resolution^3 grid spanning [-1, 1]^3 (scalars named "Field").
+vtkSmartPointer<vtkImageData> SampleField(Field field, int resolution);
+
+/// Flying-edges isosurface of the field at 0, triangles only, no point data unless asked.
+vtkSmartPointer<vtkPolyData> MakeIsosurface(
+  Field field, int resolution, bool computeNormals = false, bool computeScalars = false);
+
+/// The resolution whose isosurface has about `triangles` triangles (from a coarse probe).
+int ResolutionForTriangles(Field field, double triangles);
+
+// Tiny hand-made meshes. Points are listed in the comment of each maker in the .cxx file.
+
+/// A flat nx by ny grid of squares on z = 0, each split into two triangles (open).
+vtkSmartPointer<vtkPolyData> MakeGrid(int nx, int ny);
+/// Closed regular octahedron (all vertices valence 4).
+vtkSmartPointer<vtkPolyData> MakeOctahedron();
+/// Closed regular icosahedron subdivided `levels` times and projected on the unit sphere.
+vtkSmartPointer<vtkPolyData> MakeIcosphere(int levels);
+/// Closed tetrahedron (valence-3 vertices everywhere).
+vtkSmartPointer<vtkPolyData> MakeTetrahedron();
+/// Three triangles sharing one edge (a non-manifold edge).
+vtkSmartPointer<vtkPolyData> MakeNonManifoldEdge();
+/// Two triangle fans touching at a single vertex (a non-manifold "bow tie" vertex).
+vtkSmartPointer<vtkPolyData> MakeBowTie();
+/// A 4x4 grid with the 2x2 middle squares removed (a hole: two boundary loops).
+vtkSmartPointer<vtkPolyData> MakeGridWithHole();
+/// A closed surface from a flat list of points and triangles.
+vtkSmartPointer<vtkPolyData> MakePolyData(
+  const std::vector<double>& points, const std::vector<long long>& triangles);
+
+} // namespace testing
+} // namespace meshlod
+
+#endif
