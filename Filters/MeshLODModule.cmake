@@ -13,10 +13,12 @@ set(meshlod_nowrap_headers
 # it and VTK. The tests in the build tree include them directly.
 set(meshlod_private_headers
   Filters/Core/TriangleMesh.h
+  Filters/MeshLODHierarchy.h
   Filters/MeshLODInputMesh.h)
 
 set(meshlod_sources
   Filters/Core/TriangleMesh.cxx
+  Filters/MeshLODHierarchy.cxx
   Filters/MeshLODInputMesh.cxx
   Filters/MeshLODSurfaceDistance.cxx)
 

@@ -1,0 +1,431 @@
+#include "MeshLODHierarchy.h"
+
+#include "MeshLODInputMesh.h"
+#include "MeshLODSurfaceDistance.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkIntArray.h"
+#include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace meshlod
+{
+namespace
+{
+// Integer-valued arrays hold ids, labels or categories: averaging them would invent values.
+bool IsCategorical(vtkAbstractArray* array)
+{
+  auto* data = vtkDataArray::SafeDownCast(array);
+  return data == nullptr || !(array->GetDataType() == VTK_FLOAT || array->GetDataType() == VTK_DOUBLE);
+}
+
+// Point data of the new level: floating arrays interpolated with the sources' weights.
+struct InterpolateWorker
+{
+  const PointSources* Sources;
+
+  template <typename InArray, typename OutArray>
+  void operator()(InArray* in, OutArray* out) const
+  {
+    const auto src = vtk::DataArrayTupleRange(in);
+    auto dst = vtk::DataArrayTupleRange(out);
+    const int nc = in->GetNumberOfComponents();
+    const PointSources& s = *this->Sources;
+    vtkSMPTools::For(0, dst.size(), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        for (int c = 0; c < nc; ++c)
+        {
+          double sum = 0.0;
+          for (Id i = s.Offsets[p]; i < s.Offsets[p + 1]; ++i)
+          {
+            sum += s.Weights[i] * static_cast<double>(src[s.Parents[i]][c]);
+          }
+          dst[p][c] = static_cast<typename decltype(dst[p])::value_type>(sum);
+        }
+      }
+    });
+  }
+};
+
+// The parent with the largest weight (the first one on ties).
+Id DominantParent(const PointSources& s, vtkIdType p)
+{
+  Id best = s.Parents[s.Offsets[p]];
+  float bestWeight = s.Weights[s.Offsets[p]];
+  for (Id i = s.Offsets[p] + 1; i < s.Offsets[p + 1]; ++i)
+  {
+    if (s.Weights[i] > bestWeight)
+    {
+      best = s.Parents[i];
+      bestWeight = s.Weights[i];
+    }
+  }
+  return best;
+}
+
+void InterpolatePointData(vtkPointData* from, const PointSources& sources, vtkIdType count,
+  vtkPointData* to, const char* const* skipNames, int skipCount)
+{
+  vtkNew<vtkIdList> dominantIds, identity;
+  for (int a = 0; a < from->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* in = from->GetAbstractArray(a);
+    bool skip = false;
+    for (int k = 0; k < skipCount; ++k)
+    {
+      skip = skip || (in->GetName() && std::string(in->GetName()) == skipNames[k]);
+    }
+    if (skip)
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkAbstractArray> out = vtk::TakeSmartPointer(in->NewInstance());
+    out->SetName(in->GetName());
+    out->SetNumberOfComponents(in->GetNumberOfComponents());
+    out->SetNumberOfTuples(count);
+    if (!IsCategorical(in))
+    {
+      InterpolateWorker worker{ &sources };
+      auto* inData = vtkDataArray::SafeDownCast(in);
+      auto* outData = vtkDataArray::SafeDownCast(out);
+      using Reals = vtkArrayDispatch::Reals;
+      if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(inData, outData, worker))
+      {
+        worker(inData, outData);
+      }
+      if (in == from->GetNormals() && in->GetNumberOfComponents() == 3)
+      {
+        vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+          for (vtkIdType p = begin; p < end; ++p)
+          {
+            double n[3];
+            outData->GetTuple(p, n);
+            if (vtkMath::Normalize(n) > 0.0)
+            {
+              outData->SetTuple(p, n);
+            }
+          }
+        });
+      }
+    }
+    else
+    {
+      if (dominantIds->GetNumberOfIds() == 0)
+      {
+        dominantIds->SetNumberOfIds(count);
+        identity->SetNumberOfIds(count);
+        for (vtkIdType p = 0; p < count; ++p)
+        {
+          dominantIds->SetId(p, DominantParent(sources, p));
+          identity->SetId(p, p);
+        }
+      }
+      out->InsertTuples(identity, dominantIds, in);
+    }
+    const int attribute = from->IsArrayAnAttribute(a);
+    if (attribute >= 0)
+    {
+      to->SetAttribute(out, attribute);
+    }
+    else
+    {
+      to->AddArray(out);
+    }
+  }
+}
+
+vtkSmartPointer<vtkPoints> MakePoints(const TriangleMesh& mesh, int dataType)
+{
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataType(dataType);
+  points->SetNumberOfPoints(mesh.GetNumberOfPoints());
+  vtkDataArray* data = points->GetData();
+  vtkSMPTools::For(0, mesh.GetNumberOfPoints(), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType p = begin; p < end; ++p)
+    {
+      data->SetTuple(p, mesh.Point(static_cast<Id>(p)));
+    }
+  });
+  return points;
+}
+
+template <typename T>
+vtkSmartPointer<vtkIdList> ToIdList(const std::vector<T>& ids)
+{
+  auto list = vtkSmartPointer<vtkIdList>::New();
+  list->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  for (size_t i = 0; i < ids.size(); ++i)
+  {
+    list->SetId(static_cast<vtkIdType>(i), static_cast<vtkIdType>(ids[i]));
+  }
+  return list;
+}
+
+vtkSmartPointer<vtkIdList> Iota(vtkIdType count)
+{
+  auto list = vtkSmartPointer<vtkIdList>::New();
+  list->SetNumberOfIds(count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    list->SetId(i, i);
+  }
+  return list;
+}
+
+void CopySubset(vtkDataSetAttributes* from, vtkIdList* fromIds, vtkDataSetAttributes* to)
+{
+  to->CopyAllocate(from, fromIds->GetNumberOfIds());
+  to->CopyData(from, fromIds, Iota(fromIds->GetNumberOfIds()));
+}
+
+void SetLevelFieldData(vtkPolyData* poly, int level, double estimatedError)
+{
+  vtkNew<vtkIntArray> index;
+  index->SetName(names::LevelIndex);
+  index->InsertNextValue(level);
+  vtkNew<vtkIdTypeArray> triangles;
+  triangles->SetName(names::NumberOfTriangles);
+  triangles->InsertNextValue(poly->GetNumberOfPolys());
+  vtkNew<vtkDoubleArray> error;
+  error->SetName(names::EstimatedError);
+  error->InsertNextValue(estimatedError);
+  vtkFieldData* fd = poly->GetFieldData();
+  fd->AddArray(index);
+  fd->AddArray(triangles);
+  fd->AddArray(error);
+}
+
+void SetDoubleField(vtkPolyData* poly, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->InsertNextValue(value);
+  poly->GetFieldData()->AddArray(array);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::string LevelBlockName(int level)
+{
+  return "Level " + std::to_string(level);
+}
+
+struct HierarchyBuilder::Internals
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> Levels;
+};
+
+HierarchyBuilder::HierarchyBuilder()
+  : Impl(new Internals)
+{
+}
+
+HierarchyBuilder::~HierarchyBuilder()
+{
+  delete this->Impl;
+}
+
+int HierarchyBuilder::GetNumberOfLevels() const
+{
+  return static_cast<int>(this->Impl->Levels.size());
+}
+
+vtkPolyData* HierarchyBuilder::GetLevel(int level) const
+{
+  return this->Impl->Levels[level];
+}
+
+//------------------------------------------------------------------------------
+void HierarchyBuilder::SetLevelZero(const InputMesh& input)
+{
+  this->Impl->Levels.clear();
+  auto level0 = vtkSmartPointer<vtkPolyData>::New();
+  vtkPolyData* source = input.Source;
+  const bool cellsFirst = input.SourceCellIds.empty() || input.SourceCellIds[0] == 0;
+  if (input.SameAsInput)
+  {
+    level0->SetPoints(source->GetPoints());
+    level0->SetPolys(source->GetPolys());
+    level0->GetPointData()->ShallowCopy(source->GetPointData());
+  }
+  else
+  {
+    level0->SetPoints(MakePoints(input.Mesh, source->GetPoints()->GetDataType()));
+    level0->SetPolys(MakeTriangleCells(input.Mesh.Triangles.data(), input.Mesh.GetNumberOfTriangles()));
+    CopySubset(source->GetPointData(), ToIdList(input.SourcePointIds), level0->GetPointData());
+  }
+  if (input.SameAsInput && cellsFirst && source->GetNumberOfCells() == source->GetNumberOfPolys())
+  {
+    level0->GetCellData()->ShallowCopy(source->GetCellData());
+  }
+  else
+  {
+    CopySubset(source->GetCellData(), ToIdList(input.SourceCellIds), level0->GetCellData());
+  }
+  SetLevelFieldData(level0, 0, 0.0);
+  this->Impl->Levels.push_back(level0);
+}
+
+//------------------------------------------------------------------------------
+void HierarchyBuilder::AppendLevel(const LevelData& level)
+{
+  vtkPolyData* previous = this->Impl->Levels.back();
+  vtkPolyData* level0 = this->Impl->Levels.front();
+  const int index = static_cast<int>(this->Impl->Levels.size());
+  const vtkIdType numberOfPoints = level.Mesh.GetNumberOfPoints();
+
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(MakePoints(level.Mesh, level0->GetPoints()->GetDataType()));
+  poly->SetPolys(MakeTriangleCells(level.Mesh.Triangles.data(), level.Mesh.GetNumberOfTriangles()));
+  static const char* const morphNames[] = { names::MorphTarget, names::MorphTargetId,
+    names::CollapseRank };
+  InterpolatePointData(
+    previous->GetPointData(), level.Sources, numberOfPoints, poly->GetPointData(), morphNames, 3);
+  CopySubset(level0->GetCellData(), ToIdList(level.LevelZeroTriangle), poly->GetCellData());
+  SetLevelFieldData(poly, index, level.EstimatedError);
+
+  // Morph arrays on the previous level.
+  const vtkIdType previousPoints = previous->GetNumberOfPoints();
+  vtkNew<vtkIdTypeArray> targetId;
+  targetId->SetName(names::MorphTargetId);
+  targetId->SetNumberOfValues(previousPoints);
+  vtkNew<vtkIdTypeArray> rank;
+  rank->SetName(names::CollapseRank);
+  rank->SetNumberOfValues(previousPoints);
+  vtkSmartPointer<vtkDataArray> target =
+    vtk::TakeSmartPointer(poly->GetPoints()->GetData()->NewInstance());
+  target->SetName(names::MorphTarget);
+  target->SetNumberOfComponents(3);
+  target->SetNumberOfTuples(previousPoints);
+  vtkDataArray* newPoints = poly->GetPoints()->GetData();
+  vtkSMPTools::For(0, previousPoints, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType p = begin; p < end; ++p)
+    {
+      const Id to = level.Target[p];
+      targetId->SetValue(p, to);
+      rank->SetValue(p, level.Rank[p]);
+      double x[3];
+      newPoints->GetTuple(to, x);
+      target->SetTuple(p, x);
+    }
+  });
+  // The previous level may share its point data object with the input: give it its own.
+  vtkNew<vtkPointData> previousData;
+  previousData->ShallowCopy(previous->GetPointData());
+  previousData->AddArray(target);
+  previousData->AddArray(targetId);
+  previousData->AddArray(rank);
+  previous->GetPointData()->ShallowCopy(previousData);
+
+  this->Impl->Levels.push_back(poly);
+}
+
+//------------------------------------------------------------------------------
+void HierarchyBuilder::MeasureLevelErrors()
+{
+  vtkPolyData* level0 = this->Impl->Levels.front();
+  for (size_t i = 0; i < this->Impl->Levels.size(); ++i)
+  {
+    vtkPolyData* level = this->Impl->Levels[i];
+    SurfaceDistance d;
+    if (i > 0)
+    {
+      d = MeasureSurfaceDistance(level0, level);
+    }
+    SetDoubleField(level, names::MeasuredHausdorff, d.Hausdorff);
+    SetDoubleField(level, names::MeasuredRMS, d.Rms);
+  }
+}
+
+//------------------------------------------------------------------------------
+void HierarchyBuilder::Finish(vtkMultiBlockDataSet* output)
+{
+  output->Initialize();
+  output->SetNumberOfBlocks(static_cast<unsigned int>(this->Impl->Levels.size()));
+  for (size_t i = 0; i < this->Impl->Levels.size(); ++i)
+  {
+    output->SetBlock(static_cast<unsigned int>(i), this->Impl->Levels[i]);
+    output->GetMetaData(static_cast<unsigned int>(i))
+      ->Set(vtkCompositeDataSet::NAME(), LevelBlockName(static_cast<int>(i)).c_str());
+  }
+  this->Impl->Levels.clear();
+}
+
+//------------------------------------------------------------------------------
+int FillHierarchyOutputPortInformation(vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkMultiBlockDataSet");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+std::string CheckHierarchyLayout(vtkMultiBlockDataSet* hierarchy, bool requireMorphData)
+{
+  std::ostringstream problem;
+  if (hierarchy == nullptr || hierarchy->GetNumberOfBlocks() == 0)
+  {
+    return "the hierarchy has no levels";
+  }
+  const unsigned int n = hierarchy->GetNumberOfBlocks();
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    auto* level = vtkPolyData::SafeDownCast(hierarchy->GetBlock(i));
+    if (level == nullptr)
+    {
+      problem << "block " << i << " is not a vtkPolyData";
+      return problem.str();
+    }
+    if (!requireMorphData || i + 1 == n)
+    {
+      continue;
+    }
+    auto* next = vtkPolyData::SafeDownCast(hierarchy->GetBlock(i + 1));
+    vtkPointData* pd = level->GetPointData();
+    vtkDataArray* targetId = pd->GetArray(names::MorphTargetId);
+    vtkDataArray* target = pd->GetArray(names::MorphTarget);
+    vtkDataArray* rank = pd->GetArray(names::CollapseRank);
+    if (!targetId || !target || !rank || target->GetNumberOfComponents() != 3 ||
+      targetId->GetNumberOfTuples() != level->GetNumberOfPoints() ||
+      target->GetNumberOfTuples() != level->GetNumberOfPoints() ||
+      rank->GetNumberOfTuples() != level->GetNumberOfPoints())
+    {
+      problem << "level " << i << " lacks complete " << names::MorphTarget << ", "
+              << names::MorphTargetId << " and " << names::CollapseRank << " point arrays";
+      return problem.str();
+    }
+    // Scan the values (not GetRange(): its cached range misses in-place edits).
+    bool inRange = true;
+    for (vtkIdType p = 0; p < targetId->GetNumberOfTuples() && inRange; ++p)
+    {
+      const double id = targetId->GetTuple1(p);
+      inRange = id >= 0 && id < static_cast<double>(next->GetNumberOfPoints());
+    }
+    if (!inRange)
+    {
+      problem << "level " << i << " has " << names::MorphTargetId << " values outside [0, "
+              << next->GetNumberOfPoints() << ")";
+      return problem.str();
+    }
+  }
+  return std::string();
+}
+
+} // namespace meshlod

@@ -1,0 +1,134 @@
+// The LOD hierarchy output shared by vtkTriangleCollapseDecimation and vtkVertexClusterOctree,
+// and read by vtkLODGeomorph.
+//
+// Layout: a vtkMultiBlockDataSet, block i = level i as vtkPolyData named "Level i"; block 0 is
+// the validated input, each next level has fewer triangles. Every level carries:
+// - point data: every input point-data array. Floating-point arrays are interpolated with the
+//   weights the algorithm gives (e.g. barycentric at a collapse point, or a cluster average);
+//   integer arrays (ids, labels, categories) are not interpolated: they take the value of the
+//   parent with the largest weight. A 3-component array that is the point data's Normals
+//   attribute is renormalised after interpolation.
+// - cell data: the input's cell data of the level-0 triangle each triangle descends from
+//   (triangles keep their identity through collapses and re-indexing).
+// - field data: LevelIndex (int), NumberOfTriangles (vtkIdType), EstimatedError (double, the
+//   algorithm's own estimate in world units), and, when measured, MeasuredHausdorff and
+//   MeasuredRMS (double, world units, surface distance to level 0 by MeshLODSurfaceDistance).
+// Every level except the coarsest also carries the correspondence to the next level:
+// - MorphTargetId (vtkIdType): the point of level i+1 this point becomes. Chaining it maps any
+//   point of level 0 to its point in any coarser level.
+// - MorphTarget (3 components, the points' type): the position of that point.
+// - CollapseRank (vtkIdType): the order in which the point moves when only part of the
+//   transition i -> i+1 is applied (points sharing a rank move together, as one collapse);
+//   -1 when the point keeps its position and merges with nothing.
+#ifndef MeshLODHierarchy_h
+#define MeshLODHierarchy_h
+
+#include "Core/TriangleMesh.h"
+#include "vtkFiltersMeshLODModule.h"
+#include "vtkSmartPointer.h"
+
+#include <string>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkInformation;
+class vtkMultiBlockDataSet;
+class vtkPolyData;
+
+namespace meshlod
+{
+struct InputMesh;
+
+/// Names of the arrays and blocks of a hierarchy, in one place.
+namespace names
+{
+constexpr const char* MorphTarget = "MorphTarget";
+constexpr const char* MorphTargetId = "MorphTargetId";
+constexpr const char* CollapseRank = "CollapseRank";
+constexpr const char* LevelIndex = "LevelIndex";
+constexpr const char* NumberOfTriangles = "NumberOfTriangles";
+constexpr const char* EstimatedError = "EstimatedError";
+constexpr const char* MeasuredHausdorff = "MeasuredHausdorff";
+constexpr const char* MeasuredRMS = "MeasuredRMS";
+} // namespace names
+
+VTKFILTERSMESHLOD_EXPORT std::string LevelBlockName(int level);
+
+/// How the points of a new level derive from the points of the level before it: for new point
+/// p, Parents[Offsets[p] .. Offsets[p+1]) with the matching Weights (summing to 1). Used to
+/// interpolate point data.
+struct VTKFILTERSMESHLOD_EXPORT PointSources
+{
+  std::vector<Id> Offsets;
+  std::vector<Id> Parents;
+  std::vector<float> Weights;
+
+  void Clear()
+  {
+    this->Offsets.assign(1, 0);
+    this->Parents.clear();
+    this->Weights.clear();
+  }
+  void Add(const Id* parents, const float* weights, int count)
+  {
+    this->Parents.insert(this->Parents.end(), parents, parents + count);
+    this->Weights.insert(this->Weights.end(), weights, weights + count);
+    this->Offsets.push_back(static_cast<Id>(this->Parents.size()));
+  }
+};
+
+/// One new level, as the algorithm hands it over.
+struct VTKFILTERSMESHLOD_EXPORT LevelData
+{
+  TriangleMesh Mesh;              // compact: every point used
+  PointSources Sources;           // one entry per point of Mesh, parents in the previous level
+  std::vector<Id> LevelZeroTriangle; // triangle -> the level-0 triangle it descends from
+  std::vector<Id> Target;         // previous level's point -> point of Mesh (MorphTargetId)
+  std::vector<Id> Rank;           // previous level's point -> CollapseRank (-1: does not move)
+  double EstimatedError = 0.0;
+};
+
+/// Builds the output multiblock level by level, so that the algorithm can free its own copy of
+/// a level as soon as it is handed over.
+class VTKFILTERSMESHLOD_EXPORT HierarchyBuilder
+{
+public:
+  HierarchyBuilder();
+  ~HierarchyBuilder();
+  HierarchyBuilder(const HierarchyBuilder&) = delete;
+  HierarchyBuilder& operator=(const HierarchyBuilder&) = delete;
+
+  /// Level 0 from the validated input. Shares the input's points, cells and arrays when the
+  /// input needed no cleaning.
+  void SetLevelZero(const InputMesh& input);
+
+  /// Append the next level: builds its polydata and adds the morph arrays to the level before.
+  void AppendLevel(const LevelData& level);
+
+  /// Number of levels so far (level 0 included).
+  int GetNumberOfLevels() const;
+  vtkPolyData* GetLevel(int level) const;
+
+  /// Measure every level against level 0 with MeshLODSurfaceDistance and store
+  /// MeasuredHausdorff / MeasuredRMS in the levels' field data.
+  void MeasureLevelErrors();
+
+  /// Move the levels into `output` (cleared first), block i named "Level i".
+  void Finish(vtkMultiBlockDataSet* output);
+
+private:
+  struct Internals;
+  Internals* Impl;
+};
+
+/// Port information for a filter whose output port 0 is a hierarchy.
+VTKFILTERSMESHLOD_EXPORT int FillHierarchyOutputPortInformation(vtkInformation* info);
+
+/// Checks a hierarchy has the layout above (for vtkLODGeomorph and the tests): returns an empty
+/// string when it does, otherwise what is wrong.
+VTKFILTERSMESHLOD_EXPORT std::string CheckHierarchyLayout(
+  vtkMultiBlockDataSet* hierarchy, bool requireMorphData);
+
+} // namespace meshlod
+
+#endif
