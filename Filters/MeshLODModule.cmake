@@ -2,7 +2,7 @@
 # vtk_module_build() (ours, or VTK's own for a remote module) re-enters it.
 
 set(meshlod_classes
-  )
+  vtkTriangleCollapseDecimation)
 
 # Exported helpers that are not VTK classes: not wrapped, but usable from C++ (the tests and the
 # benchmark measure with the yardstick).
@@ -12,11 +12,25 @@ set(meshlod_nowrap_headers
 # Private headers (not installed): the VTK-free algorithm code under Core/ and the glue between
 # it and VTK. The tests in the build tree include them directly.
 set(meshlod_private_headers
+  Filters/Core/CollapseCosts.h
+  Filters/Core/CollapseMesh.h
+  Filters/Core/IndexedHeap.h
+  Filters/Core/LevelData.h
+  Filters/Core/LevelTracker.h
+  Filters/Core/LocalSurfaceFit.h
+  Filters/Core/QuadricMetric.h
+  Filters/Core/TriangleCollapse.h
   Filters/Core/TriangleMesh.h
   Filters/MeshLODHierarchy.h
   Filters/MeshLODInputMesh.h)
 
 set(meshlod_sources
+  Filters/Core/CollapseCosts.cxx
+  Filters/Core/CollapseMesh.cxx
+  Filters/Core/LevelTracker.cxx
+  Filters/Core/LocalSurfaceFit.cxx
+  Filters/Core/QuadricMetric.cxx
+  Filters/Core/TriangleCollapse.cxx
   Filters/Core/TriangleMesh.cxx
   Filters/MeshLODHierarchy.cxx
   Filters/MeshLODInputMesh.cxx

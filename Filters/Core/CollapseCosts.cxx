@@ -1,0 +1,307 @@
+#include "CollapseCosts.h"
+
+#include "CollapseMesh.h"
+#include "LevelTracker.h"
+#include "LocalSurfaceFit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace meshlod
+{
+namespace
+{
+constexpr double Infinity = std::numeric_limits<double>::infinity();
+
+double Distance(const double* a, const double* b)
+{
+  const double d[3] = { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+  return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+// alpha(T) = 2 (cos a1 + cos a2 + cos a3 - 1): 1 for equilateral, 0 for degenerate triangles.
+double ShapeMeasure(const double* p0, const double* p1, const double* p2)
+{
+  const double a = Distance(p1, p2), b = Distance(p0, p2), c = Distance(p0, p1);
+  if (a <= 0.0 || b <= 0.0 || c <= 0.0)
+  {
+    return 0.0;
+  }
+  const double cosA = (b * b + c * c - a * a) / (2.0 * b * c);
+  const double cosB = (a * a + c * c - b * b) / (2.0 * a * c);
+  const double cosC = (a * a + b * b - c * c) / (2.0 * a * b);
+  return std::max(0.0, 2.0 * (cosA + cosB + cosC - 1.0));
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+void CollapseWeights(const double* const* points, int count, const double x[3], double weights[3])
+{
+  weights[0] = weights[1] = weights[2] = 0.0;
+  if (count == 2)
+  {
+    const double* a = points[0];
+    const double* b = points[1];
+    const double ab[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double ax[3] = { x[0] - a[0], x[1] - a[1], x[2] - a[2] };
+    const double length2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+    const double s = length2 > 0.0
+      ? std::min(1.0, std::max(0.0, (ax[0] * ab[0] + ax[1] * ab[1] + ax[2] * ab[2]) / length2))
+      : 0.5;
+    weights[0] = 1.0 - s;
+    weights[1] = s;
+    return;
+  }
+  // Barycentric coordinates of the projection of x on the triangle's plane.
+  const double* a = points[0];
+  const double* b = points[1];
+  const double* c = points[2];
+  const double v0[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double v1[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const double v2[3] = { x[0] - a[0], x[1] - a[1], x[2] - a[2] };
+  auto dot = [](const double* p, const double* q) { return p[0] * q[0] + p[1] * q[1] + p[2] * q[2]; };
+  const double d00 = dot(v0, v0), d01 = dot(v0, v1), d11 = dot(v1, v1);
+  const double d20 = dot(v2, v0), d21 = dot(v2, v1);
+  const double denominator = d00 * d11 - d01 * d01;
+  if (!(denominator > 0.0))
+  {
+    weights[0] = weights[1] = weights[2] = 1.0 / 3.0;
+    return;
+  }
+  const double wb = (d11 * d20 - d01 * d21) / denominator;
+  const double wc = (d00 * d21 - d01 * d20) / denominator;
+  weights[0] = std::max(0.0, 1.0 - wb - wc);
+  weights[1] = std::max(0.0, wb);
+  weights[2] = std::max(0.0, wc);
+  const double sum = weights[0] + weights[1] + weights[2];
+  for (int k = 0; k < 3; ++k)
+  {
+    weights[k] /= sum;
+  }
+}
+
+//------------------------------------------------------------------------------
+CollapseCostModel::CollapseCostModel(const TriangleCollapseOptions& options,
+  const CollapseMesh& state, const LevelTracker& tracker, const TriangleMesh& original)
+  : Options(options)
+  , State(state)
+  , Tracker(tracker)
+  , Original(original)
+{
+}
+
+//------------------------------------------------------------------------------
+double CollapseCostModel::CurvatureWeight(const CollapseCandidate& c) const
+{
+  const double kappa = std::min(1.0, c.Kappa * this->CurvatureNormalization);
+  return c.Area *
+    (this->Options.CurvatureWeight * kappa + this->Options.AngleWeight * c.Alpha +
+      this->Options.ValenceWeight * c.ValenceTerm);
+}
+
+//------------------------------------------------------------------------------
+bool CollapseCostModel::Evaluate(Id t, CollapseCandidate& c, CostScratch& scratch) const
+{
+  const Id* tri = this->State.Mesh.Triangle(t);
+  const double* p[3] = { this->State.Mesh.Point(tri[0]), this->State.Mesh.Point(tri[1]),
+    this->State.Mesh.Point(tri[2]) };
+  for (int k = 0; k < 3; ++k)
+  {
+    if (this->State.IsLocked(tri[k]))
+    {
+      return false;
+    }
+  }
+  const double twiceArea = TriangleNormal(p[0], p[1], p[2], c.Normal);
+  c.Area = 0.5 * twiceArea;
+  double centroid[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    centroid[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
+  }
+  std::copy_n(tri, 3, c.Members);
+  c.MemberCount = 3;
+  if (this->Options.Method == CollapseMethod::Quadric)
+  {
+    if (this->Options.Operator == CollapseOperator::TrianglesAndEdges)
+    {
+      this->EvaluateTriangleOrEdge(tri, p, c);
+      return true;
+    }
+    const Quadric q = this->State.Quadrics[tri[0]] + this->State.Quadrics[tri[1]] +
+      this->State.Quadrics[tri[2]];
+    q.Minimize(centroid, c.Position);
+    c.Cost = q.Evaluate(c.Position);
+    c.Error = q.Weight > 0.0 ? std::sqrt(c.Cost / q.Weight) : 0.0;
+    return true;
+  }
+
+  // Curvature method (paper 000): fit, collapse point c + f(0,0) n, weight terms.
+  this->FitSurface(t, c, scratch);
+  c.Alpha = ShapeMeasure(p[0], p[1], p[2]);
+  // The merged vertex's valence: the triangles around the three vertices, less the ones
+  // counted twice or dying (6 for the collapsing triangle's corners, 3 for its neighbours').
+  int triangles = 0;
+  bool boundary = false;
+  for (int k = 0; k < 3; ++k)
+  {
+    this->State.ForEachTriangle(tri[k], [&](Id) { ++triangles; });
+    boundary = boundary || this->State.IsBoundary(tri[k]);
+  }
+  const int valence = std::max(0, triangles - 9 + (boundary ? 1 : 0));
+  c.ValenceTerm = std::abs(valence - 6) / ValenceNormalization;
+  c.Cost = this->CurvatureWeight(c);
+  c.Error = (this->State.Quadrics[tri[0]] + this->State.Quadrics[tri[1]] +
+    this->State.Quadrics[tri[2]])
+              .RmsDistance(c.Position);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void CollapseCostModel::EvaluateTriangleOrEdge(const Id* tri, const double* const* p, CollapseCandidate& c) const
+{
+  // The triangle's three edge collapses.
+  double best = Infinity, worst = 0.0, bestWeight = 0.0;
+  int bestEdge = -1;
+  double bestPosition[3] = { 0, 0, 0 };
+  for (int k = 0; k < 3; ++k)
+  {
+    const int l = (k + 1) % 3;
+    const Quadric q = this->State.Quadrics[tri[k]] + this->State.Quadrics[tri[l]];
+    const double middle[3] = { 0.5 * (p[k][0] + p[l][0]), 0.5 * (p[k][1] + p[l][1]),
+      0.5 * (p[k][2] + p[l][2]) };
+    double x[3];
+    q.Minimize(middle, x);
+    const double cost = q.Evaluate(x);
+    worst = std::max(worst, cost);
+    if (cost < best)
+    {
+      best = cost;
+      bestWeight = q.Weight;
+      bestEdge = k;
+      std::copy_n(x, 3, bestPosition);
+    }
+  }
+  // A triangle collapse removes twice the triangles of an edge collapse: it is taken when it
+  // costs at most TriangleCostFactor times the cheapest edge. Its quadric contains each edge's,
+  // so it costs at least the dearest edge: when that alone exceeds the limit, the edge wins
+  // without solving for the triangle.
+  const double limit = this->Options.TriangleCostFactor * best;
+  if (worst <= limit)
+  {
+    const Quadric q = this->State.Quadrics[tri[0]] + this->State.Quadrics[tri[1]] +
+      this->State.Quadrics[tri[2]];
+    double centroid[3], x[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      centroid[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
+    }
+    q.Minimize(centroid, x);
+    const double cost = q.Evaluate(x);
+    if (cost <= limit)
+    {
+      c.Cost = cost / this->Options.TriangleCostFactor;
+      c.Error = q.Weight > 0.0 ? std::sqrt(cost / q.Weight) : 0.0;
+      std::copy_n(x, 3, c.Position);
+      return;
+    }
+  }
+  c.Cost = best;
+  c.Error = bestWeight > 0.0 ? std::sqrt(best / bestWeight) : 0.0;
+  std::copy_n(bestPosition, 3, c.Position);
+  c.Members[0] = tri[bestEdge];
+  c.Members[1] = tri[(bestEdge + 1) % 3];
+  c.MemberCount = 2;
+}
+
+//------------------------------------------------------------------------------
+void CollapseCostModel::FitSurface(Id t, CollapseCandidate& c, CostScratch& scratch) const
+{
+  const Id* tri = this->State.Mesh.Triangle(t);
+  double centroid[3] = { 0, 0, 0 };
+  double scale = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double* a = this->State.Mesh.Point(tri[k]);
+    const double* b = this->State.Mesh.Point(tri[(k + 1) % 3]);
+    scale += Distance(a, b) / 3.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      centroid[i] += a[i] / 3.0;
+    }
+  }
+
+  // The stencil: every vertex of the triangles around the three corners (current positions).
+  std::vector<Id>& stencil = scratch.Vertices;
+  stencil.clear();
+  for (int k = 0; k < 3; ++k)
+  {
+    this->State.ForEachTriangle(tri[k], [&](Id s) {
+      const Id* st = this->State.Mesh.Triangle(s);
+      stencil.insert(stencil.end(), st, st + 3);
+    });
+  }
+  std::sort(stencil.begin(), stencil.end());
+  stencil.erase(std::unique(stencil.begin(), stencil.end()), stencil.end());
+
+  std::vector<double>& points = scratch.Points;
+  points.clear();
+  for (const Id v : stencil)
+  {
+    const double* x = this->State.Mesh.Point(v);
+    points.insert(points.end(), x, x + 3);
+  }
+  // Ancestral points (paper 000, section 7): the original vertices merged into the three
+  // corners, as an evenly strided subset when there are more than MaximumFitPoints.
+  Id ancestors = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    ancestors += this->Tracker.AncestorCount(tri[k]);
+  }
+  const Id stride = std::max<Id>(1, (ancestors + this->Options.MaximumFitPoints - 1) /
+      std::max(1, this->Options.MaximumFitPoints));
+  Id index = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    this->Tracker.ForEachAncestor(tri[k], [&](Id u) {
+      if (index++ % stride == 0)
+      {
+        const double* x = this->Original.Point(u);
+        points.insert(points.end(), x, x + 3);
+      }
+    });
+  }
+
+  SurfaceFitResult fit = FitQuadraticHeightField(
+    centroid, c.Normal, points.data(), static_cast<int>(points.size() / 3), scale);
+  if (!fit.Valid)
+  {
+    // Extended stencil: add the next ring of vertices.
+    const std::size_t firstRing = stencil.size();
+    for (std::size_t i = 0; i < firstRing; ++i)
+    {
+      this->State.ForEachTriangle(stencil[i], [&](Id s) {
+        const Id* st = this->State.Mesh.Triangle(s);
+        for (int k = 0; k < 3; ++k)
+        {
+          if (!std::binary_search(stencil.begin(), stencil.begin() + firstRing, st[k]))
+          {
+            const double* x = this->State.Mesh.Point(st[k]);
+            points.insert(points.end(), x, x + 3);
+          }
+        }
+      });
+    }
+    fit = FitQuadraticHeightField(
+      centroid, c.Normal, points.data(), static_cast<int>(points.size() / 3), scale);
+  }
+  const double height = fit.Valid ? fit.Height : 0.0;
+  c.Kappa = fit.Valid ? fit.AbsoluteCurvature : 0.0;
+  for (int i = 0; i < 3; ++i)
+  {
+    c.Position[i] = centroid[i] + height * c.Normal[i];
+  }
+}
+
+} // namespace meshlod

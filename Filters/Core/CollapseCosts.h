@@ -1,0 +1,76 @@
+// What a triangle collapse costs and where it goes, for both methods of TriangleCollapse.h.
+#ifndef meshlod_CollapseCosts_h
+#define meshlod_CollapseCosts_h
+
+#include "TriangleCollapse.h"
+#include "TriangleMesh.h"
+
+#include <vector>
+
+namespace meshlod
+{
+class CollapseMesh;
+class LevelTracker;
+
+/// The evaluation of one triangle collapse.
+struct CollapseCandidate
+{
+  double Cost = 0.0;  // priority: lower collapses first
+  double Error = 0.0; // RMS distance of the collapse point to the original planes merged into it
+  double Position[3] = { 0, 0, 0 };
+  double Normal[3] = { 0, 0, 1 }; // unit normal of the collapsing triangle
+  Id Members[3] = { InvalidId, InvalidId, InvalidId }; // the merging vertices: 3, or 2 for an edge
+  int MemberCount = 0;
+  // Curvature method: the terms of W = A (wk kappa + wa alpha + wv V) before normalisation.
+  double Area = 0.0, Kappa = 0.0, Alpha = 0.0, ValenceTerm = 0.0;
+};
+
+/// Per-thread scratch for the evaluations.
+struct CostScratch
+{
+  std::vector<Id> Vertices;
+  std::vector<double> Points;
+};
+
+class CollapseCostModel
+{
+public:
+  CollapseCostModel(const TriangleCollapseOptions& options, const CollapseMesh& state,
+    const LevelTracker& tracker, const TriangleMesh& original);
+
+  /// Evaluate collapsing live triangle t; false when it cannot collapse (a locked vertex).
+  bool Evaluate(Id t, CollapseCandidate& candidate, CostScratch& scratch) const;
+
+  /// Curvature method: kappa is normalised by the largest absolute curvature of the input
+  /// (paper 000, section 5); set it once from the first evaluation of every triangle.
+  void SetCurvatureNormalization(double maximumCurvature)
+  {
+    this->CurvatureNormalization = maximumCurvature > 0.0 ? 1.0 / maximumCurvature : 0.0;
+  }
+
+  /// The weight W of paper 000 from a candidate's terms.
+  double CurvatureWeight(const CollapseCandidate& c) const;
+
+  /// Normalising factor m_v of the valence term |val - 6| / m_v.
+  static constexpr double ValenceNormalization = 12.0;
+
+private:
+  // TrianglesAndEdges: fill the candidate with the triangle collapse or, when that costs more
+  // than TriangleCostFactor times the cheapest edge collapse, with that edge.
+  void EvaluateTriangleOrEdge(const Id* tri, const double* const* p, CollapseCandidate& c) const;
+  void FitSurface(Id t, CollapseCandidate& candidate, CostScratch& scratch) const;
+
+  const TriangleCollapseOptions& Options;
+  const CollapseMesh& State;
+  const LevelTracker& Tracker;
+  const TriangleMesh& Original;
+  double CurvatureNormalization = 1.0;
+};
+
+/// Barycentric weights of x projected on the triangle (or segment) of `count` points, clamped
+/// to the simplex; used to interpolate point data at a collapse point.
+void CollapseWeights(const double* const* points, int count, const double x[3], double weights[3]);
+
+} // namespace meshlod
+
+#endif

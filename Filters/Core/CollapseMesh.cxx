@@ -1,0 +1,393 @@
+#include "CollapseMesh.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace meshlod
+{
+namespace
+{
+void Subtract(const double* a, const double* b, double* out)
+{
+  out[0] = a[0] - b[0];
+  out[1] = a[1] - b[1];
+  out[2] = a[2] - b[2];
+}
+
+void Cross(const double* a, const double* b, double* out)
+{
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+double Dot(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// Whether two vectors with dot product `dot` and squared lengths' product `norms2` make an
+// angle whose cosine is at least `cosine`.
+bool WithinAngle(double dot, double norms2, double cosine)
+{
+  const double bound = cosine * cosine * norms2;
+  return cosine >= 0.0 ? (dot >= 0.0 && dot * dot >= bound) : (dot >= 0.0 || dot * dot <= bound);
+}
+
+int CountMembers(const Id* tri, const Id* members, int count)
+{
+  int n = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int m = 0; m < count; ++m)
+    {
+      n += tri[k] == members[m] ? 1 : 0;
+    }
+  }
+  return n;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+double TriangleNormal(const double* p0, const double* p1, const double* p2, double normal[3])
+{
+  double e1[3], e2[3];
+  Subtract(p1, p0, e1);
+  Subtract(p2, p0, e2);
+  Cross(e1, e2, normal);
+  const double length = std::sqrt(Dot(normal, normal));
+  if (length > 0.0)
+  {
+    normal[0] /= length;
+    normal[1] /= length;
+    normal[2] /= length;
+  }
+  return length;
+}
+
+//------------------------------------------------------------------------------
+void CollapseMesh::Initialize(
+  const TriangleMesh& mesh, const TriangleTopology& topology, double boundaryWeight)
+{
+  this->Mesh = mesh;
+  const Id nv = mesh.GetNumberOfPoints();
+  const Id nt = mesh.GetNumberOfTriangles();
+  this->Flags.assign(nv, 0);
+  this->Quadrics.assign(nv, Quadric());
+  this->Survivor.resize(nv);
+  std::iota(this->Survivor.begin(), this->Survivor.end(), 0);
+  this->AliveTriangles = nt;
+  this->AliveAtLastRebuild = nt;
+
+  const VertexTriangleAdjacency& adj = topology.VertexTriangles;
+  vtkSMPTools::For(0, nv, [&](Id begin, Id end) {
+    for (Id v = begin; v < end; ++v)
+    {
+      const VertexKind kind = topology.VertexKinds[v];
+      this->Flags[v] = kind == VertexKind::NonManifold ? FlagLocked
+                                                       : (kind == VertexKind::Boundary ? FlagBoundary : 0);
+      Quadric q;
+      for (Id i = adj.Begin(v); i < adj.End(v); ++i)
+      {
+        const Id t = adj.Triangles[i];
+        const Id* tri = mesh.Triangle(t);
+        double normal[3];
+        const double twiceArea =
+          TriangleNormal(mesh.Point(tri[0]), mesh.Point(tri[1]), mesh.Point(tri[2]), normal);
+        if (twiceArea <= 0.0)
+        {
+          continue;
+        }
+        q += Quadric::FromPlane(normal, mesh.Point(tri[0]), 0.5 * twiceArea);
+        // Boundary edges of t at v get a plane through the edge, perpendicular to t, so that
+        // the boundary resists moving sideways.
+        const int c = CornerOf(tri, v);
+        for (const int e : { c, (c + 2) % 3 })
+        {
+          if (topology.EdgeNeighbors[3 * static_cast<std::size_t>(t) + e] != BoundaryEdge)
+          {
+            continue;
+          }
+          const double* p = mesh.Point(tri[e]);
+          const double* r = mesh.Point(tri[(e + 1) % 3]);
+          double edge[3], side[3];
+          Subtract(r, p, edge);
+          Cross(edge, normal, side);
+          const double length = std::sqrt(Dot(side, side)); // == |edge|
+          if (length > 0.0)
+          {
+            for (double& s : side)
+            {
+              s /= length;
+            }
+            q += Quadric::FromPlane(side, p, boundaryWeight * length * length);
+          }
+        }
+      }
+      this->Quadrics[v] = q;
+    }
+  });
+
+  this->RebuildRows();
+}
+
+//------------------------------------------------------------------------------
+void CollapseMesh::RebuildRows()
+{
+  VertexTriangleAdjacency adjacency;
+  adjacency.Build(this->Mesh);
+  this->RowOffsets.swap(adjacency.Offsets);
+  this->RowTriangles.swap(adjacency.Triangles);
+  const Id nv = this->Mesh.GetNumberOfPoints();
+  this->ChainNext.assign(nv, InvalidId);
+  this->ChainTail.resize(nv);
+  std::iota(this->ChainTail.begin(), this->ChainTail.end(), 0);
+  this->AliveAtLastRebuild = this->AliveTriangles;
+}
+
+//------------------------------------------------------------------------------
+int CollapseMesh::Valence(Id v, std::vector<Id>& scratch) const
+{
+  if (!this->IsLocked(v))
+  {
+    // A manifold fan: as many neighbours as triangles, plus one when the fan is open.
+    int triangles = 0;
+    this->ForEachTriangle(v, [&](Id) { ++triangles; });
+    return triangles + (this->IsBoundary(v) ? 1 : 0);
+  }
+  scratch.clear();
+  this->ForEachTriangle(v, [&](Id t) {
+    const Id* tri = this->Mesh.Triangle(t);
+    for (int k = 0; k < 3; ++k)
+    {
+      if (tri[k] != v)
+      {
+        scratch.push_back(tri[k]);
+      }
+    }
+  });
+  std::sort(scratch.begin(), scratch.end());
+  return static_cast<int>(std::unique(scratch.begin(), scratch.end()) - scratch.begin());
+}
+
+//------------------------------------------------------------------------------
+bool CollapseMesh::GatherStar(const Id* members, int count, Star& star) const
+{
+  star.MemberCount = count;
+  std::copy_n(members, count, star.Members);
+  std::sort(star.Members, star.Members + count);
+  star.Dying.clear();
+  star.Ring.clear();
+  star.RingCorner.clear();
+  star.Apexes.clear();
+  for (int m = 0; m < count; ++m)
+  {
+    const Id v = star.Members[m];
+    if (this->IsLocked(v) || this->Survivor[v] != v)
+    {
+      return false;
+    }
+  }
+  for (int m = 0; m < count; ++m)
+  {
+    const Id v = star.Members[m];
+    this->ForEachTriangle(v, [&](Id t) {
+      const Id* tri = this->Mesh.Triangle(t);
+      const int inside = CountMembers(tri, star.Members, count);
+      if (inside == 1)
+      {
+        star.Ring.push_back(t);
+        star.RingCorner.push_back(static_cast<std::int8_t>(CornerOf(tri, v)));
+        return;
+      }
+      // A triangle with several members is seen from each of them: keep it once, from the
+      // first member it contains.
+      for (int earlier = 0; earlier < m; ++earlier)
+      {
+        if (CornerOf(tri, star.Members[earlier]) >= 0)
+        {
+          return;
+        }
+      }
+      star.Dying.push_back(t);
+      if (inside == 2)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          if (CountMembers(&tri[k], star.Members, count) == 0)
+          {
+            star.Apexes.push_back(tri[k]);
+          }
+        }
+      }
+    });
+  }
+  // Each edge between members has at most two triangles (members are manifold), so a triangle
+  // collapse kills at most 4 triangles and an edge collapse at most 2.
+  return !star.Dying.empty() && static_cast<int>(star.Dying.size()) <= (count == 3 ? 4 : 2);
+}
+
+//------------------------------------------------------------------------------
+bool CollapseMesh::IsLegal(
+  const Star& star, const double x[3], const double* planeNormal, const CollapseRules& rules) const
+{
+  const std::size_t ringSize = star.Ring.size();
+  if (ringSize == 0)
+  {
+    return false;
+  }
+  bool boundary = false;
+  for (int m = 0; m < star.MemberCount; ++m)
+  {
+    boundary = boundary || this->IsBoundary(star.Members[m]);
+  }
+
+  // Link of the merged vertex: ring triangle (member, u, w) contributes the directed edge
+  // u -> w. A manifold result needs these edges to form one simple cycle (interior) or one
+  // simple path (boundary): every vertex leaves at most once and enters at most once.
+  std::vector<Id>& from = star.LinkScratch;
+  from.resize(2 * ringSize);
+  Id* to = from.data() + ringSize;
+  for (std::size_t i = 0; i < ringSize; ++i)
+  {
+    const Id* tri = this->Mesh.Triangle(star.Ring[i]);
+    const int c = star.RingCorner[i];
+    from[i] = tri[(c + 1) % 3];
+    to[i] = tri[(c + 2) % 3];
+  }
+  Id start = InvalidId;
+  int pathStarts = 0;
+  for (std::size_t i = 0; i < ringSize; ++i)
+  {
+    int leaves = 0, enters = 0;
+    for (std::size_t j = 0; j < ringSize; ++j)
+    {
+      leaves += from[j] == from[i] ? 1 : 0;
+      enters += to[j] == from[i] ? 1 : 0;
+    }
+    if (leaves != 1 || enters > 1)
+    {
+      return false; // two triangles would share an edge of the new fan twice
+    }
+    if (enters == 0)
+    {
+      ++pathStarts;
+      start = static_cast<Id>(i);
+    }
+  }
+  if (pathStarts != (boundary ? 1 : 0) || (!boundary && ringSize < 3))
+  {
+    return false;
+  }
+  // Walk the link from the start edge: it must use every edge.
+  std::size_t walked = 1;
+  std::size_t edge = boundary ? static_cast<std::size_t>(start) : 0;
+  const Id first = from[edge];
+  for (;;)
+  {
+    const Id next = to[edge];
+    if (!boundary && next == first)
+    {
+      break;
+    }
+    std::size_t j = 0;
+    while (j < ringSize && from[j] != next)
+    {
+      ++j;
+    }
+    if (j == ringSize)
+    {
+      break; // end of an open path
+    }
+    edge = j;
+    if (++walked > ringSize)
+    {
+      return false;
+    }
+  }
+  if (walked != ringSize)
+  {
+    return false; // several cycles or paths: the merge would pinch the surface
+  }
+
+  // Apexes lose one edge each; they must stay distinct and keep a healthy valence.
+  for (std::size_t i = 0; i < star.Apexes.size(); ++i)
+  {
+    const Id p = star.Apexes[i];
+    for (std::size_t j = 0; j < i; ++j)
+    {
+      if (star.Apexes[j] == p)
+      {
+        return false;
+      }
+    }
+    const int after = this->Valence(p, star.ValenceScratch) - 1;
+    const int minimum = this->IsBoundary(p) ? 2 : (rules.ForbidValenceThree ? 4 : 3);
+    if (after < minimum)
+    {
+      return false;
+    }
+  }
+
+  // Geometry: no ring triangle may flip or turn too far, and (paper 000) the stencil boundary
+  // polygon must be star-shaped around the collapse point seen along the triangle's normal.
+  // Normals stay unnormalised (twice the area); angles are compared through squares.
+  for (std::size_t i = 0; i < ringSize; ++i)
+  {
+    const Id* tri = this->Mesh.Triangle(star.Ring[i]);
+    const int c = star.RingCorner[i];
+    const double* u = this->Mesh.Point(tri[(c + 1) % 3]);
+    const double* w = this->Mesh.Point(tri[(c + 2) % 3]);
+    double uw[3], before[3], after[3], toU[3];
+    Subtract(w, u, uw);
+    Subtract(u, this->Mesh.Point(tri[c]), toU);
+    Cross(toU, uw, before);
+    Subtract(u, x, toU);
+    Cross(toU, uw, after);
+    const double after2 = Dot(after, after);
+    const double before2 = Dot(before, before);
+    if (!(after2 > 1e-30 * Dot(uw, uw) * Dot(uw, uw)))
+    {
+      return false; // the new triangle would be degenerate
+    }
+    if (before2 > 0.0 && !WithinAngle(Dot(before, after), before2 * after2, rules.MinimumNormalCosine))
+    {
+      return false;
+    }
+    if (planeNormal != nullptr && rules.RequireStarShaped && Dot(after, planeNormal) <= 0.0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+Id CollapseMesh::Apply(const Star& star, const double x[3])
+{
+  const Id survivor = star.Members[0];
+  for (const Id t : star.Dying)
+  {
+    this->Mesh.Triangles[3 * static_cast<std::size_t>(t)] = InvalidId;
+  }
+  for (std::size_t i = 0; i < star.Ring.size(); ++i)
+  {
+    this->Mesh.Triangle(star.Ring[i])[star.RingCorner[i]] = survivor;
+  }
+  std::copy_n(x, 3, this->Mesh.Point(survivor));
+  for (int m = 1; m < star.MemberCount; ++m)
+  {
+    const Id v = star.Members[m];
+    this->Quadrics[survivor] += this->Quadrics[v];
+    this->Flags[survivor] |= this->Flags[v];
+    this->Survivor[v] = survivor;
+    this->ChainNext[this->ChainTail[survivor]] = v;
+    this->ChainTail[survivor] = this->ChainTail[v];
+  }
+  return survivor;
+}
+
+} // namespace meshlod

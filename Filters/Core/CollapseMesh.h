@@ -1,0 +1,130 @@
+// The mutable mesh that triangle (and edge) collapses run on.
+//
+// Ids never change during a run: a collapse merges two or three vertices into the lowest-id
+// one (the survivor), marks the dying triangles dead, and rewrites the corners of the others.
+// Vertex -> triangle rows are the compressed rows of the last rebuild; when vertices merge,
+// their rows are chained together (ChainNext), so the triangles around a vertex are the live
+// entries of its chain. Rows are rebuilt from scratch once enough triangles died, which keeps
+// the chains short without patching rows per collapse.
+//
+//            p_ab
+//            /  \            Triangle collapse of T = (a, b, c): T and its edge neighbours
+//           / N  \           (N_ab, N_bc, N_ca, the "dying" triangles) disappear; every other
+//          a------b          triangle around a, b or c (the "ring") gets the survivor in
+//         / \ T  / \         place of its member. The apexes p_ab, p_bc, p_ca each lose one
+//   p_ca /   \  /   \ p_bc   edge. The stencil of T is the dying triangles plus the ring.
+//            c
+#ifndef meshlod_CollapseMesh_h
+#define meshlod_CollapseMesh_h
+
+#include "QuadricMetric.h"
+#include "TriangleMesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace meshlod
+{
+/// Per-vertex flags.
+enum VertexFlag : std::uint8_t
+{
+  FlagLocked = 1,   // never moves or merges (non-manifold vertices)
+  FlagBoundary = 2, // on a boundary edge
+};
+
+/// Geometric and topological rules a collapse must pass.
+struct CollapseRules
+{
+  /// Largest allowed angle between a ring triangle's normal before and after (radians, as its
+  /// cosine).
+  double MinimumNormalCosine = 0.5;
+  /// Paper 000 (Gieng et al.) condition (2): an interior apex of valence 4 would become a
+  /// valence-3 vertex, which blocks later collapses; refuse such collapses.
+  bool ForbidValenceThree = true;
+  /// Paper 000 condition (3): the stencil boundary polygon, projected on the collapsing
+  /// triangle's plane, must be star-shaped around the projected collapse point.
+  bool RequireStarShaped = true;
+};
+
+/// The triangles around a set of merging vertices (scratch storage reused between calls).
+struct Star
+{
+  Id Members[3] = { InvalidId, InvalidId, InvalidId };
+  int MemberCount = 0;
+  std::vector<Id> Dying;      // triangles with two or three members
+  std::vector<Id> Ring;       // triangles with exactly one member
+  std::vector<std::int8_t> RingCorner; // the corner of the member in each ring triangle
+  std::vector<Id> Apexes;     // the non-member vertex of each two-member dying triangle
+  mutable std::vector<Id> LinkScratch;
+  mutable std::vector<Id> ValenceScratch;
+};
+
+class VTKFILTERSMESHLOD_EXPORT CollapseMesh
+{
+public:
+  TriangleMesh Mesh;             // positions and triangles; dead triangles have corner 0 invalid
+  std::vector<Quadric> Quadrics; // per vertex: planes of the original triangles merged into it
+  std::vector<std::uint8_t> Flags;
+  std::vector<Id> Survivor;      // vertex -> the vertex it merged into (itself while alive)
+  Id AliveTriangles = 0;
+  Id AliveAtLastRebuild = 0;
+
+  /// Take over the mesh; classify vertices from the topology; accumulate area-weighted plane
+  /// quadrics plus, on boundary edges, planes through the edge perpendicular to its triangle
+  /// weighted by boundaryWeight times the squared edge length.
+  void Initialize(const TriangleMesh& mesh, const TriangleTopology& topology, double boundaryWeight);
+
+  bool IsAlive(Id t) const { return this->Mesh.Triangles[3 * static_cast<std::size_t>(t)] != InvalidId; }
+  bool IsLocked(Id v) const { return (this->Flags[v] & FlagLocked) != 0; }
+  bool IsBoundary(Id v) const { return (this->Flags[v] & FlagBoundary) != 0; }
+
+  /// Call f(t) for every live triangle around live vertex v.
+  template <typename F>
+  void ForEachTriangle(Id v, F&& f) const
+  {
+    for (Id u = v; u != InvalidId; u = this->ChainNext[u])
+    {
+      for (Id i = this->RowOffsets[u]; i < this->RowOffsets[u + 1]; ++i)
+      {
+        const Id t = this->RowTriangles[i];
+        if (this->IsAlive(t) && CornerOf(this->Mesh.Triangle(t), v) >= 0)
+        {
+          f(t);
+        }
+      }
+    }
+  }
+
+  /// Number of distinct neighbours of v.
+  int Valence(Id v, std::vector<Id>& scratch) const;
+
+  /// Collect dying and ring triangles for merging `members`; false when a member is locked or
+  /// the configuration is not a manifold edge/triangle neighbourhood.
+  bool GatherStar(const Id* members, int count, Star& star) const;
+
+  /// Whether merging the star's members at x keeps a manifold mesh of the same topology with no
+  /// flipped triangle (see CollapseRules). `planeNormal` is the normal of the collapsing
+  /// triangle (for the star-shape test); may be null for edge collapses.
+  bool IsLegal(
+    const Star& star, const double x[3], const double* planeNormal, const CollapseRules& rules) const;
+
+  /// Merge the members into the first one (the lowest id) at x and return it. Does not touch
+  /// AliveTriangles (collapses applied in parallel sum their dying counts afterwards).
+  Id Apply(const Star& star, const double x[3]);
+
+  /// Rebuild the rows from the live triangles (resets the chains).
+  void RebuildRows();
+
+private:
+  std::vector<Id> RowOffsets;
+  std::vector<Id> RowTriangles;
+  std::vector<Id> ChainNext;
+  std::vector<Id> ChainTail;
+};
+
+/// Unit normal (and twice the area) of the triangle (p0, p1, p2).
+double TriangleNormal(const double* p0, const double* p1, const double* p2, double normal[3]);
+
+} // namespace meshlod
+
+#endif

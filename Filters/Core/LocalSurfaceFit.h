@@ -1,0 +1,31 @@
+// Local least-squares quadratic height field over a triangle (Gieng et al., "Smooth
+// Hierarchical Surface Triangulations", section 4).
+//
+// In a frame with origin c (the triangle's centroid), two orthonormal in-plane axes u, v and the
+// unit normal n, each point p_j becomes (u_j, v_j, d_j); the fit is
+//   f(u, v) = c20 u^2 + c11 u v + c02 v^2 + c10 u + c01 v + c00
+// from the 6x6 normal equations. The collapse point is c + f(0, 0) n and the principal
+// curvatures of the graph of f at (0, 0) give the curvature term of the triangle's weight.
+#ifndef meshlod_LocalSurfaceFit_h
+#define meshlod_LocalSurfaceFit_h
+
+#include "vtkFiltersMeshLODModule.h"
+
+namespace meshlod
+{
+struct VTKFILTERSMESHLOD_EXPORT SurfaceFitResult
+{
+  bool Valid = false;              // false when the normal equations are (nearly) singular
+  double Height = 0.0;             // f(0, 0), in world units along the normal
+  double AbsoluteCurvature = 0.0;  // |kappa1| + |kappa2| at (0, 0), in 1 / world units
+  double Kappa1 = 0.0, Kappa2 = 0.0;
+};
+
+/// Fit f to `count` points (xyz triples). `scale` (e.g. the triangle's mean edge length) makes
+/// the local coordinates of order one so that the normal equations stay well conditioned.
+VTKFILTERSMESHLOD_EXPORT SurfaceFitResult FitQuadraticHeightField(const double origin[3],
+  const double normal[3], const double* xyz, int count, double scale);
+
+} // namespace meshlod
+
+#endif

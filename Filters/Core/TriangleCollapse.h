@@ -1,0 +1,99 @@
+// A hierarchy of levels of detail by triangle collapses, VTK-free.
+//
+// Two weighting methods pick the triangles to collapse and the point they collapse to:
+// - Quadric (Pan, Zhou, Shi, "A New Mesh Simplification Algorithm Based on Triangle
+//   Collapses"): the error of collapsing T is the quadric of all original planes merged into
+//   its three vertices, at the point minimising it.
+// - Curvature (Gieng, Hamann, Joy, Schussman, Trotts, "Smooth Hierarchical Surface
+//   Triangulations"): W = A (wk kappa + wa alpha + wv V) from a local quadratic fit over the
+//   triangle's stencil and ancestral points; the collapse point is c + f(0, 0) n.
+// and two schedules order the collapses:
+// - IndependentSets (paper 000, section 6): each pass picks, cheapest first, triangles whose
+//   stencils share no vertex, collapses them all at once, and re-weights only what changed.
+// - Greedy (paper 002, section 2.4): one collapse at a time from a priority queue.
+// Output levels are snapshots at requested triangle counts; the collapses between two snapshots
+// are composed into the per-vertex correspondence of the level transition.
+#ifndef meshlod_TriangleCollapse_h
+#define meshlod_TriangleCollapse_h
+
+#include "TriangleMesh.h"
+#include "vtkFiltersMeshLODModule.h"
+
+#include <functional>
+#include <vector>
+
+namespace meshlod
+{
+struct LevelData;
+
+enum class CollapseMethod
+{
+  Quadric = 0,
+  Curvature = 1,
+};
+
+/// What one collapse merges (quadric method).
+enum class CollapseOperator
+{
+  Triangles = 0,         // always the triangle's three vertices (the papers' operator)
+  TrianglesAndEdges = 1, // the triangle, or its cheapest edge when that is much cheaper
+};
+
+enum class CollapseSchedule
+{
+  IndependentSets = 0,
+  Greedy = 1,
+};
+
+struct TriangleCollapseOptions
+{
+  CollapseMethod Method = CollapseMethod::Quadric;
+  CollapseSchedule Schedule = CollapseSchedule::Greedy;
+  CollapseOperator Operator = CollapseOperator::TrianglesAndEdges;
+  /// TrianglesAndEdges: a triangle collapses whole when that costs at most this many times its
+  /// cheapest edge collapse (>= 1).
+  double TriangleCostFactor = 2.0;
+  /// Triangle counts of the output levels after level 0, strictly decreasing.
+  std::vector<std::int64_t> LevelTargets;
+  /// Stop when the next collapse's estimated error (RMS distance to its merged planes) exceeds
+  /// this, in world units; <= 0: no limit.
+  double MaximumError = -1.0;
+  /// IndependentSets: fraction of the live triangles selected per pass.
+  double LevelFraction = 0.025;
+  double CurvatureWeight = 1.0 / 3.0;
+  double AngleWeight = 1.0 / 3.0;
+  double ValenceWeight = 1.0 / 3.0;
+  /// Weight of the planes through boundary edges, relative to the area-weighted surface
+  /// planes (the plane of an edge of length l gets BoundaryWeight * l^2).
+  double BoundaryWeight = 10.0;
+  /// Largest angle (degrees) a triangle's normal may turn in one collapse.
+  double MaximumNormalDeviation = 60.0;
+  /// Curvature method: at most this many ancestral points per triangle fit (a strided subset).
+  int MaximumFitPoints = 48;
+};
+
+struct TriangleCollapseCallbacks
+{
+  /// Called on the calling thread with the fraction done; returns false to abort.
+  std::function<bool(double)> Progress;
+  /// Receives each level as soon as it is complete.
+  std::function<void(LevelData&)> EmitLevel;
+};
+
+struct TriangleCollapseResult
+{
+  bool Aborted = false;
+  int LevelsEmitted = 0;
+  std::int64_t FinalTriangles = 0;
+  std::int64_t Collapses = 0;
+  std::int64_t Passes = 0;
+};
+
+/// Run on a validated mesh (see MeshLODInputMesh.h) with its topology.
+VTKFILTERSMESHLOD_EXPORT TriangleCollapseResult RunTriangleCollapse(const TriangleMesh& mesh,
+  const TriangleTopology& topology, const TriangleCollapseOptions& options,
+  const TriangleCollapseCallbacks& callbacks);
+
+} // namespace meshlod
+
+#endif

@@ -1,0 +1,218 @@
+#include "vtkTriangleCollapseDecimation.h"
+
+#include "Core/LevelData.h"
+#include "Core/TriangleCollapse.h"
+#include "MeshLODHierarchy.h"
+#include "MeshLODInputMesh.h"
+
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkObjectFactory.h"
+#include "vtkPolyData.h"
+
+#include <cmath>
+
+vtkStandardNewMacro(vtkTriangleCollapseDecimation);
+
+namespace
+{
+// Progress shares: validation, the collapses, building the output, measuring.
+constexpr double CollapseStart = 0.05;
+constexpr double CollapseEnd = 0.85;
+constexpr double MeasureStart = 0.9;
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkTriangleCollapseDecimation::vtkTriangleCollapseDecimation() = default;
+vtkTriangleCollapseDecimation::~vtkTriangleCollapseDecimation() = default;
+
+//------------------------------------------------------------------------------
+vtkMultiBlockDataSet* vtkTriangleCollapseDecimation::GetHierarchy()
+{
+  return vtkMultiBlockDataSet::SafeDownCast(this->GetOutputDataObject(0));
+}
+
+int vtkTriangleCollapseDecimation::FillOutputPortInformation(int, vtkInformation* info)
+{
+  return meshlod::FillHierarchyOutputPortInformation(info);
+}
+
+const char* vtkTriangleCollapseDecimation::GetMethodAsString() const
+{
+  return this->Method == QUADRIC ? "Quadric" : "Curvature";
+}
+
+const char* vtkTriangleCollapseDecimation::GetOperatorAsString() const
+{
+  return this->Operator == TRIANGLES ? "Triangles" : "TrianglesAndEdges";
+}
+
+const char* vtkTriangleCollapseDecimation::GetScheduleAsString() const
+{
+  return this->Schedule == GREEDY ? "Greedy" : "IndependentSets";
+}
+
+void vtkTriangleCollapseDecimation::AddLevelReduction(double reduction)
+{
+  this->LevelReductions.push_back(reduction);
+  this->Modified();
+}
+
+void vtkTriangleCollapseDecimation::RemoveAllLevelReductions()
+{
+  if (!this->LevelReductions.empty())
+  {
+    this->LevelReductions.clear();
+    this->Modified();
+  }
+}
+
+double vtkTriangleCollapseDecimation::GetLevelReduction(int i) const
+{
+  return i >= 0 && i < this->GetNumberOfLevelReductions() ? this->LevelReductions[i] : 0.0;
+}
+
+//------------------------------------------------------------------------------
+int vtkTriangleCollapseDecimation::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(outputVector);
+  output->Initialize();
+  this->NumberOfLevelsProduced = 0;
+  this->ActualReduction = 0.0;
+
+  // Settings first.
+  if (this->Method == CURVATURE &&
+    std::abs(this->CurvatureWeight + this->AngleWeight + this->ValenceWeight - 1.0) > 1e-6)
+  {
+    vtkErrorMacro("CurvatureWeight + AngleWeight + ValenceWeight must be 1, not "
+      << this->CurvatureWeight + this->AngleWeight + this->ValenceWeight << ".");
+    return 0;
+  }
+  std::vector<double> reductions = this->LevelReductions;
+  for (size_t i = 0; i < reductions.size(); ++i)
+  {
+    if (!(reductions[i] > 0.0 && reductions[i] < 1.0) || (i > 0 && reductions[i] <= reductions[i - 1]))
+    {
+      vtkErrorMacro("Level reductions must lie in (0, 1) and increase strictly; reduction "
+        << i << " is " << reductions[i] << ".");
+      return 0;
+    }
+  }
+  if (reductions.empty())
+  {
+    // Geometric spacing of the kept fraction: keep_k = (1 - TargetReduction)^(k / N).
+    const double coarsest = 1.0 - this->TargetReduction;
+    for (int k = 1; k <= this->NumberOfLevels; ++k)
+    {
+      reductions.push_back(1.0 - std::pow(coarsest, static_cast<double>(k) / this->NumberOfLevels));
+    }
+  }
+
+  meshlod::InputMesh mesh;
+  const meshlod::InputStatus status = meshlod::ReadInputMesh(input, this, mesh);
+  if (status == meshlod::InputStatus::Invalid)
+  {
+    return 0;
+  }
+  if (status == meshlod::InputStatus::Empty)
+  {
+    return 1;
+  }
+  this->UpdateProgress(CollapseStart);
+
+  meshlod::TriangleCollapseOptions options;
+  options.Method = this->Method == QUADRIC ? meshlod::CollapseMethod::Quadric
+                                           : meshlod::CollapseMethod::Curvature;
+  options.Schedule = this->Schedule == GREEDY ? meshlod::CollapseSchedule::Greedy
+                                              : meshlod::CollapseSchedule::IndependentSets;
+  options.Operator = this->Operator == TRIANGLES ? meshlod::CollapseOperator::Triangles
+                                                 : meshlod::CollapseOperator::TrianglesAndEdges;
+  options.TriangleCostFactor = this->TriangleCostFactor;
+  options.MaximumError = this->MaximumError;
+  options.LevelFraction = this->LevelFraction;
+  options.CurvatureWeight = this->CurvatureWeight;
+  options.AngleWeight = this->AngleWeight;
+  options.ValenceWeight = this->ValenceWeight;
+  options.BoundaryWeight = this->BoundaryWeight;
+  options.MaximumNormalDeviation = this->MaximumNormalDeviation;
+  options.MaximumFitPoints = this->MaximumFitPoints;
+  const std::int64_t inputTriangles = mesh.Mesh.GetNumberOfTriangles();
+  for (const double r : reductions)
+  {
+    // Reductions that round to the same count on a small mesh give one level.
+    const auto target = static_cast<std::int64_t>(std::floor((1.0 - r) * inputTriangles));
+    if (options.LevelTargets.empty() ? target < inputTriangles : target < options.LevelTargets.back())
+    {
+      options.LevelTargets.push_back(target);
+    }
+  }
+
+  meshlod::HierarchyBuilder builder;
+  builder.SetLevelZero(mesh);
+  meshlod::TriangleCollapseCallbacks callbacks;
+  callbacks.EmitLevel = [&](meshlod::LevelData& level) { builder.AppendLevel(level); };
+  callbacks.Progress = [this](double fraction) {
+    this->UpdateProgress(CollapseStart + (CollapseEnd - CollapseStart) * fraction);
+    return !this->GetAbortExecute();
+  };
+  const meshlod::TriangleCollapseResult result =
+    meshlod::RunTriangleCollapse(mesh.Mesh, mesh.Topology, options, callbacks);
+  if (result.Aborted)
+  {
+    return 1; // aborted: the output stays empty
+  }
+  if (result.LevelsEmitted < static_cast<int>(options.LevelTargets.size()))
+  {
+    vtkWarningMacro("Produced " << result.LevelsEmitted << " of "
+                                << options.LevelTargets.size()
+                                << " levels: the coarsest reaches " << result.FinalTriangles
+                                << " triangles ("
+                                << (this->MaximumError > 0.0 ? "MaximumError reached"
+                                                             : "no legal collapse left")
+                                << ").");
+  }
+  if (this->ComputeLevelError)
+  {
+    this->UpdateProgress(MeasureStart);
+    builder.MeasureLevelErrors();
+  }
+  this->NumberOfLevelsProduced = builder.GetNumberOfLevels();
+  this->ActualReduction = inputTriangles > 0
+    ? 1.0 - static_cast<double>(result.FinalTriangles) / static_cast<double>(inputTriangles)
+    : 0.0;
+  builder.Finish(output);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Method: " << this->GetMethodAsString() << "\n";
+  os << indent << "Schedule: " << this->GetScheduleAsString() << "\n";
+  os << indent << "Operator: " << this->GetOperatorAsString() << "\n";
+  os << indent << "TriangleCostFactor: " << this->TriangleCostFactor << "\n";
+  os << indent << "TargetReduction: " << this->TargetReduction << "\n";
+  os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
+  os << indent << "LevelReductions:";
+  for (const double r : this->LevelReductions)
+  {
+    os << " " << r;
+  }
+  os << (this->LevelReductions.empty() ? " (none)\n" : "\n");
+  os << indent << "LevelFraction: " << this->LevelFraction << "\n";
+  os << indent << "MaximumError: " << this->MaximumError << "\n";
+  os << indent << "CurvatureWeight: " << this->CurvatureWeight << "\n";
+  os << indent << "AngleWeight: " << this->AngleWeight << "\n";
+  os << indent << "ValenceWeight: " << this->ValenceWeight << "\n";
+  os << indent << "BoundaryWeight: " << this->BoundaryWeight << "\n";
+  os << indent << "MaximumNormalDeviation: " << this->MaximumNormalDeviation << "\n";
+  os << indent << "MaximumFitPoints: " << this->MaximumFitPoints << "\n";
+  os << indent << "ComputeLevelError: " << (this->ComputeLevelError ? "On" : "Off") << "\n";
+  os << indent << "NumberOfLevelsProduced: " << this->NumberOfLevelsProduced << "\n";
+  os << indent << "ActualReduction: " << this->ActualReduction << "\n";
+}

@@ -1,0 +1,309 @@
+/**
+ * @class   vtkTriangleCollapseDecimation
+ * @brief   a hierarchy of levels of detail of a triangle mesh by triangle collapses
+ *
+ * vtkTriangleCollapseDecimation reduces a triangle mesh step by step by collapsing triangles:
+ * a triangle and its (up to three) edge neighbours disappear and its three vertices merge into
+ * one new vertex. The result is not one mesh but a hierarchy: output port 0 is a
+ * vtkMultiBlockDataSet whose block i is level i as a vtkPolyData named "Level i". Block 0 is
+ * the validated input; every next level has strictly fewer triangles. Use GetHierarchy() to
+ * get it (the inherited GetOutput() is null for a composite output).
+ *
+ * Two methods weight the triangles and place the collapse point (SetMethod):
+ * - Quadric (the default; Pan, Zhou, Shi, "A New Mesh Simplification Algorithm Based on
+ *   Triangle Collapses", J. Comput. Sci. Technol. 2002): each vertex carries the quadric of the
+ *   planes of the original triangles around it (area weighted, plus planes through boundary
+ *   edges perpendicular to their triangle, weighted by BoundaryWeight times the squared edge
+ *   length, so open boundaries stay in place). Collapsing a triangle costs the sum of its
+ *   three quadrics at the point minimising it; quadrics add up when vertices merge, so the cost
+ *   of later collapses carries every original plane merged into them (error propagation). The
+ *   minimiser is solved in the well-determined directions only (a pseudo-inverse around the
+ *   centroid), which needs none of the paper's fixed fallback candidates.
+ * - Curvature (Gieng, Hamann, Joy, Schussman, Trotts, "Smooth Hierarchical Surface
+ *   Triangulations", IEEE Visualization 1997): a least-squares quadratic height field
+ *   f(u, v) is fitted over the triangle's stencil and its ancestral points (the original
+ *   vertices merged into its corners, at most MaximumFitPoints of them as an evenly strided
+ *   subset; an extended stencil when the fit is singular). The collapse point is
+ *   c + f(0, 0) n and the weight is W = A (wk kappa + wa alpha + wv V) with the absolute
+ *   curvature kappa (normalised by the largest in the input), the shape measure alpha and the
+ *   valence penalty V = |val - 6| / 12, weighted by CurvatureWeight, AngleWeight and
+ *   ValenceWeight (which must sum to 1).
+ *
+ * A collapse is made only when it is legal (paper 000, section 3, generalised to open
+ * meshes): no vertex involved is non-manifold (such vertices are locked), the merged vertex's
+ * neighbourhood is one disk or half-disk (no pinch, no non-manifold edge, no duplicate triangle,
+ * same genus), no neighbour apex drops to valence 3 (paper 000's "no new cycle" rule), the
+ * stencil boundary polygon projected on the triangle's plane is star-shaped around the collapse
+ * point, and no triangle's normal turns by more than MaximumNormalDeviation.
+ *
+ * Two schedules order the collapses (SetSchedule):
+ * - Greedy (the default): one collapse at a time from a priority queue, cheapest first, with the
+ *   costs around each collapse updated (paper 002, section 2.4).
+ * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, up to
+ *   LevelFraction of the live triangles whose stencils share no vertex, collapses them all at
+ *   once, and re-weights only the triangles around what changed.
+ * Either way, output levels are snapshots taken when the triangle count reaches each level's
+ * target; the collapses between two levels are composed. Greedy gives the lower error per
+ * triangle on the benchmark meshes (see Benchmarks/RESULTS.md), hence the default.
+ *
+ * Levels: by default NumberOfLevels levels follow level 0 with triangle counts spaced
+ * geometrically down to (1 - TargetReduction) times the input's (8 levels to 1% gives 56%, 32%,
+ * 18%, 10%, 5.6%, 3.2%, 1.8% and 1%). AddLevelReduction() gives the reductions explicitly
+ * instead. MaximumError (world units) stops early when the next collapse's estimated error
+ * exceeds it; the coarsest mesh reached is then the last level.
+ *
+ * What every level carries (array names in MeshLODHierarchy.h):
+ * - every input point-data array; floating-point arrays interpolated with the barycentric
+ *   weights of each collapse point (composed over the collapses between levels), integer
+ *   arrays (ids, labels, categories) taking the value of the vertex with the largest weight;
+ * - the cell data of the surviving input triangles;
+ * - for every level but the last: MorphTarget (where each point goes in the next level),
+ *   MorphTargetId (its point id there; chaining it maps any input point to its point in any
+ *   coarser level) and CollapseRank (the order in which the points move when only part of the
+ *   transition is applied, -1 for points that do not move);
+ * - field data LevelIndex, NumberOfTriangles, EstimatedError and, with ComputeLevelError on,
+ *   MeasuredHausdorff and MeasuredRMS. EstimatedError is the filter's own estimate: the largest
+ *   RMS distance of a vertex to the original planes merged into it. It is not a bound. The
+ *   measured values are symmetric surface distances to level 0 found by sampling; they are
+ *   measurements, and a finer sampling can only raise the Hausdorff value.
+ *
+ * Input: triangles (polygons and strips are triangulated first; vertices and lines are
+ * ignored with a warning). Empty input gives an empty output. NaN or infinite coordinates are
+ * an error. Points with equal coordinates on boundary edges are merged; non-manifold vertices
+ * are kept but locked.
+ *
+ * The data-parallel parts (initial weights, re-weighting and legality checks of a pass,
+ * collapsing an independent set, output arrays) run with vtkSMPTools; the output is the same
+ * for every thread count.
+ *
+ * @sa vtkLODGeomorph vtkVertexClusterOctree vtkQuadricDecimation vtkDecimatePro
+ */
+#ifndef vtkTriangleCollapseDecimation_h
+#define vtkTriangleCollapseDecimation_h
+
+#include "vtkFiltersMeshLODModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <vector> // For the level reductions
+
+class vtkMultiBlockDataSet;
+
+class VTKFILTERSMESHLOD_EXPORT vtkTriangleCollapseDecimation : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkTriangleCollapseDecimation* New();
+  vtkTypeMacro(vtkTriangleCollapseDecimation, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Methods
+  {
+    QUADRIC = 0,
+    CURVATURE = 1
+  };
+  enum Schedules
+  {
+    INDEPENDENT_SETS = 0,
+    GREEDY = 1
+  };
+  enum Operators
+  {
+    TRIANGLES = 0,
+    TRIANGLES_AND_EDGES = 1
+  };
+
+  /// The hierarchy (output port 0).
+  vtkMultiBlockDataSet* GetHierarchy();
+
+  ///@{
+  /**
+   * How triangles are weighted and where they collapse to: QUADRIC (default) or CURVATURE.
+   */
+  vtkSetClampMacro(Method, int, QUADRIC, CURVATURE);
+  vtkGetMacro(Method, int);
+  void SetMethodToQuadric() { this->SetMethod(QUADRIC); }
+  void SetMethodToCurvature() { this->SetMethod(CURVATURE); }
+  const char* GetMethodAsString() const;
+  ///@}
+
+  ///@{
+  /**
+   * Order of the collapses: GREEDY (default, one at a time, cheapest first) or
+   * INDEPENDENT_SETS (passes of many simultaneous collapses with disjoint stencils).
+   */
+  vtkSetClampMacro(Schedule, int, INDEPENDENT_SETS, GREEDY);
+  vtkGetMacro(Schedule, int);
+  void SetScheduleToGreedy() { this->SetSchedule(GREEDY); }
+  void SetScheduleToIndependentSets() { this->SetSchedule(INDEPENDENT_SETS); }
+  const char* GetScheduleAsString() const;
+  ///@}
+
+  ///@{
+  /**
+   * Quadric method: what one collapse merges. TRIANGLES: always a triangle's three vertices
+   * (the papers' operator). TRIANGLES_AND_EDGES (default): a triangle collapses whole when that
+   * costs at most TriangleCostFactor times its cheapest edge collapse, otherwise that edge
+   * collapses (an edge collapse is half a triangle collapse: two vertices merge, two triangles
+   * disappear). Forcing three vertices to one point costs accuracy (on the benchmark meshes
+   * TRIANGLES has about 1.2-1.3 times the RMS error of vtkQuadricDecimation at equal triangle
+   * counts; TRIANGLES_AND_EDGES matches it), which the default avoids. The curvature method
+   * always collapses triangles.
+   */
+  vtkSetClampMacro(Operator, int, TRIANGLES, TRIANGLES_AND_EDGES);
+  vtkGetMacro(Operator, int);
+  void SetOperatorToTriangles() { this->SetOperator(TRIANGLES); }
+  void SetOperatorToTrianglesAndEdges() { this->SetOperator(TRIANGLES_AND_EDGES); }
+  const char* GetOperatorAsString() const;
+  ///@}
+
+  ///@{
+  /**
+   * TRIANGLES_AND_EDGES: how much more a triangle collapse may cost than the triangle's
+   * cheapest edge collapse and still be preferred, in [1, 1e6]. It removes twice the triangles,
+   * so 2 (the default) compares the two per removed triangle; larger values make more
+   * triangle collapses at some cost in accuracy.
+   */
+  vtkSetClampMacro(TriangleCostFactor, double, 1.0, 1.0e6);
+  vtkGetMacro(TriangleCostFactor, double);
+  ///@}
+
+  ///@{
+  /**
+   * Fraction of the input triangles removed by the coarsest level, in [0, 1). Default 0.99.
+   */
+  vtkSetClampMacro(TargetReduction, double, 0.0, 0.999999);
+  vtkGetMacro(TargetReduction, double);
+  ///@}
+
+  ///@{
+  /**
+   * Number of levels after level 0 when no explicit reductions are given, in [1, 1000].
+   * Their triangle counts are spaced geometrically from the input's down to the coarsest.
+   * Default 8.
+   */
+  vtkSetClampMacro(NumberOfLevels, int, 1, 1000);
+  vtkGetMacro(NumberOfLevels, int);
+  ///@}
+
+  ///@{
+  /**
+   * Explicit reductions, one per level after level 0 (each in (0, 1), strictly increasing):
+   * level k keeps (1 - reduction_k) of the input triangles. When any is given, NumberOfLevels
+   * and TargetReduction are ignored. None by default.
+   */
+  void AddLevelReduction(double reduction);
+  void RemoveAllLevelReductions();
+  int GetNumberOfLevelReductions() const { return static_cast<int>(this->LevelReductions.size()); }
+  double GetLevelReduction(int i) const;
+  ///@}
+
+  ///@{
+  /**
+   * IndependentSets schedule: the fraction of the live triangles selected for collapse per
+   * pass in the paper's terms, in [0.001, 0.25]: a pass removes up to 4 * LevelFraction of the
+   * live triangles (a triangle collapse removes 4, an edge collapse 2). Default 0.025 (2.5%, as
+   * in paper 000).
+   */
+  vtkSetClampMacro(LevelFraction, double, 0.001, 0.25);
+  vtkGetMacro(LevelFraction, double);
+  ///@}
+
+  ///@{
+  /**
+   * Stop when the next collapse's estimated error (RMS distance to its merged planes, world
+   * units) exceeds this. 0 (the default) or negative: no limit.
+   */
+  vtkSetMacro(MaximumError, double);
+  vtkGetMacro(MaximumError, double);
+  ///@}
+
+  ///@{
+  /**
+   * Curvature method: weights of the curvature, shape and valence terms, each in [0, 1]; they
+   * must sum to 1 (an error otherwise). Default 1/3 each.
+   */
+  vtkSetClampMacro(CurvatureWeight, double, 0.0, 1.0);
+  vtkGetMacro(CurvatureWeight, double);
+  vtkSetClampMacro(AngleWeight, double, 0.0, 1.0);
+  vtkGetMacro(AngleWeight, double);
+  vtkSetClampMacro(ValenceWeight, double, 0.0, 1.0);
+  vtkGetMacro(ValenceWeight, double);
+  ///@}
+
+  ///@{
+  /**
+   * Weight of the planes through boundary edges relative to the surface planes, in
+   * [0, 1e6]: an edge of length l adds a plane weighted BoundaryWeight * l^2, comparable with
+   * the area weight of the surface planes. 0 lets boundaries move freely. Default 10 (lower
+   * Hausdorff distance on open isosurfaces than 1, with no loss of RMS; far larger values
+   * spend triangles on slivers along the boundary).
+   */
+  vtkSetClampMacro(BoundaryWeight, double, 0.0, 1.0e6);
+  vtkGetMacro(BoundaryWeight, double);
+  ///@}
+
+  ///@{
+  /**
+   * Largest angle in degrees by which a triangle's normal may turn in one collapse, in
+   * [0, 180]. Default 60.
+   */
+  vtkSetClampMacro(MaximumNormalDeviation, double, 0.0, 180.0);
+  vtkGetMacro(MaximumNormalDeviation, double);
+  ///@}
+
+  ///@{
+  /**
+   * Curvature method: at most this many ancestral points per surface fit, in [6, 100000].
+   * Default 48.
+   */
+  vtkSetClampMacro(MaximumFitPoints, int, 6, 100000);
+  vtkGetMacro(MaximumFitPoints, int);
+  ///@}
+
+  ///@{
+  /**
+   * Measure every level's symmetric Hausdorff and RMS surface distance to level 0 and store
+   * them as MeasuredHausdorff and MeasuredRMS field data. Default off (it costs about as much as
+   * the simplification).
+   */
+  vtkSetMacro(ComputeLevelError, bool);
+  vtkGetMacro(ComputeLevelError, bool);
+  vtkBooleanMacro(ComputeLevelError, bool);
+  ///@}
+
+  /// After execution: the number of levels produced (level 0 included).
+  vtkGetMacro(NumberOfLevelsProduced, int);
+  /// After execution: the fraction of the input triangles removed by the coarsest level.
+  vtkGetMacro(ActualReduction, double);
+
+protected:
+  vtkTriangleCollapseDecimation();
+  ~vtkTriangleCollapseDecimation() override;
+
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Method = QUADRIC;
+  int Schedule = GREEDY;
+  int Operator = TRIANGLES_AND_EDGES;
+  double TriangleCostFactor = 2.0;
+  double TargetReduction = 0.99;
+  int NumberOfLevels = 8;
+  std::vector<double> LevelReductions;
+  double LevelFraction = 0.025;
+  double MaximumError = 0.0;
+  double CurvatureWeight = 1.0 / 3.0;
+  double AngleWeight = 1.0 / 3.0;
+  double ValenceWeight = 1.0 / 3.0;
+  double BoundaryWeight = 10.0;
+  double MaximumNormalDeviation = 60.0;
+  int MaximumFitPoints = 48;
+  bool ComputeLevelError = false;
+  int NumberOfLevelsProduced = 0;
+  double ActualReduction = 0.0;
+
+private:
+  vtkTriangleCollapseDecimation(const vtkTriangleCollapseDecimation&) = delete;
+  void operator=(const vtkTriangleCollapseDecimation&) = delete;
+};
+
+#endif
