@@ -104,41 +104,51 @@ double CollapseCostModel::CurvatureWeight(const CollapseCandidate& c) const
 bool CollapseCostModel::Evaluate(Id t, CollapseCandidate& c, CostScratch& scratch) const
 {
   const Id* tri = this->State.Mesh.Triangle(t);
-  const double* p[3] = { this->State.Mesh.Point(tri[0]), this->State.Mesh.Point(tri[1]),
-    this->State.Mesh.Point(tri[2]) };
+  if (this->Options.Method == CollapseMethod::Quadric &&
+    this->Options.Operator == CollapseOperator::TrianglesAndEdges)
+  {
+    return this->EvaluateTriangleOrEdge(tri, c);
+  }
+  return this->EvaluateTriple(tri, c, scratch);
+}
+
+//------------------------------------------------------------------------------
+bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, CostScratch& scratch) const
+{
+  const double* p[3];
   for (int k = 0; k < 3; ++k)
   {
-    if (this->State.IsLocked(tri[k]))
+    if (this->State.IsLocked(members[k]))
     {
       return false;
     }
+    p[k] = this->State.Mesh.Point(members[k]);
   }
-  const double twiceArea = TriangleNormal(p[0], p[1], p[2], c.Normal);
-  c.Area = 0.5 * twiceArea;
-  double centroid[3];
-  for (int i = 0; i < 3; ++i)
-  {
-    centroid[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
-  }
-  std::copy_n(tri, 3, c.Members);
+  c.Area = 0.5 * TriangleNormal(p[0], p[1], p[2], c.Normal);
+  std::copy_n(members, 3, c.Members);
   c.MemberCount = 3;
+  c.Swapped = false;
+  const Quadric q = this->State.Quadrics[members[0]] + this->State.Quadrics[members[1]] +
+    this->State.Quadrics[members[2]];
   if (this->Options.Method == CollapseMethod::Quadric)
   {
-    if (this->Options.Operator == CollapseOperator::TrianglesAndEdges)
+    double centroid[3];
+    for (int i = 0; i < 3; ++i)
     {
-      this->EvaluateTriangleOrEdge(tri, p, c);
-      return true;
+      centroid[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
     }
-    const Quadric q = this->State.Quadrics[tri[0]] + this->State.Quadrics[tri[1]] +
-      this->State.Quadrics[tri[2]];
     q.Minimize(centroid, c.Position);
     c.Cost = q.Evaluate(c.Position);
     c.Error = q.Weight > 0.0 ? std::sqrt(c.Cost / q.Weight) : 0.0;
+    if (this->Options.Operator == CollapseOperator::TrianglesAndEdges)
+    {
+      c.Cost /= this->Options.TriangleCostFactor; // ranked against edges, see below
+    }
     return true;
   }
 
   // Curvature method (paper 000): fit, collapse point c + f(0,0) n, weight terms.
-  this->FitSurface(t, c, scratch);
+  this->FitSurface(members, c, scratch);
   c.Alpha = ShapeMeasure(p[0], p[1], p[2]);
   // The merged vertex's valence: the triangles around the three vertices, less the ones
   // counted twice or dying (6 for the collapsing triangle's corners, 3 for its neighbours').
@@ -146,31 +156,28 @@ bool CollapseCostModel::Evaluate(Id t, CollapseCandidate& c, CostScratch& scratc
   bool boundary = false;
   for (int k = 0; k < 3; ++k)
   {
-    this->State.ForEachTriangle(tri[k], [&](Id) { ++triangles; });
-    boundary = boundary || this->State.IsBoundary(tri[k]);
+    this->State.ForEachTriangle(members[k], [&](Id) { ++triangles; });
+    boundary = boundary || this->State.IsBoundary(members[k]);
   }
   const int valence = std::max(0, triangles - 9 + (boundary ? 1 : 0));
   c.ValenceTerm = std::abs(valence - 6) / ValenceNormalization;
   c.Cost = this->CurvatureWeight(c);
-  c.Error = (this->State.Quadrics[tri[0]] + this->State.Quadrics[tri[1]] +
-    this->State.Quadrics[tri[2]])
-              .RmsDistance(c.Position);
+  c.Error = q.RmsDistance(c.Position);
   return true;
 }
 
 //------------------------------------------------------------------------------
-void CollapseCostModel::EvaluateTriangleOrEdge(const Id* tri, const double* const* p, CollapseCandidate& c) const
+double CollapseCostModel::BestEdge(const Id* tri, CollapseCandidate& c, double& worst) const
 {
-  // The triangle's three edge collapses.
-  double best = Infinity, worst = 0.0, bestWeight = 0.0;
-  int bestEdge = -1;
-  double bestPosition[3] = { 0, 0, 0 };
+  double best = Infinity, bestWeight = 0.0;
+  worst = 0.0;
   for (int k = 0; k < 3; ++k)
   {
     const int l = (k + 1) % 3;
+    const double* a = this->State.Mesh.Point(tri[k]);
+    const double* b = this->State.Mesh.Point(tri[l]);
     const Quadric q = this->State.Quadrics[tri[k]] + this->State.Quadrics[tri[l]];
-    const double middle[3] = { 0.5 * (p[k][0] + p[l][0]), 0.5 * (p[k][1] + p[l][1]),
-      0.5 * (p[k][2] + p[l][2]) };
+    const double middle[3] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
     double x[3];
     q.Minimize(middle, x);
     const double cost = q.Evaluate(x);
@@ -179,46 +186,60 @@ void CollapseCostModel::EvaluateTriangleOrEdge(const Id* tri, const double* cons
     {
       best = cost;
       bestWeight = q.Weight;
-      bestEdge = k;
-      std::copy_n(x, 3, bestPosition);
-    }
-  }
-  // A triangle collapse removes twice the triangles of an edge collapse: it is taken when it
-  // costs at most TriangleCostFactor times the cheapest edge. Its quadric contains each edge's,
-  // so it costs at least the dearest edge: when that alone exceeds the limit, the edge wins
-  // without solving for the triangle.
-  const double limit = this->Options.TriangleCostFactor * best;
-  if (worst <= limit)
-  {
-    const Quadric q = this->State.Quadrics[tri[0]] + this->State.Quadrics[tri[1]] +
-      this->State.Quadrics[tri[2]];
-    double centroid[3], x[3];
-    for (int i = 0; i < 3; ++i)
-    {
-      centroid[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
-    }
-    q.Minimize(centroid, x);
-    const double cost = q.Evaluate(x);
-    if (cost <= limit)
-    {
-      c.Cost = cost / this->Options.TriangleCostFactor;
-      c.Error = q.Weight > 0.0 ? std::sqrt(cost / q.Weight) : 0.0;
       std::copy_n(x, 3, c.Position);
-      return;
+      c.Members[0] = tri[k];
+      c.Members[1] = tri[l];
     }
   }
+  c.MemberCount = 2;
+  c.Swapped = false;
   c.Cost = best;
   c.Error = bestWeight > 0.0 ? std::sqrt(best / bestWeight) : 0.0;
-  std::copy_n(bestPosition, 3, c.Position);
-  c.Members[0] = tri[bestEdge];
-  c.Members[1] = tri[(bestEdge + 1) % 3];
-  c.MemberCount = 2;
+  return best;
+}
+
+bool CollapseCostModel::EvaluateBestEdge(const Id* tri, CollapseCandidate& c) const
+{
+  if (this->State.IsLocked(tri[0]) || this->State.IsLocked(tri[1]) || this->State.IsLocked(tri[2]))
+  {
+    return false;
+  }
+  double worst;
+  this->BestEdge(tri, c, worst);
+  return true;
 }
 
 //------------------------------------------------------------------------------
-void CollapseCostModel::FitSurface(Id t, CollapseCandidate& c, CostScratch& scratch) const
+bool CollapseCostModel::EvaluateTriangleOrEdge(const Id* tri, CollapseCandidate& c) const
 {
-  const Id* tri = this->State.Mesh.Triangle(t);
+  if (this->State.IsLocked(tri[0]) || this->State.IsLocked(tri[1]) || this->State.IsLocked(tri[2]))
+  {
+    return false;
+  }
+  double worst;
+  const double best = this->BestEdge(tri, c, worst);
+  // A triangle collapse removes twice the triangles of an edge collapse: it is taken when it
+  // costs at most TriangleCostFactor times the cheapest edge, and ranked by its cost over that
+  // factor. Its quadric contains each edge's, so it costs at least the dearest edge: when that
+  // alone exceeds the limit, the edge wins without solving for the triangle.
+  const double limit = this->Options.TriangleCostFactor * best;
+  if (worst > limit)
+  {
+    return true;
+  }
+  CollapseCandidate triangle;
+  CostScratch unused;
+  this->EvaluateTriple(tri, triangle, unused);
+  if (triangle.Cost * this->Options.TriangleCostFactor <= limit)
+  {
+    c = triangle;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void CollapseCostModel::FitSurface(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const
+{
   double centroid[3] = { 0, 0, 0 };
   double scale = 0.0;
   for (int k = 0; k < 3; ++k)

@@ -21,6 +21,7 @@ struct CollapseCandidate
   double Normal[3] = { 0, 0, 1 }; // unit normal of the collapsing triangle
   Id Members[3] = { InvalidId, InvalidId, InvalidId }; // the merging vertices: 3, or 2 for an edge
   int MemberCount = 0;
+  bool Swapped = false; // the members are the path left by an edge swap, not a triangle
   // Curvature method: the terms of W = A (wk kappa + wa alpha + wv V) before normalisation.
   double Area = 0.0, Kappa = 0.0, Alpha = 0.0, ValenceTerm = 0.0;
 };
@@ -38,8 +39,16 @@ public:
   CollapseCostModel(const TriangleCollapseOptions& options, const CollapseMesh& state,
     const LevelTracker& tracker, const TriangleMesh& original);
 
-  /// Evaluate collapsing live triangle t; false when it cannot collapse (a locked vertex).
+  /// Evaluate collapsing live triangle t (with the TrianglesAndEdges operator, possibly its
+  /// cheapest edge instead); false when it cannot collapse (a locked vertex).
   bool Evaluate(Id t, CollapseCandidate& candidate, CostScratch& scratch) const;
+
+  /// Evaluate merging three vertices into one: a triangle's corners, or the path of two edges
+  /// left by swapping the edge between a triangle and a neighbour (paper 000, figure 3).
+  bool EvaluateTriple(const Id* members, CollapseCandidate& candidate, CostScratch& scratch) const;
+
+  /// Quadric method: evaluate the cheapest of the triangle's three edge collapses.
+  bool EvaluateBestEdge(const Id* triangle, CollapseCandidate& candidate) const;
 
   /// Curvature method: kappa is normalised by the largest absolute curvature of the input
   /// (paper 000, section 5); set it once from the first evaluation of every triangle.
@@ -57,8 +66,10 @@ public:
 private:
   // TrianglesAndEdges: fill the candidate with the triangle collapse or, when that costs more
   // than TriangleCostFactor times the cheapest edge collapse, with that edge.
-  void EvaluateTriangleOrEdge(const Id* tri, const double* const* p, CollapseCandidate& c) const;
-  void FitSurface(Id t, CollapseCandidate& candidate, CostScratch& scratch) const;
+  bool EvaluateTriangleOrEdge(const Id* tri, CollapseCandidate& c) const;
+  // The cheapest edge of the triangle into c; returns its cost and the dearest edge's in worst.
+  double BestEdge(const Id* tri, CollapseCandidate& c, double& worst) const;
+  void FitSurface(const Id* tri, CollapseCandidate& candidate, CostScratch& scratch) const;
 
   const TriangleCollapseOptions& Options;
   const CollapseMesh& State;

@@ -217,7 +217,7 @@ bool CollapseMesh::GatherStar(const Id* members, int count, Star& star) const
       {
         for (int k = 0; k < 3; ++k)
         {
-          if (CountMembers(&tri[k], star.Members, count) == 0)
+          if (std::find(star.Members, star.Members + count, tri[k]) == star.Members + count)
           {
             star.Apexes.push_back(tri[k]);
           }
@@ -231,13 +231,14 @@ bool CollapseMesh::GatherStar(const Id* members, int count, Star& star) const
 }
 
 //------------------------------------------------------------------------------
-bool CollapseMesh::IsLegal(
+Legality CollapseMesh::IsLegal(
   const Star& star, const double x[3], const double* planeNormal, const CollapseRules& rules) const
 {
+  star.BlockingApex = InvalidId;
   const std::size_t ringSize = star.Ring.size();
   if (ringSize == 0)
   {
-    return false;
+    return Legality::Illegal;
   }
   bool boundary = false;
   for (int m = 0; m < star.MemberCount; ++m)
@@ -270,7 +271,7 @@ bool CollapseMesh::IsLegal(
     }
     if (leaves != 1 || enters > 1)
     {
-      return false; // two triangles would share an edge of the new fan twice
+      return Legality::Illegal; // two triangles would share an edge of the new fan twice
     }
     if (enters == 0)
     {
@@ -280,7 +281,7 @@ bool CollapseMesh::IsLegal(
   }
   if (pathStarts != (boundary ? 1 : 0) || (!boundary && ringSize < 3))
   {
-    return false;
+    return Legality::Illegal;
   }
   // Walk the link from the start edge: it must use every edge.
   std::size_t walked = 1;
@@ -305,30 +306,30 @@ bool CollapseMesh::IsLegal(
     edge = j;
     if (++walked > ringSize)
     {
-      return false;
+      return Legality::Illegal;
     }
   }
   if (walked != ringSize)
   {
-    return false; // several cycles or paths: the merge would pinch the surface
+    return Legality::Illegal; // several cycles or paths: the merge would pinch the surface
   }
 
-  // Apexes lose one edge each; they must stay distinct and keep a healthy valence.
+  // Apexes lose edges: an apex shared by m dying triangles was joined to m + 1 members, which
+  // become one vertex, so it loses m edges. Its valence must stay healthy.
   for (std::size_t i = 0; i < star.Apexes.size(); ++i)
   {
     const Id p = star.Apexes[i];
-    for (std::size_t j = 0; j < i; ++j)
+    if (std::find(star.Apexes.begin(), star.Apexes.begin() + i, p) != star.Apexes.begin() + i)
     {
-      if (star.Apexes[j] == p)
-      {
-        return false;
-      }
+      continue; // counted at its first occurrence
     }
-    const int after = this->Valence(p, star.ValenceScratch) - 1;
+    const int m = static_cast<int>(std::count(star.Apexes.begin(), star.Apexes.end(), p));
+    const int after = this->Valence(p, star.ValenceScratch) - m;
     const int minimum = this->IsBoundary(p) ? 2 : (rules.ForbidValenceThree ? 4 : 3);
     if (after < minimum)
     {
-      return false;
+      star.BlockingApex = p;
+      return Legality::LowValenceApex;
     }
   }
 
@@ -351,18 +352,18 @@ bool CollapseMesh::IsLegal(
     const double before2 = Dot(before, before);
     if (!(after2 > 1e-30 * Dot(uw, uw) * Dot(uw, uw)))
     {
-      return false; // the new triangle would be degenerate
+      return Legality::Illegal; // the new triangle would be degenerate
     }
     if (before2 > 0.0 && !WithinAngle(Dot(before, after), before2 * after2, rules.MinimumNormalCosine))
     {
-      return false;
+      return Legality::Illegal;
     }
     if (planeNormal != nullptr && rules.RequireStarShaped && Dot(after, planeNormal) <= 0.0)
     {
-      return false;
+      return Legality::Illegal;
     }
   }
-  return true;
+  return Legality::Legal;
 }
 
 //------------------------------------------------------------------------------

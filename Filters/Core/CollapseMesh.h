@@ -46,6 +46,14 @@ struct CollapseRules
   bool RequireStarShaped = true;
 };
 
+/// Outcome of a legality check.
+enum class Legality
+{
+  Legal,
+  LowValenceApex, // only an apex's valence forbids it (see Star::BlockingApex)
+  Illegal,
+};
+
 /// The triangles around a set of merging vertices (scratch storage reused between calls).
 struct Star
 {
@@ -55,6 +63,7 @@ struct Star
   std::vector<Id> Ring;       // triangles with exactly one member
   std::vector<std::int8_t> RingCorner; // the corner of the member in each ring triangle
   std::vector<Id> Apexes;     // the non-member vertex of each two-member dying triangle
+  mutable Id BlockingApex = InvalidId; // set by IsLegal on LowValenceApex
   mutable std::vector<Id> LinkScratch;
   mutable std::vector<Id> ValenceScratch;
 };
@@ -103,9 +112,10 @@ public:
   bool GatherStar(const Id* members, int count, Star& star) const;
 
   /// Whether merging the star's members at x keeps a manifold mesh of the same topology with no
-  /// flipped triangle (see CollapseRules). `planeNormal` is the normal of the collapsing
+  /// flipped triangle (see CollapseRules). The members need not form a triangle: three members
+  /// joined by a path of two edges are the triangle collapse that follows an edge swap. `planeNormal` is the normal of the collapsing
   /// triangle (for the star-shape test); may be null for edge collapses.
-  bool IsLegal(
+  Legality IsLegal(
     const Star& star, const double x[3], const double* planeNormal, const CollapseRules& rules) const;
 
   /// Merge the members into the first one (the lowest id) at x and return it. Does not touch

@@ -57,7 +57,11 @@ private:
   double EvaluateCost(Id t, CostScratch& scratch) const;
 
   int Collapse(const Star& star, const CollapseCandidate& c, std::int64_t sequence);
+  // Whether the collapse evaluated for triangle t (or a fallback: the swap variant, the
+  // cheapest edge) is legal; on success c and star describe the collapse to make.
   bool Check(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
+  Legality Legal(Star& star, const CollapseCandidate& c) const;
+  bool TrySwap(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
 
   // Emit levels whose target is reached; returns false on abort.
   bool AfterProgress();
@@ -142,10 +146,93 @@ bool Collapser::Check(Id t, Star& star, CollapseCandidate& c, CostScratch& scrat
   {
     return false;
   }
+  const Legality legality = this->Legal(star, c);
+  if (legality == Legality::Legal)
+  {
+    return true;
+  }
+  if (c.MemberCount != 3)
+  {
+    return false;
+  }
+  if (legality == Legality::LowValenceApex && this->TrySwap(t, star, c, scratch))
+  {
+    return true;
+  }
+  // The triangle cannot go: with edges allowed, its cheapest edge may.
+  return this->Options.Method == CollapseMethod::Quadric &&
+    this->Options.Operator == CollapseOperator::TrianglesAndEdges &&
+    this->Model.EvaluateBestEdge(this->State.Mesh.Triangle(t), c) &&
+    this->Legal(star, c) == Legality::Legal;
+}
+
+Legality Collapser::Legal(Star& star, const CollapseCandidate& c) const
+{
   // The star-shape test of paper 000 projects on the collapsing triangle's plane; an edge
   // collapse has no such plane and relies on the normal test alone.
-  return this->State.GatherStar(c.Members, c.MemberCount, star) &&
-    this->State.IsLegal(star, c.Position, c.MemberCount == 3 ? c.Normal : nullptr, this->Rules);
+  if (!this->State.GatherStar(c.Members, c.MemberCount, star))
+  {
+    return Legality::Illegal;
+  }
+  return this->State.IsLegal(star, c.Position, c.MemberCount == 3 ? c.Normal : nullptr, this->Rules);
+}
+
+//------------------------------------------------------------------------------
+// Paper 000, figure 3: when a neighbour's apex p has too low a valence, swap the edge (a, b)
+// between triangle t = (a, b, c) and that neighbour, then collapse one of the two new
+// triangles, (c, a, p) or (c, b, p). The swap and the collapse together merge three vertices
+// joined by a path of two edges and remove the same triangles whichever diagonal the quad had,
+// so they are done as one merge and the levels' correspondence stays exact.
+bool Collapser::TrySwap(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const
+{
+  const Id p = star.BlockingApex;
+  const Id* tri = this->State.Mesh.Triangle(t);
+  Id a = InvalidId, b = InvalidId;
+  for (const Id d : star.Dying)
+  {
+    const Id* dt = this->State.Mesh.Triangle(d);
+    if (d != t && CornerOf(dt, p) >= 0)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        if (dt[k] != p)
+        {
+          (a == InvalidId ? a : b) = dt[k];
+        }
+      }
+      break;
+    }
+  }
+  if (a == InvalidId || b == InvalidId || this->State.IsBoundary(p))
+  {
+    return false;
+  }
+  Id apexCorner = InvalidId;
+  for (int k = 0; k < 3; ++k)
+  {
+    apexCorner = (tri[k] != a && tri[k] != b) ? tri[k] : apexCorner;
+  }
+  CollapseCandidate best;
+  bool found = false;
+  for (const Id other : { a, b })
+  {
+    // The new triangle keeps the orientation of t: (c, a, p) or (c, p, b).
+    const Id triple[3] = { apexCorner, other == a ? a : p, other == a ? p : b };
+    CollapseCandidate trial;
+    if (this->Model.EvaluateTriple(triple, trial, scratch) && (!found || trial.Cost < best.Cost) &&
+      this->Legal(star, trial) == Legality::Legal)
+    {
+      best = trial;
+      found = true;
+    }
+  }
+  if (!found)
+  {
+    return false;
+  }
+  c = best;
+  c.Swapped = true;
+  return this->State.GatherStar(c.Members, c.MemberCount, star);
 }
 
 int Collapser::Collapse(const Star& star, const CollapseCandidate& c, std::int64_t sequence)
@@ -159,6 +246,7 @@ int Collapser::Collapse(const Star& star, const CollapseCandidate& c, std::int64
   CollapseWeights(points, star.MemberCount, c.Position, weights);
   this->Tracker.Merge(star.Members, weights, star.MemberCount, sequence);
   this->State.Apply(star, c.Position);
+  this->Result.Swaps += c.Swapped ? 1 : 0;
   return static_cast<int>(star.Dying.size());
 }
 
@@ -399,23 +487,21 @@ TriangleCollapseResult Collapser::RunIndependentSets()
           blocked = blocked || marked[st[0]] || marked[st[1]] || marked[st[2]];
         });
       }
-      if (blocked || !this->Model.Evaluate(t, candidate, local))
+      if (blocked)
       {
+        continue;
+      }
+      if (!this->Check(t, star, candidate, local))
+      {
+        // Parked until a collapse nearby changes its neighbourhood (see step 4).
+        this->Costs[t] = Infinity;
+        parked[t] = 1;
         continue;
       }
       if (!this->ErrorAllows(candidate.Error))
       {
         errorLimited = true;
         break;
-      }
-      if (!this->State.GatherStar(candidate.Members, candidate.MemberCount, star) ||
-        !this->State.IsLegal(star, candidate.Position,
-          candidate.MemberCount == 3 ? candidate.Normal : nullptr, this->Rules))
-      {
-        // Parked until a collapse nearby changes its neighbourhood (see step 4).
-        this->Costs[t] = Infinity;
-        parked[t] = 1;
-        continue;
       }
       stencilVertices.clear();
       auto collect = [&](Id s) {
@@ -424,6 +510,11 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       };
       std::for_each(star.Dying.begin(), star.Dying.end(), collect);
       std::for_each(star.Ring.begin(), star.Ring.end(), collect);
+      if (candidate.Swapped &&
+        std::any_of(stencilVertices.begin(), stencilVertices.end(), [&](Id v) { return marked[v]; }))
+      {
+        continue; // a swap reaches one ring further than the check above
+      }
       for (const Id v : stencilVertices)
       {
         if (!marked[v])

@@ -1,0 +1,429 @@
+// vtkTriangleCollapseDecimation end to end: hierarchies of closed and open isosurfaces and of
+// tiny meshes, checked for topology, correspondence, errors, attributes, determinism and the
+// handling of bad input and settings.
+#include "vtkTriangleCollapseDecimation.h"
+
+#include "MeshLODHierarchy.h"
+#include "MeshLODHierarchyChecks.h"
+#include "MeshLODSurfaceDistance.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestMeshes.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkIntArray.h"
+#include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkTestErrorObserver.h"
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace
+{
+using namespace meshlod;
+
+vtkPolyData* Level(vtkMultiBlockDataSet* h, unsigned int i)
+{
+  return vtkPolyData::SafeDownCast(h->GetBlock(i));
+}
+
+double Field(vtkPolyData* level, const char* name)
+{
+  vtkDataArray* a = level->GetFieldData()->GetArray(name);
+  return a ? a->GetTuple1(0) : std::numeric_limits<double>::quiet_NaN();
+}
+
+// The edge length of equilateral triangles of the mesh's mean area.
+double TypicalEdge(vtkPolyData* mesh)
+{
+  double area = 0.0;
+  vtkIdType n;
+  const vtkIdType* ids;
+  for (vtkIdType c = 0; c < mesh->GetNumberOfPolys(); ++c)
+  {
+    mesh->GetPolys()->GetCellAtId(c, n, ids);
+    double p[3][3], e1[3], e2[3], cross[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      mesh->GetPoint(ids[k], p[k]);
+    }
+    vtkMath::Subtract(p[1], p[0], e1);
+    vtkMath::Subtract(p[2], p[0], e2);
+    vtkMath::Cross(e1, e2, cross);
+    area += 0.5 * vtkMath::Norm(cross);
+  }
+  return std::sqrt(4.0 * area / (std::sqrt(3.0) * std::max<vtkIdType>(1, mesh->GetNumberOfPolys())));
+}
+
+// Properties every hierarchy of a closed surface must have.
+void CheckClosedHierarchy(vtkMultiBlockDataSet* h, const std::string& label)
+{
+  std::cerr << "checking " << label << "\n";
+  MESHLOD_CHECK(CheckHierarchyLayout(h, true).empty());
+  MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
+  const testing::MeshReport input = testing::InspectMesh(Level(h, 0));
+  vtkIdType previous = Level(h, 0)->GetNumberOfPolys();
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    vtkPolyData* level = Level(h, i);
+    const testing::MeshReport r = testing::InspectMesh(level);
+    MESHLOD_CHECK_LT(r.Triangles, previous);
+    previous = r.Triangles;
+    MESHLOD_CHECK_EQ(r.NonManifoldEdges, 0);
+    MESHLOD_CHECK_EQ(r.NonManifoldVertices, 0);
+    MESHLOD_CHECK_EQ(r.BoundaryEdges, 0);
+    MESHLOD_CHECK_EQ(r.DegenerateTriangles, 0);
+    MESHLOD_CHECK_EQ(r.DuplicateTriangles, 0);
+    MESHLOD_CHECK(r.ConsistentlyOriented);
+    MESHLOD_CHECK_EQ(r.EulerCharacteristic, input.EulerCharacteristic);
+    MESHLOD_CHECK_EQ(testing::CountFlippedTriangles(Level(h, 0), level), 0);
+    MESHLOD_CHECK_EQ(Field(level, names::LevelIndex), static_cast<double>(i));
+    MESHLOD_CHECK_EQ(Field(level, names::NumberOfTriangles), static_cast<double>(r.Triangles));
+  }
+}
+
+// Closed isosurface, every method, schedule and operator: manifold, closed, same genus, exact
+// correspondence, counts at the requested levels, errors as measured.
+void TestClosedIsosurface()
+{
+  vtkSmartPointer<vtkPolyData> surface = testing::MakeIsosurface(testing::Field::Metaballs, 40);
+  const vtkIdType n = surface->GetNumberOfPolys();
+  struct Variant
+  {
+    int Method, Schedule, Operator;
+    const char* Label;
+    double MaxHausdorffPercentAt10; // measured on this mesh (0.28, 0.38, 0.47, 1.2), ~1.5x margin
+  };
+  const Variant variants[] = {
+    { vtkTriangleCollapseDecimation::QUADRIC, vtkTriangleCollapseDecimation::GREEDY,
+      vtkTriangleCollapseDecimation::TRIANGLES_AND_EDGES, "quadric greedy", 0.5 },
+    { vtkTriangleCollapseDecimation::QUADRIC, vtkTriangleCollapseDecimation::INDEPENDENT_SETS,
+      vtkTriangleCollapseDecimation::TRIANGLES_AND_EDGES, "quadric independent sets", 0.6 },
+    { vtkTriangleCollapseDecimation::QUADRIC, vtkTriangleCollapseDecimation::INDEPENDENT_SETS,
+      vtkTriangleCollapseDecimation::TRIANGLES, "quadric triangles only", 0.7 },
+    { vtkTriangleCollapseDecimation::CURVATURE, vtkTriangleCollapseDecimation::INDEPENDENT_SETS,
+      vtkTriangleCollapseDecimation::TRIANGLES, "curvature", 1.8 },
+  };
+  for (const Variant& v : variants)
+  {
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->SetInputData(surface);
+    filter->SetMethod(v.Method);
+    filter->SetSchedule(v.Schedule);
+    filter->SetOperator(v.Operator);
+    filter->ComputeLevelErrorOn();
+    filter->Update();
+    vtkMultiBlockDataSet* h = filter->GetHierarchy();
+    MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 9u);
+    MESHLOD_CHECK_EQ(filter->GetNumberOfLevelsProduced(), 9);
+    CheckClosedHierarchy(h, v.Label);
+    // Level 4 is 10% of the input (8 levels to 1%), level 8 is 1%; a collapse removes up to 4.
+    const vtkIdType at10 = Level(h, 4)->GetNumberOfPolys();
+    const vtkIdType at1 = Level(h, 8)->GetNumberOfPolys();
+    MESHLOD_CHECK_LE(at10, static_cast<vtkIdType>(std::floor(0.1 * n + 1e-9)));
+    MESHLOD_CHECK_GE(at10, static_cast<vtkIdType>(std::floor(0.1 * n)) - 4);
+    MESHLOD_CHECK_LE(at1, static_cast<vtkIdType>(std::floor(0.01 * n + 1e-9)));
+    MESHLOD_CHECK_GE(at1, static_cast<vtkIdType>(std::floor(0.01 * n)) - 4);
+
+    // The reported measurement agrees with an independent, denser one.
+    SurfaceDistanceOptions dense;
+    dense.SamplesPerSurface = 100000;
+    dense.Seed = 777;
+    const SurfaceDistance d = MeasureSurfaceDistance(surface, Level(h, 4), dense);
+    const double reported = Field(Level(h, 4), names::MeasuredHausdorff);
+    MESHLOD_CHECK_LE(std::abs(d.Hausdorff - reported), 0.3 * reported);
+    MESHLOD_CHECK_LE(std::abs(d.Rms - Field(Level(h, 4), names::MeasuredRMS)), 0.05 * d.Rms);
+    std::cerr << "  " << v.Label << ": Hausdorff at 10% " << d.HausdorffPercent() << "% RMS "
+              << d.RmsPercent() << "%\n";
+    MESHLOD_CHECK_LE(d.HausdorffPercent(), v.MaxHausdorffPercentAt10);
+    MESHLOD_CHECK_GT(Field(Level(h, 4), names::EstimatedError), 0.0);
+  }
+}
+
+// The torus keeps its hole: Euler characteristic 0 on every level.
+void TestGenus()
+{
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  filter->SetInputData(testing::MakeIsosurface(testing::Field::Torus, 40));
+  filter->SetTargetReduction(0.995);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(testing::InspectMesh(Level(h, 0)).EulerCharacteristic, 0);
+  CheckClosedHierarchy(h, "torus");
+}
+
+// An open surface: the boundary stays on the input's boundary, within a small distance.
+void TestOpenSurface()
+{
+  vtkSmartPointer<vtkPolyData> sheet = testing::MakeIsosurface(testing::Field::Wavelet, 41);
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  filter->SetInputData(sheet);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 9u);
+  MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
+  const double diagonal = sheet->GetLength();
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    const testing::MeshReport r = testing::InspectMesh(Level(h, i));
+    MESHLOD_CHECK_EQ(r.NonManifoldEdges, 0);
+    MESHLOD_CHECK_EQ(r.NonManifoldVertices, 0);
+    MESHLOD_CHECK_EQ(r.DegenerateTriangles, 0);
+    MESHLOD_CHECK_GT(r.BoundaryEdges, 0);
+    // Boundary vertices stay within a fraction of the level's typical edge length of the
+    // input boundary (measured: up to 0.23 of it at the coarsest level, far less before).
+    const double deviation = testing::BoundaryDeviation(sheet, Level(h, i));
+    std::cerr << "  boundary deviation level " << i << ": " << deviation / TypicalEdge(Level(h, i))
+              << " edge lengths\n";
+    MESHLOD_CHECK_LE(deviation, 0.35 * TypicalEdge(Level(h, i)));
+    MESHLOD_CHECK_LE(deviation, 0.05 * diagonal);
+  }
+}
+
+// Point data: floating arrays interpolated, normals unit length, integer arrays keep values
+// that exist in the input.
+void TestPointData()
+{
+  vtkSmartPointer<vtkPolyData> surface =
+    testing::MakeIsosurface(testing::Field::Metaballs, 32, true, true);
+  vtkNew<vtkIntArray> side;
+  side->SetName("Side");
+  for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p)
+  {
+    side->InsertNextValue(surface->GetPoint(p)[0] < 0.0 ? 7 : 9);
+  }
+  surface->GetPointData()->AddArray(side);
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  filter->SetInputData(surface);
+  filter->SetNumberOfLevels(3);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 4u);
+  double range[2];
+  surface->GetPointData()->GetScalars()->GetRange(range);
+  for (unsigned int i = 0; i < h->GetNumberOfBlocks(); ++i)
+  {
+    vtkPolyData* level = Level(h, i);
+    vtkPointData* pd = level->GetPointData();
+    MESHLOD_CHECK(pd->GetNormals() != nullptr);
+    MESHLOD_CHECK(pd->GetScalars() != nullptr);
+    MESHLOD_CHECK(pd->GetArray("Side") != nullptr);
+    if (!pd->GetNormals() || !pd->GetScalars() || !pd->GetArray("Side"))
+    {
+      continue;
+    }
+    MESHLOD_CHECK_EQ(pd->GetNormals()->GetNumberOfTuples(), level->GetNumberOfPoints());
+    for (vtkIdType p = 0; p < level->GetNumberOfPoints(); ++p)
+    {
+      double normal[3];
+      pd->GetNormals()->GetTuple(p, normal);
+      MESHLOD_CHECK_LE(std::abs(vtkMath::Norm(normal) - 1.0), 1e-5);
+      const double s = pd->GetScalars()->GetTuple1(p);
+      MESHLOD_CHECK(s >= range[0] - 1e-6 && s <= range[1] + 1e-6);
+      const double label = pd->GetArray("Side")->GetTuple1(p);
+      MESHLOD_CHECK(label == 7.0 || label == 9.0);
+    }
+  }
+}
+
+// One triangle collapse on an icosphere removes exactly 4 triangles and 2 vertices; the three
+// merged points share rank 0 and one target, every other point keeps its place.
+void TestSingleCollapse()
+{
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  filter->SetInputData(testing::MakeIcosphere(1)); // 80 triangles, 42 points
+  filter->SetOperatorToTriangles();
+  filter->AddLevelReduction(0.05); // 76 triangles
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 2u);
+  MESHLOD_CHECK_EQ(Level(h, 1)->GetNumberOfPolys(), 76);
+  MESHLOD_CHECK_EQ(Level(h, 1)->GetNumberOfPoints(), 40);
+  vtkDataArray* rank = Level(h, 0)->GetPointData()->GetArray(names::CollapseRank);
+  vtkDataArray* target = Level(h, 0)->GetPointData()->GetArray(names::MorphTargetId);
+  int moving = 0;
+  std::set<double> targets;
+  for (vtkIdType p = 0; p < 42; ++p)
+  {
+    if (rank->GetTuple1(p) == 0.0)
+    {
+      ++moving;
+      targets.insert(target->GetTuple1(p));
+    }
+    else
+    {
+      MESHLOD_CHECK_EQ(rank->GetTuple1(p), -1.0);
+    }
+  }
+  MESHLOD_CHECK_EQ(moving, 3);
+  MESHLOD_CHECK_EQ(targets.size(), 1u);
+  MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
+}
+
+// Same output for the sequential backend and the default (threaded) one.
+void TestThreadIndependence()
+{
+  vtkSmartPointer<vtkPolyData> surface = testing::MakeIsosurface(testing::Field::Gyroid, 40);
+  const std::string initial = vtkSMPTools::GetBackend();
+  for (const int schedule :
+    { vtkTriangleCollapseDecimation::GREEDY, vtkTriangleCollapseDecimation::INDEPENDENT_SETS })
+  {
+    vtkSmartPointer<vtkMultiBlockDataSet> runs[2];
+    for (int run = 0; run < 2; ++run)
+    {
+      vtkSMPTools::SetBackend(run == 0 ? "Sequential" : initial.c_str());
+      vtkNew<vtkTriangleCollapseDecimation> filter;
+      filter->SetInputData(surface);
+      filter->SetSchedule(schedule);
+      filter->Update();
+      runs[run] = filter->GetHierarchy();
+    }
+    MESHLOD_CHECK_EQ(runs[0]->GetNumberOfBlocks(), runs[1]->GetNumberOfBlocks());
+    for (unsigned int i = 0; i < runs[0]->GetNumberOfBlocks(); ++i)
+    {
+      MESHLOD_CHECK(testing::SameMesh(Level(runs[0], i), Level(runs[1], i)));
+    }
+  }
+  vtkSMPTools::SetBackend(initial.c_str());
+}
+
+// MaximumError stops early: fewer levels (with a warning), every vertex within the bound.
+void TestMaximumError()
+{
+  vtkSmartPointer<vtkPolyData> surface = testing::MakeIsosurface(testing::Field::Sphere, 40);
+  const double bound = 1e-3 * surface->GetLength();
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->SetInputData(surface);
+  filter->SetMaximumError(bound);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_LT(h->GetNumberOfBlocks(), 9u);
+  MESHLOD_CHECK_GE(h->GetNumberOfBlocks(), 2u);
+  MESHLOD_CHECK(observer->GetWarning());
+  vtkPolyData* last = Level(h, h->GetNumberOfBlocks() - 1);
+  MESHLOD_CHECK_LE(Field(last, names::EstimatedError), bound);
+  MESHLOD_CHECK_LT(filter->GetActualReduction(), 0.99);
+}
+
+// Bad input and settings: clear errors, empty outputs, no crash; abort honoured.
+void TestErrorsAndAbort()
+{
+  vtkNew<vtkTest::ErrorObserver> observer;
+  {
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    vtkNew<vtkPolyData> empty;
+    filter->SetInputData(empty);
+    filter->Update();
+    MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
+  }
+  {
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+    vtkSmartPointer<vtkPolyData> mesh = testing::MakeOctahedron();
+    mesh->GetPoints()->SetPoint(2, std::numeric_limits<double>::quiet_NaN(), 0, 0);
+    filter->SetInputData(mesh);
+    filter->Update();
+    MESHLOD_CHECK(observer->GetError());
+    MESHLOD_CHECK(observer->GetErrorMessage().find("NaN") != std::string::npos);
+    MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
+  }
+  {
+    observer->Clear();
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->SetInputData(testing::MakeIcosphere(2));
+    filter->SetMethodToCurvature();
+    filter->SetCurvatureWeight(0.5);
+    filter->SetAngleWeight(0.5);
+    filter->SetValenceWeight(0.5);
+    filter->Update();
+    MESHLOD_CHECK(observer->GetError());
+    MESHLOD_CHECK(observer->GetErrorMessage().find("must be 1") != std::string::npos);
+  }
+  {
+    observer->Clear();
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->SetInputData(testing::MakeIcosphere(2));
+    filter->AddLevelReduction(0.5);
+    filter->AddLevelReduction(0.4);
+    filter->Update();
+    MESHLOD_CHECK(observer->GetError());
+    MESHLOD_CHECK(observer->GetErrorMessage().find("increase") != std::string::npos);
+  }
+  {
+    // Abort at the first progress report: the output stays empty, no error.
+    observer->Clear();
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->AddObserver(vtkCommand::ErrorEvent, observer);
+    int reports = 0;
+    vtkNew<vtkCallbackCommand> abort;
+    abort->SetClientData(&reports);
+    abort->SetCallback([](vtkObject* caller, unsigned long, void* data, void*) {
+      ++*static_cast<int*>(data);
+      static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn();
+    });
+    filter->AddObserver(vtkCommand::ProgressEvent, abort);
+    filter->SetInputData(testing::MakeIsosurface(testing::Field::Sphere, 32));
+    filter->Update();
+    MESHLOD_CHECK_GT(reports, 0);
+    MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
+    MESHLOD_CHECK(!observer->GetError());
+  }
+  {
+    // Non-manifold input: the pinched vertex is locked and never moves.
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    vtkSmartPointer<vtkPolyData> bowTie = testing::MakeBowTie();
+    filter->SetInputData(bowTie);
+    filter->SetTargetReduction(0.5);
+    filter->SetNumberOfLevels(1);
+    filter->Update();
+    vtkMultiBlockDataSet* h = filter->GetHierarchy();
+    MESHLOD_CHECK_GE(h->GetNumberOfBlocks(), 1u);
+    vtkPolyData* last = Level(h, h->GetNumberOfBlocks() - 1);
+    bool pinchKept = false;
+    for (vtkIdType p = 0; p < last->GetNumberOfPoints(); ++p)
+    {
+      double x[3];
+      last->GetPoint(p, x);
+      pinchKept = pinchKept || (x[0] == 0.0 && x[1] == 0.0 && x[2] == 0.0);
+    }
+    MESHLOD_CHECK(pinchKept);
+  }
+  std::ostringstream print;
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  filter->Print(print);
+  MESHLOD_CHECK(print.str().find("TriangleCostFactor: 2") != std::string::npos);
+}
+} // namespace
+
+int TestTriangleCollapseDecimation(int, char*[])
+{
+  TestSingleCollapse();
+  TestClosedIsosurface();
+  TestGenus();
+  TestOpenSurface();
+  TestPointData();
+  TestThreadIndependence();
+  TestMaximumError();
+  TestErrorsAndAbort();
+  return meshlod::testing::Result();
+}

@@ -1,0 +1,50 @@
+// Checks on LOD hierarchies shared by the tests of both decimation filters and the geomorph:
+// each returns the number of violations found (0 = the property holds) and prints the first few.
+#ifndef MeshLODHierarchyChecks_h
+#define MeshLODHierarchyChecks_h
+
+#include <cstdint>
+
+class vtkMultiBlockDataSet;
+class vtkPolyData;
+
+namespace meshlod
+{
+namespace testing
+{
+/// Topology of one mesh: counts of non-manifold edges and vertices, boundary edges, whether
+/// the orientation is consistent, the Euler characteristic, degenerate (zero-area) triangles
+/// and triangles listed twice.
+struct MeshReport
+{
+  std::int64_t Triangles = 0;
+  std::int64_t NonManifoldEdges = 0;
+  std::int64_t NonManifoldVertices = 0;
+  std::int64_t BoundaryEdges = 0;
+  std::int64_t DegenerateTriangles = 0;
+  std::int64_t DuplicateTriangles = 0;
+  std::int64_t EulerCharacteristic = 0;
+  bool ConsistentlyOriented = true;
+};
+MeshReport InspectMesh(vtkPolyData* mesh);
+
+/// Every triangle of level i, mapped through MorphTargetId, is a triangle of level i+1 with the
+/// same orientation, or degenerates; every triangle of level i+1 is such an image; MorphTarget
+/// is the position of the MorphTargetId point; a point with CollapseRank -1 keeps its position
+/// and is the only point mapped to its target.
+std::int64_t CountCorrespondenceViolations(vtkMultiBlockDataSet* hierarchy);
+
+/// Triangles of `coarse` whose normal points against the normal of the closest triangle of
+/// `fine` (flipped triangles).
+std::int64_t CountFlippedTriangles(vtkPolyData* fine, vtkPolyData* coarse);
+
+/// Largest distance from a boundary vertex of `coarse` to the boundary edges of `fine`.
+double BoundaryDeviation(vtkPolyData* fine, vtkPolyData* coarse);
+
+/// True when the two meshes have bitwise equal points and cells.
+bool SameMesh(vtkPolyData* a, vtkPolyData* b);
+
+} // namespace testing
+} // namespace meshlod
+
+#endif
