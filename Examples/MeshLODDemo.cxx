@@ -262,55 +262,88 @@ bool WriteFrames(const std::vector<Frame>& frames, const fs::path& directory)
 }
 
 //--------------------------------------------------------------------------------------------------
-/// Debian's VTK renders through X only, and aborts the program when it cannot open the display
-/// or find an OpenGL configuration on it: check first, so that the picture is skipped instead.
-bool CanRender(std::string& why)
+/// The X display the picture is rendered on. Debian's VTK renders through X only, and aborts
+/// the program when it cannot open the display or find an OpenGL configuration there: check
+/// both first, so that the picture is skipped instead. The connection stays open and is handed
+/// to the render window: an X server resets when its last client disconnects, and a connection
+/// opened during that reset fails.
+class XDisplay
 {
-  const char* display = std::getenv("DISPLAY");
-  if (display == nullptr || *display == '\0')
+public:
+  XDisplay() = default;
+  XDisplay(const XDisplay&) = delete;
+  XDisplay& operator=(const XDisplay&) = delete;
+  ~XDisplay()
   {
-    why = "DISPLAY is not set (run the demo through xvfb-run -a, as run-demo.sh does)";
-    return false;
-  }
 #ifdef MESHLOD_DEMO_HAS_GLX
-  Display* connection = XOpenDisplay(nullptr);
-  if (connection == nullptr)
-  {
-    why = std::string("cannot open the X display ") + display;
-    return false;
-  }
-  int errorBase = 0, eventBase = 0, configurations = 0;
-  GLXFBConfig* found = nullptr;
-  if (glXQueryExtension(connection, &errorBase, &eventBase))
-  {
-    const int wanted[] = { GLX_RENDER_TYPE,
-      GLX_RGBA_BIT,
-      GLX_DRAWABLE_TYPE,
-      GLX_WINDOW_BIT,
-      GLX_RED_SIZE,
-      1,
-      GLX_GREEN_SIZE,
-      1,
-      GLX_BLUE_SIZE,
-      1,
-      GLX_DEPTH_SIZE,
-      1,
-      None };
-    found = glXChooseFBConfig(connection, DefaultScreen(connection), wanted, &configurations);
-  }
-  if (found != nullptr)
-  {
-    XFree(found);
-  }
-  XCloseDisplay(connection);
-  if (configurations == 0)
-  {
-    why = std::string("the X display ") + display + " offers no OpenGL (GLX) configuration";
-    return false;
-  }
+    if (this->Connection != nullptr)
+    {
+      XCloseDisplay(this->Connection);
+    }
 #endif
-  return true;
-}
+  }
+
+  /// Opens the display; false (and why) when rendering is impossible.
+  bool Open(std::string& why)
+  {
+    const char* name = std::getenv("DISPLAY");
+    if (name == nullptr || *name == '\0')
+    {
+      why = "DISPLAY is not set (run the demo through xvfb-run -a, as run-demo.sh does)";
+      return false;
+    }
+#ifdef MESHLOD_DEMO_HAS_GLX
+    this->Connection = XOpenDisplay(nullptr);
+    if (this->Connection == nullptr)
+    {
+      why = std::string("cannot open the X display ") + name;
+      return false;
+    }
+    int errorBase = 0, eventBase = 0, configurations = 0;
+    if (glXQueryExtension(this->Connection, &errorBase, &eventBase))
+    {
+      const int wanted[] = { GLX_RENDER_TYPE,
+        GLX_RGBA_BIT,
+        GLX_DRAWABLE_TYPE,
+        GLX_WINDOW_BIT,
+        GLX_RED_SIZE,
+        1,
+        GLX_GREEN_SIZE,
+        1,
+        GLX_BLUE_SIZE,
+        1,
+        GLX_DEPTH_SIZE,
+        1,
+        None };
+      GLXFBConfig* found = glXChooseFBConfig(
+        this->Connection, DefaultScreen(this->Connection), wanted, &configurations);
+      if (found != nullptr)
+      {
+        XFree(found);
+      }
+    }
+    if (configurations == 0)
+    {
+      why = std::string("the X display ") + name + " offers no OpenGL (GLX) configuration";
+      return false;
+    }
+#endif
+    return true;
+  }
+
+  /// For vtkRenderWindow::SetDisplayId (null: let VTK open the display itself).
+  void* Get() const
+  {
+    return this->Connection;
+  }
+
+private:
+#ifdef MESHLOD_DEMO_HAS_GLX
+  Display* Connection = nullptr;
+#else
+  void* Connection = nullptr;
+#endif
+};
 
 /// The meshes side by side, one viewport each, same camera, with a label under each.
 bool RenderStrip(const std::vector<vtkPolyData*>& meshes,
@@ -318,12 +351,17 @@ bool RenderStrip(const std::vector<vtkPolyData*>& meshes,
   const fs::path& path,
   std::string& why)
 {
-  if (!CanRender(why))
+  XDisplay display; // declared first: closed after the window is gone
+  if (!display.Open(why))
   {
     return false;
   }
   const int tile = 400;
   vtkNew<vtkRenderWindow> window;
+  if (display.Get() != nullptr)
+  {
+    window->SetDisplayId(display.Get());
+  }
   window->SetOffScreenRendering(1);
   window->SetSize(tile * static_cast<int>(meshes.size()), tile);
   if (!window->SupportsOpenGL())
@@ -367,7 +405,7 @@ bool RenderStrip(const std::vector<vtkPolyData*>& meshes,
       camera->Elevation(25.0);
       camera->Azimuth(30.0);
       renderer->ResetCamera();
-      camera->Zoom(1.2);
+      camera->Zoom(1.05);
     }
   }
   window->Render();
