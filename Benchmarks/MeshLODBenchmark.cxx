@@ -28,6 +28,7 @@
 #include "vtkVersion.h"
 
 #include <malloc.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -49,6 +50,15 @@ using Outputs = std::vector<vtkSmartPointer<vtkPolyData>>;
 double SecondsSince(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// CPU time of the calling thread. With the Sequential backend the whole method runs on it, so
+/// unlike wall time this hardly changes when other programs compete for the cores.
+double ThreadCpuSeconds()
+{
+  timespec now;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
 std::vector<std::string> Split(const std::string& text, char separator)
@@ -256,6 +266,7 @@ struct Run
 {
   Outputs Results;
   double Seconds = 0.0;     // fastest of the repeats
+  double CpuSeconds = 0.0;  // least CPU time of the calling thread over the repeats
   long long PeakBytes = -1; // growth of the resident set during the first run, -1 unknown
   int Repeats = 1;
 };
@@ -268,9 +279,11 @@ Run Measure(Make&& make)
   Run run;
   const bool peakReset = ResetPeakMemory();
   const long long before = StatusKilobytes("VmRSS");
+  double cpu = ThreadCpuSeconds();
   Clock::time_point start = Clock::now();
   run.Results = make();
   run.Seconds = SecondsSince(start);
+  run.CpuSeconds = ThreadCpuSeconds() - cpu;
   const long long peak = StatusKilobytes("VmHWM");
   if (peakReset && before >= 0 && peak >= 0)
   {
@@ -280,9 +293,11 @@ Run Measure(Make&& make)
   while (run.Seconds < 1.0 && spent < 2.0 && run.Repeats < 5)
   {
     run.Results.clear();
+    cpu = ThreadCpuSeconds();
     start = Clock::now();
     Outputs again = make();
     const double seconds = SecondsSince(start);
+    run.CpuSeconds = std::min(run.CpuSeconds, ThreadCpuSeconds() - cpu);
     spent += seconds;
     run.Seconds = std::min(run.Seconds, seconds);
     run.Results = std::move(again);
@@ -301,6 +316,7 @@ struct Row
   vtkIdType InputTriangles = 0;
   vtkIdType OutputTriangles = 0;
   double Seconds = 0.0;
+  double CpuSeconds = 0.0;
   long long PeakBytes = -1;
   double Hausdorff = 0.0; // % of the diagonal
   double Rms = 0.0;
@@ -440,6 +456,7 @@ private:
       row.InputTriangles = inputTriangles;
       row.OutputTriangles = output->GetNumberOfPolys();
       row.Seconds = run.Seconds;
+      row.CpuSeconds = run.CpuSeconds;
       row.PeakBytes = run.PeakBytes;
       row.WholeHierarchy = static_cast<bool>(method.Hierarchy);
       row.Repeats = run.Repeats;
@@ -450,13 +467,15 @@ private:
       this->LongestYardstick = std::max(this->LongestYardstick, yardstickSeconds);
       row.Hausdorff = distance.HausdorffPercent();
       row.Rms = distance.RmsPercent();
-      std::printf("  %-28s %d thread(s) %5.1f%%: %9lld triangles, %8.3f s, %6.0f B/triangle, "
-                  "Hausdorff %.4f%%, RMS %.5f%% (yardstick %.1f s)\n",
+      std::printf(
+        "  %-28s %d thread(s) %5.1f%%: %9lld triangles, %8.3f s (CPU %.3f s), %6.0f B/triangle, "
+        "Hausdorff %.4f%%, RMS %.5f%% (yardstick %.1f s)\n",
         method.Name.c_str(),
         threads,
         100.0 * row.Fraction,
         static_cast<long long>(row.OutputTriangles),
         row.Seconds,
+        row.CpuSeconds,
         row.PeakBytes >= 0 ? static_cast<double>(row.PeakBytes) / inputTriangles : -1.0,
         row.Hausdorff,
         row.Rms,
@@ -555,7 +574,9 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
      << "- *time*: wall time of the method alone (filter construction, Update, output); runs "
         "under a second are repeated up to five times (two seconds in all) and the fastest kept. "
         "Untimed: generating the input, searching a grid resolution, measuring the error.\n"
-     << "- *throughput*: input triangles per second.\n"
+     << "- *CPU*: CPU time of the thread running the method, for single-thread rows (the whole "
+        "method runs on it). Far below *time* means other programs were using the cores.\n"
+     << "- *throughput*: input triangles per second (wall time).\n"
      << "- *memory*: peak growth of the resident set while the method runs (VmHWM after it "
         "minus VmRSS before it, with the peak reset through /proc/self/clear_refs and "
         "malloc_trim(0) first; the output is alive at the end), in bytes per input triangle.\n"
@@ -587,10 +608,10 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
   for (size_t m = 0; m < this->Meshes.size(); ++m)
   {
     md << "## " << this->Meshes[m].Label << " triangles\n\n"
-       << "| target | method | threads | input triangles | output triangles | time (s) | "
-          "throughput (triangles/s) | memory (B/triangle) | Hausdorff % | RMS % | time x QD | "
+       << "| target | method | threads | input triangles | output triangles | time (s) | CPU (s) "
+          "| throughput (triangles/s) | memory (B/triangle) | Hausdorff % | RMS % | time x QD | "
           "Hausdorff x QD | RMS x QD | memory x QD |\n"
-       << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+       << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (double fraction : this->Opts.Targets)
     {
       for (const Row& row : this->Rows)
@@ -608,8 +629,10 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
            << (row.WholeHierarchy ? " (whole hierarchy)" : "") << " | " << row.Threads << " | "
            << Thousands(row.InputTriangles) << " | " << Thousands(row.OutputTriangles) << " | "
            << Format(row.Seconds < 0.1 ? "%.4f" : "%.3f", row.Seconds) << " | "
-           << Thousands(std::llround(row.InputTriangles / std::max(row.Seconds, 1e-9))) << " | "
-           << (memory >= 0.0 ? Format("%.0f", memory) : "n/a") << " | "
+           << (row.Threads == 1 ? Format(row.CpuSeconds < 0.1 ? "%.4f" : "%.3f", row.CpuSeconds)
+                                : "-")
+           << " | " << Thousands(std::llround(row.InputTriangles / std::max(row.Seconds, 1e-9)))
+           << " | " << (memory >= 0.0 ? Format("%.0f", memory) : "n/a") << " | "
            << Format("%.4f", row.Hausdorff) << " | " << Format("%.5f", row.Rms) << " | "
            << (qd ? Ratio(row.Seconds, qd->Seconds) : "-") << " | "
            << (qd ? Ratio(row.Hausdorff, qd->Hausdorff) : "-") << " | "

@@ -1,7 +1,8 @@
 // MeshLOD's own filters in the benchmark. Each filter is one `methods.push_back(...)` below; the
 // harness runs every registered method on the same meshes and targets as VTK's decimators and
 // compares it with vtkQuadricDecimation. See BenchmarkMethods.h for the two kinds of method, and
-// VTKMethods.cxx for examples of both set-ups (a plain run, and an untimed search of a setting).
+// VTKMethods.cxx for examples: a plain run (vtkQuadricDecimation), an untimed search of a setting
+// (vtkQuadricClustering) and a hierarchy (vtkQuadricDecimation chained).
 //
 // A hierarchy filter is registered with Hierarchy set: time one Update() making all the levels,
 // then hand back, for each target, the level nearest to it, e.g.
