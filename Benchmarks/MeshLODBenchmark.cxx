@@ -1,0 +1,715 @@
+// Side-by-side benchmark of the registered decimation methods (BenchmarkMethods.h) on
+// marching-cubes isosurfaces: time, throughput, peak memory growth and surface distance to the
+// input, each compared with vtkQuadricDecimation. Writes a Markdown report.
+//
+//   MeshLODBenchmark [--meshes field:triangles,...] [--targets fraction,...] [--threads N]
+//                    [--methods name,...] [--samples N] [--output FILE] [--command TEXT]
+//
+// --meshes   isosurfaces to generate (default metaballs:150000,gyroid:600000,gyroid:2300000)
+// --targets  output sizes as fractions of the input's triangles (default 0.1,0.01)
+// --threads  thread count of the extra rows for methods that use vtkSMPTools (default 2; 0: none)
+// --methods  only these methods (default: all registered)
+// --samples  yardstick samples per surface (default 100000)
+// --output   also write the report to this file
+// --command  the command line to record in the report (default: this program's)
+//
+// Single-thread rows run with vtkSMPTools' Sequential backend. Start the program with
+// VTK_SMP_BACKEND_IN_USE=Sequential (run-benchmarks.sh does): with TBB, VTK 9.1 does not limit
+// the threads of a scope. The untimed work (generating meshes, measuring distances) and the
+// multi-thread rows switch to the parallel backend and back.
+#include "BenchmarkMethods.h"
+#include "MeshLODSurfaceDistance.h"
+#include "MeshLODTestMeshes.h"
+
+#include "vtkCleanPolyData.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkVersion.h"
+
+#include <malloc.h>
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+using meshlod::benchmark::Method;
+using Clock = std::chrono::steady_clock;
+using Outputs = std::vector<vtkSmartPointer<vtkPolyData>>;
+
+double SecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// CPU time of the calling thread. With the Sequential backend the whole method runs on it, so
+/// unlike wall time this hardly changes when other programs compete for the cores.
+double ThreadCpuSeconds()
+{
+  timespec now;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+std::vector<std::string> Split(const std::string& text, char separator)
+{
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, separator))
+  {
+    if (!part.empty())
+    {
+      parts.push_back(part);
+    }
+  }
+  return parts;
+}
+
+std::string Format(const char* format, double value)
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+//------------------------------------------------------------------------------
+// Memory: the growth of the resident set while a method runs, from the kernel's counters.
+
+/// A field of /proc/self/status in kB (e.g. "VmRSS"), or -1.
+long long StatusKilobytes(const std::string& field)
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.compare(0, field.size() + 1, field + ":") == 0)
+    {
+      return std::atoll(line.c_str() + field.size() + 1);
+    }
+  }
+  return -1;
+}
+
+/// Gives freed memory back to the system and resets the peak (VmHWM) to the current resident
+/// set. Returns false when the kernel refuses the reset.
+bool ResetPeakMemory()
+{
+  malloc_trim(0);
+  std::ofstream clear("/proc/self/clear_refs");
+  clear << "5";
+  clear.close();
+  return !clear.fail();
+}
+
+//------------------------------------------------------------------------------
+// SMP backends.
+
+struct Backends
+{
+  std::string AtStart;  // what VTK_SMP_BACKEND_IN_USE (or the build default) selected
+  std::string Parallel; // TBB, STDThread or OpenMP, whichever this VTK has ("" if none)
+};
+
+void UseBackend(const std::string& backend, int threads)
+{
+  vtkSMPTools::SetBackend(backend.c_str());
+  vtkSMPTools::Initialize(threads);
+}
+
+Backends FindBackends()
+{
+  Backends backends;
+  backends.AtStart = vtkSMPTools::GetBackend();
+  for (const char* candidate : { "TBB", "STDThread", "OpenMP" })
+  {
+    if (vtkSMPTools::SetBackend(candidate))
+    {
+      backends.Parallel = candidate;
+      break;
+    }
+  }
+  return backends;
+}
+
+/// For untimed work: all cores.
+void UseAllCores(const Backends& backends)
+{
+  UseBackend(backends.Parallel.empty() ? "Sequential" : backends.Parallel, 0);
+}
+
+//------------------------------------------------------------------------------
+struct Options
+{
+  std::vector<std::pair<meshlod::testing::Field, double>> Meshes = {
+    { meshlod::testing::Field::Metaballs, 150000.0 },
+    { meshlod::testing::Field::Gyroid, 600000.0 },
+    { meshlod::testing::Field::Gyroid, 2300000.0 },
+  };
+  std::vector<double> Targets = { 0.1, 0.01 };
+  int Threads = 2;
+  std::vector<std::string> Methods; // empty: all
+  long long Samples = 100000;
+  std::string Output;
+  std::string Command;
+};
+
+bool ParseArguments(int argc, char* argv[], Options& options)
+{
+  options.Command = argv[0];
+  for (int i = 1; i < argc; ++i)
+  {
+    options.Command += std::string(" ") + argv[i];
+  }
+  for (int i = 1; i + 1 < argc; i += 2)
+  {
+    const std::string key = argv[i], value = argv[i + 1];
+    if (key == "--meshes")
+    {
+      options.Meshes.clear();
+      for (const std::string& item : Split(value, ','))
+      {
+        const std::vector<std::string> parts = Split(item, ':');
+        meshlod::testing::Field field;
+        if (parts.size() != 2 || !meshlod::testing::FieldFromName(parts[0], field) ||
+          std::atof(parts[1].c_str()) < 100.0)
+        {
+          std::cerr << "bad mesh " << item << " (want field:triangles, e.g. gyroid:600000)\n";
+          return false;
+        }
+        options.Meshes.emplace_back(field, std::atof(parts[1].c_str()));
+      }
+    }
+    else if (key == "--targets")
+    {
+      options.Targets.clear();
+      for (const std::string& item : Split(value, ','))
+      {
+        const double fraction = std::atof(item.c_str());
+        if (!(fraction > 0.0 && fraction < 1.0))
+        {
+          std::cerr << "targets are fractions between 0 and 1, got " << item << "\n";
+          return false;
+        }
+        options.Targets.push_back(fraction);
+      }
+    }
+    else if (key == "--threads")
+    {
+      options.Threads = std::max(0, std::atoi(value.c_str()));
+    }
+    else if (key == "--methods")
+    {
+      options.Methods = Split(value, ',');
+    }
+    else if (key == "--samples")
+    {
+      options.Samples = std::max(1000LL, std::atoll(value.c_str()));
+    }
+    else if (key == "--output")
+    {
+      options.Output = value;
+    }
+    else if (key == "--command")
+    {
+      options.Command = value;
+    }
+    else
+    {
+      return false;
+    }
+  }
+  return argc % 2 == 1 && !options.Meshes.empty() && !options.Targets.empty();
+}
+
+//------------------------------------------------------------------------------
+struct Mesh
+{
+  std::string Label;
+  std::string Field;
+  int Resolution = 0;
+  double Seconds = 0.0;
+  vtkIdType Dropped = 0; // degenerate triangles removed by the cleaning
+  vtkSmartPointer<vtkPolyData> Data;
+};
+
+/// Merges exactly coincident points and drops the triangles that collapse. Flying edges makes
+/// such points where the field is exactly 0 at a grid vertex; on the 2.3M-triangle gyroid,
+/// vtkQuadricDecimation stops after about 2000 collapses on the uncleaned mesh (a non-finite
+/// cost from a zero-length edge is the likely cause) and reaches the target on the cleaned one.
+vtkSmartPointer<vtkPolyData> Clean(vtkPolyData* mesh)
+{
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputData(mesh);
+  clean->PointMergingOn();
+  clean->SetTolerance(0.0);
+  clean->ConvertPolysToLinesOff();
+  clean->ConvertLinesToPointsOff();
+  clean->Update();
+  auto cleaned = vtkSmartPointer<vtkPolyData>::New();
+  cleaned->ShallowCopy(clean->GetOutput());
+  return cleaned;
+}
+
+/// One timed run of a method: its outputs, time and memory.
+struct Run
+{
+  Outputs Results;
+  double Seconds = 0.0;     // fastest of the repeats
+  double CpuSeconds = 0.0;  // least CPU time of the calling thread over the repeats
+  long long PeakBytes = -1; // growth of the resident set during the first run, -1 unknown
+  int Repeats = 1;
+};
+
+/// Times `make`. Runs of under a second are repeated (up to five runs, two seconds in all) and
+/// the fastest time kept, to damp noise; memory is taken from the first run.
+template <typename Make>
+Run Measure(Make&& make)
+{
+  Run run;
+  const bool peakReset = ResetPeakMemory();
+  const long long before = StatusKilobytes("VmRSS");
+  double cpu = ThreadCpuSeconds();
+  Clock::time_point start = Clock::now();
+  run.Results = make();
+  run.Seconds = SecondsSince(start);
+  run.CpuSeconds = ThreadCpuSeconds() - cpu;
+  const long long peak = StatusKilobytes("VmHWM");
+  if (peakReset && before >= 0 && peak >= 0)
+  {
+    run.PeakBytes = 1024 * (peak - before);
+  }
+  double spent = run.Seconds;
+  while (run.Seconds < 1.0 && spent < 2.0 && run.Repeats < 5)
+  {
+    run.Results.clear();
+    cpu = ThreadCpuSeconds();
+    start = Clock::now();
+    Outputs again = make();
+    const double seconds = SecondsSince(start);
+    run.CpuSeconds = std::min(run.CpuSeconds, ThreadCpuSeconds() - cpu);
+    spent += seconds;
+    run.Seconds = std::min(run.Seconds, seconds);
+    run.Results = std::move(again);
+    ++run.Repeats;
+  }
+  return run;
+}
+
+/// One line of the report.
+struct Row
+{
+  size_t MeshIndex = 0;
+  std::string Method;
+  int Threads = 1;
+  double Fraction = 0.0;
+  vtkIdType InputTriangles = 0;
+  vtkIdType OutputTriangles = 0;
+  double Seconds = 0.0;
+  double CpuSeconds = 0.0;
+  long long PeakBytes = -1;
+  double Hausdorff = 0.0; // % of the diagonal
+  double Rms = 0.0;
+  bool WholeHierarchy = false;
+  int Repeats = 1;
+};
+
+//------------------------------------------------------------------------------
+class Benchmark
+{
+public:
+  Benchmark(const Options& options, const Backends& backends)
+    : Opts(options)
+    , Smp(backends)
+  {
+    this->Yardstick.SamplesPerSurface = options.Samples;
+    this->Yardstick.MaximumVertexSamples = options.Samples;
+  }
+
+  void MakeMeshes()
+  {
+    UseAllCores(this->Smp);
+    for (const auto& spec : this->Opts.Meshes)
+    {
+      Mesh mesh;
+      mesh.Field = meshlod::testing::FieldName(spec.first);
+      mesh.Resolution = meshlod::testing::ResolutionForTriangles(spec.first, spec.second);
+      const Clock::time_point start = Clock::now();
+      vtkSmartPointer<vtkPolyData> surface =
+        meshlod::testing::MakeIsosurface(spec.first, mesh.Resolution);
+      mesh.Data = Clean(surface);
+      mesh.Dropped = surface->GetNumberOfPolys() - mesh.Data->GetNumberOfPolys();
+      mesh.Seconds = SecondsSince(start);
+      mesh.Label = mesh.Field + " " + Thousands(mesh.Data->GetNumberOfPolys());
+      std::printf("mesh %s: %d^3 volume, %lld triangles (%lld degenerate dropped), %.2f s\n",
+        mesh.Label.c_str(),
+        mesh.Resolution,
+        static_cast<long long>(mesh.Data->GetNumberOfPolys()),
+        static_cast<long long>(mesh.Dropped),
+        mesh.Seconds);
+      std::fflush(stdout);
+      this->Meshes.push_back(mesh);
+    }
+  }
+
+  void RunAll(const std::vector<Method>& methods)
+  {
+    for (size_t m = 0; m < this->Meshes.size(); ++m)
+    {
+      for (const Method& method : methods)
+      {
+        this->RunMethod(m, method, 1);
+        if (method.Parallel && this->Opts.Threads > 1 && !this->Smp.Parallel.empty())
+        {
+          this->RunMethod(m, method, this->Opts.Threads);
+        }
+      }
+    }
+  }
+
+  std::string Report(const std::vector<Method>& methods) const;
+
+private:
+  static std::string Thousands(long long value)
+  {
+    std::string digits = std::to_string(value), text;
+    for (size_t i = 0; i < digits.size(); ++i)
+    {
+      if (i > 0 && (digits.size() - i) % 3 == 0)
+      {
+        text += ',';
+      }
+      text += digits[i];
+    }
+    return text;
+  }
+
+  void UseTimedBackend(int threads) const
+  {
+    if (threads > 1)
+    {
+      UseBackend(this->Smp.Parallel, threads);
+    }
+    else
+    {
+      UseBackend("Sequential", 1);
+    }
+  }
+
+  void RunMethod(size_t meshIndex, const Method& method, int threads)
+  {
+    vtkPolyData* input = this->Meshes[meshIndex].Data;
+    const vtkIdType inputTriangles = input->GetNumberOfPolys();
+    std::vector<vtkIdType> targets;
+    for (double fraction : this->Opts.Targets)
+    {
+      targets.push_back(std::max<vtkIdType>(4, std::llround(fraction * inputTriangles)));
+    }
+
+    // Each method gets its own shallow copy: nothing it builds on its input (cells, links)
+    // carries over to the next method.
+    auto MakeInput = [input]() {
+      auto copy = vtkSmartPointer<vtkPolyData>::New();
+      copy->ShallowCopy(input);
+      return copy;
+    };
+
+    std::vector<Run> runs;
+    if (method.Hierarchy)
+    {
+      vtkSmartPointer<vtkPolyData> copy = MakeInput();
+      this->UseTimedBackend(threads);
+      runs.push_back(Measure([&]() { return method.Hierarchy(copy, targets); }));
+    }
+    else
+    {
+      for (vtkIdType target : targets)
+      {
+        vtkSmartPointer<vtkPolyData> copy = MakeInput();
+        UseAllCores(this->Smp); // the untimed preparation may run the method many times
+        const meshlod::benchmark::Job job = method.Prepare(copy, target);
+        this->UseTimedBackend(threads);
+        runs.push_back(Measure([&]() { return Outputs{ job() }; }));
+      }
+    }
+
+    UseAllCores(this->Smp);
+    for (size_t t = 0; t < targets.size(); ++t)
+    {
+      const Run& run = method.Hierarchy ? runs[0] : runs[t];
+      vtkPolyData* output = method.Hierarchy ? run.Results.at(t) : run.Results.at(0);
+      Row row;
+      row.MeshIndex = meshIndex;
+      row.Method = method.Name;
+      row.Threads = threads;
+      row.Fraction = this->Opts.Targets[t];
+      row.InputTriangles = inputTriangles;
+      row.OutputTriangles = output->GetNumberOfPolys();
+      row.Seconds = run.Seconds;
+      row.CpuSeconds = run.CpuSeconds;
+      row.PeakBytes = run.PeakBytes;
+      row.WholeHierarchy = static_cast<bool>(method.Hierarchy);
+      row.Repeats = run.Repeats;
+      const Clock::time_point start = Clock::now();
+      const meshlod::SurfaceDistance distance =
+        meshlod::MeasureSurfaceDistance(input, output, this->Yardstick);
+      const double yardstickSeconds = SecondsSince(start);
+      this->LongestYardstick = std::max(this->LongestYardstick, yardstickSeconds);
+      row.Hausdorff = distance.HausdorffPercent();
+      row.Rms = distance.RmsPercent();
+      std::printf(
+        "  %-28s %d thread(s) %5.1f%%: %9lld triangles, %8.3f s (CPU %.3f s), %6.0f B/triangle, "
+        "Hausdorff %.4f%%, RMS %.5f%% (yardstick %.1f s)\n",
+        method.Name.c_str(),
+        threads,
+        100.0 * row.Fraction,
+        static_cast<long long>(row.OutputTriangles),
+        row.Seconds,
+        row.CpuSeconds,
+        row.PeakBytes >= 0 ? static_cast<double>(row.PeakBytes) / inputTriangles : -1.0,
+        row.Hausdorff,
+        row.Rms,
+        yardstickSeconds);
+      std::fflush(stdout);
+      this->Rows.push_back(row);
+    }
+  }
+
+  const Row* Reference(const Row& row) const
+  {
+    for (const Row& other : this->Rows)
+    {
+      if (other.MeshIndex == row.MeshIndex && other.Fraction == row.Fraction &&
+        other.Threads == 1 && other.Method == "vtkQuadricDecimation")
+      {
+        return &other;
+      }
+    }
+    return nullptr;
+  }
+
+  const Options& Opts;
+  Backends Smp;
+  meshlod::SurfaceDistanceOptions Yardstick;
+  std::vector<Mesh> Meshes;
+  std::vector<Row> Rows;
+  double LongestYardstick = 0.0;
+};
+
+//------------------------------------------------------------------------------
+// The report.
+
+std::string ProcField(const char* file, const std::string& key)
+{
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line))
+  {
+    if (line.compare(0, key.size(), key) == 0)
+    {
+      const size_t colon = line.find(':');
+      if (colon != std::string::npos)
+      {
+        const size_t begin = line.find_first_not_of(" \t", colon + 1);
+        return begin == std::string::npos ? "" : line.substr(begin);
+      }
+    }
+  }
+  return "unknown";
+}
+
+int LogicalCpus()
+{
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  int count = 0;
+  while (std::getline(in, line))
+  {
+    count += line.compare(0, 9, "processor") == 0 ? 1 : 0;
+  }
+  return count;
+}
+
+std::string Ratio(double value, double reference)
+{
+  return reference > 0.0 && value >= 0.0 ? Format("%.2f", value / reference) : "-";
+}
+
+std::string Benchmark::Report(const std::vector<Method>& methods) const
+{
+  std::ostringstream md;
+  char date[64];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(date, sizeof(date), "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+
+  md << "# Benchmark results\n\n"
+     << "Produced on " << date << " by\n\n```sh\n"
+     << this->Opts.Command << "\n```\n\n"
+     << "- Machine: " << ProcField("/proc/cpuinfo", "model name") << ", " << LogicalCpus()
+     << " logical CPUs, "
+     << Format(
+          "%.1f", std::atof(ProcField("/proc/meminfo", "MemTotal").c_str()) / (1024.0 * 1024.0))
+     << " GiB memory\n"
+     << "- VTK " << vtkVersion::GetVTKVersion() << ", GCC " << __VERSION__ << ", Release build\n"
+     << "- Single-thread rows: vtkSMPTools backend Sequential (the program started with "
+     << "backend " << this->Smp.AtStart << ")";
+  if (!this->Smp.Parallel.empty() && this->Opts.Threads > 1)
+  {
+    md << "; " << this->Opts.Threads << "-thread rows: backend " << this->Smp.Parallel
+       << " initialised with " << this->Opts.Threads << " threads";
+  }
+  md << "\n\n";
+
+  md << "## Columns\n\n"
+     << "- *time*: wall time of the method alone (filter construction, Update, output); runs "
+        "under a second are repeated up to five times (two seconds in all) and the fastest kept. "
+        "Untimed: generating the input, searching a grid resolution, measuring the error.\n"
+     << "- *CPU*: CPU time of the thread running the method, for single-thread rows (the whole "
+        "method runs on it). Far below *time* means other programs were using the cores.\n"
+     << "- *throughput*: input triangles per second (wall time).\n"
+     << "- *memory*: peak growth of the resident set while the method runs (VmHWM after it "
+        "minus VmRSS before it, with the peak reset through /proc/self/clear_refs and "
+        "malloc_trim(0) first; the output is alive at the end), in bytes per input triangle.\n"
+     << "- *Hausdorff*, *RMS*: symmetric surface distance between output and input "
+        "(MeshLODSurfaceDistance: "
+     << this->Yardstick.SamplesPerSurface << " area samples and up to "
+     << this->Yardstick.MaximumVertexSamples
+     << " vertices per surface, fixed seed) in % of the input's bounding-box diagonal.\n"
+     << "- *x QD*: ratio to single-thread vtkQuadricDecimation on the same mesh and target "
+        "(below 1: faster, more accurate, less memory).\n\n";
+
+  md << "## Meshes\n\nFlying-edges isosurfaces at 0 of analytic fields sampled on [-1, 1]^3 "
+        "(Testing/Support/MeshLODTestMeshes), then cleaned with vtkCleanPolyData (exactly "
+        "coincident points merged, collapsed triangles dropped): on the uncleaned 2.3M-triangle "
+        "gyroid vtkQuadricDecimation stops after about 2000 collapses. Every method gets the "
+        "same cleaned mesh.\n\n"
+     << "| mesh | field | volume | triangles | points | degenerate dropped | generation and "
+        "cleaning (s) |\n"
+     << "|---|---|---:|---:|---:|---:|---:|\n";
+  for (const Mesh& mesh : this->Meshes)
+  {
+    md << "| " << mesh.Label << " | " << mesh.Field << " | " << mesh.Resolution << "^3 | "
+       << Thousands(mesh.Data->GetNumberOfPolys()) << " | "
+       << Thousands(mesh.Data->GetNumberOfPoints()) << " | " << mesh.Dropped << " | "
+       << Format("%.2f", mesh.Seconds) << " |\n";
+  }
+  md << "\n";
+
+  for (size_t m = 0; m < this->Meshes.size(); ++m)
+  {
+    md << "## " << this->Meshes[m].Label << " triangles\n\n"
+       << "| target | method | threads | input triangles | output triangles | time (s) | CPU (s) "
+          "| throughput (triangles/s) | memory (B/triangle) | Hausdorff % | RMS % | time x QD | "
+          "Hausdorff x QD | RMS x QD | memory x QD |\n"
+       << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (double fraction : this->Opts.Targets)
+    {
+      for (const Row& row : this->Rows)
+      {
+        if (row.MeshIndex != m || row.Fraction != fraction)
+        {
+          continue;
+        }
+        const Row* qd = this->Reference(row);
+        const double memory =
+          row.PeakBytes >= 0 ? static_cast<double>(row.PeakBytes) / row.InputTriangles : -1.0;
+        const double qdMemory =
+          qd && qd->PeakBytes >= 0 ? static_cast<double>(qd->PeakBytes) / qd->InputTriangles : -1.0;
+        md << "| " << Format("%g", 100.0 * fraction) << "% | " << row.Method
+           << (row.WholeHierarchy ? " (whole hierarchy)" : "") << " | " << row.Threads << " | "
+           << Thousands(row.InputTriangles) << " | " << Thousands(row.OutputTriangles) << " | "
+           << Format(row.Seconds < 0.1 ? "%.4f" : "%.3f", row.Seconds) << " | "
+           << (row.Threads == 1 ? Format(row.CpuSeconds < 0.1 ? "%.4f" : "%.3f", row.CpuSeconds)
+                                : "-")
+           << " | " << Thousands(std::llround(row.InputTriangles / std::max(row.Seconds, 1e-9)))
+           << " | " << (memory >= 0.0 ? Format("%.0f", memory) : "n/a") << " | "
+           << Format("%.4f", row.Hausdorff) << " | " << Format("%.5f", row.Rms) << " | "
+           << (qd ? Ratio(row.Seconds, qd->Seconds) : "-") << " | "
+           << (qd ? Ratio(row.Hausdorff, qd->Hausdorff) : "-") << " | "
+           << (qd ? Ratio(row.Rms, qd->Rms) : "-") << " | " << (qd ? Ratio(memory, qdMemory) : "-")
+           << " |\n";
+      }
+    }
+    md << "\n";
+  }
+
+  md << "## Settings of the methods\n\n";
+  for (const Method& method : methods)
+  {
+    md << "- **" << method.Name << "**" << (method.Parallel ? " (uses vtkSMPTools)" : "")
+       << (method.Hierarchy ? " (hierarchy: one run makes every level; its time and memory are "
+                              "those of the whole hierarchy)"
+                            : "")
+       << ": " << method.Settings << "\n";
+  }
+  md << "\nThe longest single error measurement took " << Format("%.1f", this->LongestYardstick)
+     << " s.\n";
+  return md.str();
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options options;
+  if (!ParseArguments(argc, argv, options))
+  {
+    std::cerr << "usage: " << argv[0]
+              << " [--meshes field:triangles,...] [--targets fraction,...] [--threads N]"
+                 " [--methods name,...] [--samples N] [--output FILE] [--command TEXT]\n";
+    return 2;
+  }
+
+  const Backends backends = FindBackends();
+  if (backends.AtStart != "Sequential")
+  {
+    std::cerr << "note: started with the " << backends.AtStart
+              << " backend; single-thread rows switch to Sequential at run time. Start with "
+                 "VTK_SMP_BACKEND_IN_USE=Sequential to match run-benchmarks.sh.\n";
+  }
+
+  std::vector<Method> registered, methods;
+  meshlod::benchmark::RegisterVTKMethods(registered);
+  meshlod::benchmark::RegisterMeshLODMethods(registered);
+  for (const Method& method : registered)
+  {
+    if (options.Methods.empty() ||
+      std::find(options.Methods.begin(), options.Methods.end(), method.Name) !=
+        options.Methods.end())
+    {
+      methods.push_back(method);
+    }
+  }
+  if (methods.empty())
+  {
+    std::cerr << "no registered method matches --methods\n";
+    return 2;
+  }
+
+  Benchmark benchmark(options, backends);
+  benchmark.MakeMeshes();
+  benchmark.RunAll(methods);
+  const std::string report = benchmark.Report(methods);
+  std::cout << "\n" << report;
+  if (!options.Output.empty())
+  {
+    std::ofstream out(options.Output);
+    out << report;
+    out.close();
+    if (out.fail())
+    {
+      std::cerr << "cannot write " << options.Output << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}
