@@ -31,6 +31,9 @@ struct Method
   std::string Name;      // the table's row label
   std::string Settings;  // the settings used, listed under the tables
   bool Parallel = false; // uses vtkSMPTools: also run with two threads
+  /// Skip inputs with more triangles than this (0: no limit), for methods too slow for the
+  /// largest meshes; stated under the tables.
+  vtkIdType MaximumInputTriangles = 0;
 
   /// Single-output methods: untimed set-up for one input and target triangle count; returns the
   /// job to time.

@@ -368,6 +368,11 @@ public:
     {
       for (const Method& method : methods)
       {
+        if (method.MaximumInputTriangles > 0 &&
+          this->Meshes[m].Data->GetNumberOfPolys() > method.MaximumInputTriangles)
+        {
+          continue;
+        }
         this->RunMethod(m, method, 1);
         if (method.Parallel && this->Opts.Threads > 1 && !this->Smp.Parallel.empty())
         {
@@ -650,7 +655,12 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
        << (method.Hierarchy ? " (hierarchy: one run makes every level; its time and memory are "
                               "those of the whole hierarchy)"
                             : "")
-       << ": " << method.Settings << "\n";
+       << ": " << method.Settings;
+    if (method.MaximumInputTriangles > 0)
+    {
+      md << " Run only on meshes of at most " << method.MaximumInputTriangles << " triangles.";
+    }
+    md << "\n";
   }
   md << "\nThe longest single error measurement took " << Format("%.1f", this->LongestYardstick)
      << " s.\n";

@@ -1,28 +1,97 @@
-// MeshLOD's own filters in the benchmark. Each filter is one `methods.push_back(...)` below; the
-// harness runs every registered method on the same meshes and targets as VTK's decimators and
-// compares it with vtkQuadricDecimation. See BenchmarkMethods.h for the two kinds of method, and
-// VTKMethods.cxx for examples: a plain run (vtkQuadricDecimation), an untimed search of a setting
-// (vtkQuadricClustering) and a hierarchy (vtkQuadricDecimation chained).
-//
-// A hierarchy filter is registered with Hierarchy set: time one Update() making all the levels,
-// then hand back, for each target, the level nearest to it, e.g.
-//
-//   Method m;
-//   m.Name = "vtkTriangleCollapseDecimation";
-//   m.Settings = "...";
-//   m.Parallel = true;
-//   m.Hierarchy = [](vtkPolyData* input, const std::vector<vtkIdType>& targets) { ... };
-//   methods.push_back(m);
-//
-// No MeshLOD filter is registered yet: they land in their own branches.
+// MeshLOD's own filters in the benchmark. Each filter is one registration below; the harness
+// runs every registered method on the same meshes and targets as VTK's decimators and compares
+// it with vtkQuadricDecimation (see BenchmarkMethods.h). The decimation filters are hierarchy
+// methods: one timed Update() makes every level (by default 8 levels spaced geometrically down
+// to the smallest target, so the default targets 10% and 1% are levels 4 and 8), and each target
+// is answered by the level nearest to it.
 #include "BenchmarkMethods.h"
 
-#include "vtkSetGet.h" // vtkNotUsed
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkTriangleCollapseDecimation.h"
+
+#include <algorithm>
+#include <cstdlib>
 
 namespace meshlod
 {
 namespace benchmark
 {
-void RegisterMeshLODMethods(std::vector<Method>& vtkNotUsed(methods)) {}
+namespace
+{
+// For each target, the level whose triangle count is nearest to it.
+std::vector<vtkSmartPointer<vtkPolyData>> NearestLevels(
+  vtkMultiBlockDataSet* hierarchy, const std::vector<vtkIdType>& targets)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> levels;
+  for (const vtkIdType target : targets)
+  {
+    vtkSmartPointer<vtkPolyData> best;
+    for (unsigned int i = 0; i < hierarchy->GetNumberOfBlocks(); ++i)
+    {
+      auto* level = vtkPolyData::SafeDownCast(hierarchy->GetBlock(i));
+      if (!best ||
+        std::llabs(level->GetNumberOfPolys() - target) < std::llabs(best->GetNumberOfPolys() - target))
+      {
+        best = level;
+      }
+    }
+    levels.push_back(best);
+  }
+  return levels;
+}
+
+// Levels down to the smallest target: (1 - TargetReduction) of the input is its count.
+double ReductionTo(vtkPolyData* input, const std::vector<vtkIdType>& targets)
+{
+  const double smallest = static_cast<double>(*std::min_element(targets.begin(), targets.end()));
+  return std::min(0.999999, 1.0 - smallest / static_cast<double>(input->GetNumberOfPolys()));
+}
+
+Method TriangleCollapse(const std::string& name, const std::string& settings,
+  void (*configure)(vtkTriangleCollapseDecimation*))
+{
+  Method method;
+  method.Name = name;
+  method.Settings = settings;
+  method.Parallel = true;
+  method.Hierarchy = [configure](vtkPolyData* input, const std::vector<vtkIdType>& targets) {
+    vtkNew<vtkTriangleCollapseDecimation> decimate;
+    decimate->SetInputData(input);
+    decimate->SetTargetReduction(ReductionTo(input, targets));
+    configure(decimate);
+    decimate->Update();
+    return NearestLevels(decimate->GetHierarchy(), targets);
+  };
+  return method;
+}
+} // namespace
+
+void RegisterMeshLODMethods(std::vector<Method>& methods)
+{
+  methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation",
+    "defaults: quadric method, greedy schedule, triangles and edges, 8 levels",
+    [](vtkTriangleCollapseDecimation*) {}));
+  methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation independent sets",
+    "quadric method, IndependentSets schedule (LevelFraction 0.025), triangles and edges, 8 levels",
+    [](vtkTriangleCollapseDecimation* d) { d->SetScheduleToIndependentSets(); }));
+  methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation triangles only",
+    "quadric method, IndependentSets schedule, Operator TRIANGLES (every collapse merges a "
+    "triangle: the papers' operator), 8 levels",
+    [](vtkTriangleCollapseDecimation* d) {
+      d->SetScheduleToIndependentSets();
+      d->SetOperatorToTriangles();
+    }));
+  Method curvature = TriangleCollapse("vtkTriangleCollapseDecimation curvature",
+    "curvature method (paper 000 weights 1/3 each), IndependentSets schedule, 8 levels",
+    [](vtkTriangleCollapseDecimation* d) {
+      d->SetMethodToCurvature();
+      d->SetScheduleToIndependentSets();
+    });
+  curvature.MaximumInputTriangles = 700000;
+  methods.push_back(curvature);
+}
+
 } // namespace benchmark
 } // namespace meshlod

@@ -12,6 +12,7 @@
 #include "vtkPolyData.h"
 
 #include <cmath>
+#include <utility>
 
 vtkStandardNewMacro(vtkTriangleCollapseDecimation);
 
@@ -140,6 +141,7 @@ int vtkTriangleCollapseDecimation::RequestData(
   options.MaximumNormalDeviation = this->MaximumNormalDeviation;
   options.MaximumFitPoints = this->MaximumFitPoints;
   const std::int64_t inputTriangles = mesh.Mesh.GetNumberOfTriangles();
+  this->NumberOfSwaps = 0;
   for (const double r : reductions)
   {
     // Reductions that round to the same count on a small mesh give one level.
@@ -158,8 +160,9 @@ int vtkTriangleCollapseDecimation::RequestData(
     this->UpdateProgress(CollapseStart + (CollapseEnd - CollapseStart) * fraction);
     return !this->GetAbortExecute();
   };
-  const meshlod::TriangleCollapseResult result =
-    meshlod::RunTriangleCollapse(mesh.Mesh, mesh.Topology, options, callbacks);
+  // Level 0 is built: the engine takes over the mesh and its topology instead of copying them.
+  const meshlod::TriangleCollapseResult result = meshlod::RunTriangleCollapse(
+    std::move(mesh.Mesh), std::move(mesh.Topology), options, callbacks);
   if (result.Aborted)
   {
     return 1; // aborted: the output stays empty
@@ -180,6 +183,7 @@ int vtkTriangleCollapseDecimation::RequestData(
     builder.MeasureLevelErrors();
   }
   this->NumberOfLevelsProduced = builder.GetNumberOfLevels();
+  this->NumberOfSwaps = result.Swaps;
   this->ActualReduction = inputTriangles > 0
     ? 1.0 - static_cast<double>(result.FinalTriangles) / static_cast<double>(inputTriangles)
     : 0.0;
@@ -215,4 +219,5 @@ void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeLevelError: " << (this->ComputeLevelError ? "On" : "Off") << "\n";
   os << indent << "NumberOfLevelsProduced: " << this->NumberOfLevelsProduced << "\n";
   os << indent << "ActualReduction: " << this->ActualReduction << "\n";
+  os << indent << "NumberOfSwaps: " << this->NumberOfSwaps << "\n";
 }

@@ -274,6 +274,9 @@ public:
   vtkGetMacro(NumberOfLevelsProduced, int);
   /// After execution: the fraction of the input triangles removed by the coarsest level.
   vtkGetMacro(ActualReduction, double);
+  /// After execution: how many collapses followed an edge swap (paper 000, figure 3): a
+  /// triangle blocked by a neighbour apex of low valence collapses with that apex instead.
+  vtkGetMacro(NumberOfSwaps, vtkIdType);
 
 protected:
   vtkTriangleCollapseDecimation();
@@ -300,6 +303,7 @@ protected:
   bool ComputeLevelError = false;
   int NumberOfLevelsProduced = 0;
   double ActualReduction = 0.0;
+  vtkIdType NumberOfSwaps = 0;
 
 private:
   vtkTriangleCollapseDecimation(const vtkTriangleCollapseDecimation&) = delete;

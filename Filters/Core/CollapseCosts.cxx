@@ -83,11 +83,11 @@ void CollapseWeights(const double* const* points, int count, const double x[3], 
 
 //------------------------------------------------------------------------------
 CollapseCostModel::CollapseCostModel(const TriangleCollapseOptions& options,
-  const CollapseMesh& state, const LevelTracker& tracker, const TriangleMesh& original)
+  const CollapseMesh& state, const LevelTracker& tracker, const std::vector<double>& originalPoints)
   : Options(options)
   , State(state)
   , Tracker(tracker)
-  , Original(original)
+  , OriginalPoints(originalPoints)
 {
 }
 
@@ -288,7 +288,7 @@ void CollapseCostModel::FitSurface(const Id* tri, CollapseCandidate& c, CostScra
     this->Tracker.ForEachAncestor(tri[k], [&](Id u) {
       if (index++ % stride == 0)
       {
-        const double* x = this->Original.Point(u);
+        const double* x = this->OriginalPoints.data() + 3 * static_cast<std::size_t>(u);
         points.insert(points.end(), x, x + 3);
       }
     });

@@ -37,7 +37,7 @@ class CollapseCostModel
 {
 public:
   CollapseCostModel(const TriangleCollapseOptions& options, const CollapseMesh& state,
-    const LevelTracker& tracker, const TriangleMesh& original);
+    const LevelTracker& tracker, const std::vector<double>& originalPoints);
 
   /// Evaluate collapsing live triangle t (with the TrianglesAndEdges operator, possibly its
   /// cheapest edge instead); false when it cannot collapse (a locked vertex).
@@ -74,7 +74,7 @@ private:
   const TriangleCollapseOptions& Options;
   const CollapseMesh& State;
   const LevelTracker& Tracker;
-  const TriangleMesh& Original;
+  const std::vector<double>& OriginalPoints; // x, y, z of the input vertices
   double CurvatureNormalization = 1.0;
 };
 

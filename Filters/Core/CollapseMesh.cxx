@@ -70,9 +70,10 @@ double TriangleNormal(const double* p0, const double* p1, const double* p2, doub
 
 //------------------------------------------------------------------------------
 void CollapseMesh::Initialize(
-  const TriangleMesh& mesh, const TriangleTopology& topology, double boundaryWeight)
+  TriangleMesh&& input, TriangleTopology&& topology, double boundaryWeight)
 {
-  this->Mesh = mesh;
+  this->Mesh = std::move(input);
+  const TriangleMesh& mesh = this->Mesh;
   const Id nv = mesh.GetNumberOfPoints();
   const Id nt = mesh.GetNumberOfTriangles();
   this->Flags.assign(nv, 0);
@@ -131,7 +132,13 @@ void CollapseMesh::Initialize(
     }
   });
 
-  this->RebuildRows();
+  // The topology's vertex -> triangle rows are the first rows.
+  this->RowOffsets.swap(topology.VertexTriangles.Offsets);
+  this->RowTriangles.swap(topology.VertexTriangles.Triangles);
+  topology = TriangleTopology();
+  this->ChainNext.assign(nv, InvalidId);
+  this->ChainTail.resize(nv);
+  std::iota(this->ChainTail.begin(), this->ChainTail.end(), 0);
 }
 
 //------------------------------------------------------------------------------

@@ -78,10 +78,10 @@ public:
   Id AliveTriangles = 0;
   Id AliveAtLastRebuild = 0;
 
-  /// Take over the mesh; classify vertices from the topology; accumulate area-weighted plane
+  /// Take over the mesh and its topology (both are moved from); classify vertices from the topology; accumulate area-weighted plane
   /// quadrics plus, on boundary edges, planes through the edge perpendicular to its triangle
   /// weighted by boundaryWeight times the squared edge length.
-  void Initialize(const TriangleMesh& mesh, const TriangleTopology& topology, double boundaryWeight);
+  void Initialize(TriangleMesh&& mesh, TriangleTopology&& topology, double boundaryWeight);
 
   bool IsAlive(Id t) const { return this->Mesh.Triangles[3 * static_cast<std::size_t>(t)] != InvalidId; }
   bool IsLocked(Id v) const { return (this->Flags[v] & FlagLocked) != 0; }

@@ -30,18 +30,22 @@ constexpr double RebuildAfterDying = 0.5;
 class Collapser
 {
 public:
-  Collapser(const TriangleMesh& mesh, const TriangleTopology& topology,
+  Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
     const TriangleCollapseOptions& options, const TriangleCollapseCallbacks& callbacks)
     : Options(options)
     , Callbacks(callbacks)
-    , Original(mesh)
-    , Model(options, State, Tracker, mesh)
+    , Model(options, State, Tracker, OriginalPoints)
   {
-    this->State.Initialize(mesh, topology, options.BoundaryWeight);
-    this->Tracker.Initialize(mesh.GetNumberOfPoints(), options.Method == CollapseMethod::Curvature);
+    const bool curvature = options.Method == CollapseMethod::Curvature;
+    if (curvature)
+    {
+      this->OriginalPoints = mesh.Points; // the fits use the ancestral (original) points
+    }
+    this->InitialTriangles = mesh.GetNumberOfTriangles();
+    this->Tracker.Initialize(mesh.GetNumberOfPoints(), curvature);
+    this->State.Initialize(std::move(mesh), std::move(topology), options.BoundaryWeight);
     this->Rules.MinimumNormalCosine =
       std::cos(std::min(180.0, std::max(0.0, options.MaximumNormalDeviation)) * M_PI / 180.0);
-    this->InitialTriangles = mesh.GetNumberOfTriangles();
     this->Targets = options.LevelTargets;
     this->LastEmitted = this->InitialTriangles;
     this->Costs.assign(this->InitialTriangles, Infinity);
@@ -79,7 +83,7 @@ private:
 
   const TriangleCollapseOptions& Options;
   const TriangleCollapseCallbacks& Callbacks;
-  const TriangleMesh& Original;
+  std::vector<double> OriginalPoints; // curvature method only
   CollapseMesh State;
   LevelTracker Tracker;
   CollapseCostModel Model;
@@ -587,11 +591,10 @@ TriangleCollapseResult Collapser::RunIndependentSets()
 } // namespace
 
 //------------------------------------------------------------------------------
-TriangleCollapseResult RunTriangleCollapse(const TriangleMesh& mesh,
-  const TriangleTopology& topology, const TriangleCollapseOptions& options,
-  const TriangleCollapseCallbacks& callbacks)
+TriangleCollapseResult RunTriangleCollapse(TriangleMesh mesh, TriangleTopology topology,
+  const TriangleCollapseOptions& options, const TriangleCollapseCallbacks& callbacks)
 {
-  Collapser collapser(mesh, topology, options, callbacks);
+  Collapser collapser(std::move(mesh), std::move(topology), options, callbacks);
   TriangleCollapseResult result = options.Schedule == CollapseSchedule::Greedy
     ? collapser.RunGreedy()
     : collapser.RunIndependentSets();

@@ -90,9 +90,10 @@ struct TriangleCollapseResult
   std::int64_t Swaps = 0; // collapses that followed an edge swap (paper 000, figure 3)
 };
 
-/// Run on a validated mesh (see MeshLODInputMesh.h) with its topology.
-VTKFILTERSMESHLOD_EXPORT TriangleCollapseResult RunTriangleCollapse(const TriangleMesh& mesh,
-  const TriangleTopology& topology, const TriangleCollapseOptions& options,
+/// Run on a validated mesh (see MeshLODInputMesh.h) with its topology; both are taken over
+/// (pass them with std::move when the caller is done with them, to save a copy).
+VTKFILTERSMESHLOD_EXPORT TriangleCollapseResult RunTriangleCollapse(TriangleMesh mesh,
+  TriangleTopology topology, const TriangleCollapseOptions& options,
   const TriangleCollapseCallbacks& callbacks);
 
 } // namespace meshlod
