@@ -22,6 +22,7 @@ struct CollapseCandidate
   Id Members[3] = { InvalidId, InvalidId, InvalidId }; // the merging vertices: 3, or 2 for an edge
   int MemberCount = 0;
   bool Swapped = false; // the members are the path left by an edge swap, not a triangle
+  int Dying = 0;        // set when made: the number of triangles the collapse removed
   // Curvature method: the terms of W = A (wk kappa + wa alpha + wv V) before normalisation.
   double Area = 0.0, Kappa = 0.0, Alpha = 0.0, ValenceTerm = 0.0;
 };

@@ -49,6 +49,7 @@ public:
     this->Targets = options.LevelTargets;
     this->LastEmitted = this->InitialTriangles;
     this->Costs.assign(this->InitialTriangles, Infinity);
+    this->Removes.assign(this->InitialTriangles, 4);
   }
 
   TriangleCollapseResult RunGreedy();
@@ -58,12 +59,17 @@ private:
   // Evaluate every live triangle (in parallel); for the curvature method, normalise kappa by
   // the largest curvature found.
   void EvaluateAll();
-  double EvaluateCost(Id t, CostScratch& scratch) const;
+  // The cost of collapsing triangle t; also records how many triangles it would remove.
+  double EvaluateCost(Id t, CostScratch& scratch);
 
-  int Collapse(const Star& star, const CollapseCandidate& c, std::int64_t sequence);
+  // Merge the star's members (safe in parallel for stars with disjoint stencils: it touches
+  // only their triangles and groups). Returns the number of triangles removed.
+  int Collapse(const Star& star, CollapseCandidate& c, std::int64_t sequence);
   // Whether the collapse evaluated for triangle t (or a fallback: the swap variant, the
   // cheapest edge) is legal; on success c and star describe the collapse to make.
   bool Check(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
+  // The same without the swap (which reaches beyond the triangle's neighbourhood).
+  Legality CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
   Legality Legal(Star& star, const CollapseCandidate& c) const;
   bool TrySwap(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
 
@@ -89,6 +95,7 @@ private:
   CollapseCostModel Model;
   CollapseRules Rules;
   std::vector<double> Costs;
+  std::vector<std::uint8_t> Removes; // triangles the evaluated collapse removes (at most)
   std::vector<std::int64_t> Targets;
   std::size_t NextTarget = 0;
   Id InitialTriangles = 0;
@@ -98,10 +105,15 @@ private:
 };
 
 //------------------------------------------------------------------------------
-double Collapser::EvaluateCost(Id t, CostScratch& scratch) const
+double Collapser::EvaluateCost(Id t, CostScratch& scratch)
 {
   CollapseCandidate c;
-  return this->State.IsAlive(t) && this->Model.Evaluate(t, c, scratch) ? c.Cost : Infinity;
+  if (!this->State.IsAlive(t) || !this->Model.Evaluate(t, c, scratch))
+  {
+    return Infinity;
+  }
+  this->Removes[t] = static_cast<std::uint8_t>(c.MemberCount == 2 ? 2 : 4);
+  return c.Cost;
 }
 
 void Collapser::EvaluateAll()
@@ -144,30 +156,39 @@ void Collapser::EvaluateAll()
 }
 
 //------------------------------------------------------------------------------
-bool Collapser::Check(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const
+Legality Collapser::CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const
 {
+  c.MemberCount = 0;
   if (!this->State.IsAlive(t) || !this->Model.Evaluate(t, c, scratch))
   {
-    return false;
+    return Legality::Illegal;
   }
   const Legality legality = this->Legal(star, c);
-  if (legality == Legality::Legal)
+  if (legality == Legality::Legal || c.MemberCount != 3 ||
+    this->Options.Method != CollapseMethod::Quadric ||
+    this->Options.Operator != CollapseOperator::TrianglesAndEdges)
   {
-    return true;
+    return legality;
   }
-  if (c.MemberCount != 3)
+  // The triangle cannot go: with edges allowed, its cheapest edge may. (A swap is still
+  // possible for the triangle when the edge is not legal either.)
+  CollapseCandidate edge;
+  if (this->Model.EvaluateBestEdge(this->State.Mesh.Triangle(t), edge) &&
+    this->Legal(star, edge) == Legality::Legal)
   {
-    return false;
+    c = edge;
+    return Legality::Legal;
   }
-  if (legality == Legality::LowValenceApex && this->TrySwap(t, star, c, scratch))
-  {
-    return true;
-  }
-  // The triangle cannot go: with edges allowed, its cheapest edge may.
-  return this->Options.Method == CollapseMethod::Quadric &&
-    this->Options.Operator == CollapseOperator::TrianglesAndEdges &&
-    this->Model.EvaluateBestEdge(this->State.Mesh.Triangle(t), c) &&
-    this->Legal(star, c) == Legality::Legal;
+  this->Legal(star, c); // restore the triangle's star for a swap
+  return legality;
+}
+
+bool Collapser::Check(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const
+{
+  const Legality legality = this->CheckDirect(t, star, c, scratch);
+  return legality == Legality::Legal ||
+    (legality == Legality::LowValenceApex && c.MemberCount == 3 &&
+      this->TrySwap(t, star, c, scratch));
 }
 
 Legality Collapser::Legal(Star& star, const CollapseCandidate& c) const
@@ -239,7 +260,7 @@ bool Collapser::TrySwap(Id t, Star& star, CollapseCandidate& c, CostScratch& scr
   return this->State.GatherStar(c.Members, c.MemberCount, star);
 }
 
-int Collapser::Collapse(const Star& star, const CollapseCandidate& c, std::int64_t sequence)
+int Collapser::Collapse(const Star& star, CollapseCandidate& c, std::int64_t sequence)
 {
   const double* points[3];
   for (int m = 0; m < star.MemberCount; ++m)
@@ -250,8 +271,8 @@ int Collapser::Collapse(const Star& star, const CollapseCandidate& c, std::int64
   CollapseWeights(points, star.MemberCount, c.Position, weights);
   this->Tracker.Merge(star.Members, weights, star.MemberCount, sequence);
   this->State.Apply(star, c.Position);
-  this->Result.Swaps += c.Swapped ? 1 : 0;
-  return static_cast<int>(star.Dying.size());
+  c.Dying = static_cast<int>(star.Dying.size());
+  return c.Dying;
 }
 
 //------------------------------------------------------------------------------
@@ -344,6 +365,7 @@ TriangleCollapseResult Collapser::RunGreedy()
     }
     const Id survivor = star.Members[0];
     const int dying = this->Collapse(star, c, this->Sequence++);
+    this->Result.Swaps += c.Swapped ? 1 : 0;
     this->State.AliveTriangles -= dying;
     ++this->Result.Collapses;
     for (const Id d : star.Dying)
@@ -407,16 +429,26 @@ TriangleCollapseResult Collapser::RunIndependentSets()
   this->EvaluateAll();
   const Id nt = this->InitialTriangles;
   std::vector<unsigned char> isDirty(nt, 0), parked(nt, 0);
-  std::vector<unsigned char> marked(this->State.Mesh.GetNumberOfPoints(), 0);
-  std::vector<Id> live(nt), dirty, pool, stencilVertices, markedVertices, survivors;
+  // Vertex -> 1 + the index of the pass's candidate whose neighbourhood holds it, 0 if none.
+  std::vector<Id> owner(this->State.Mesh.GetNumberOfPoints(), 0);
+  std::vector<Id> live(nt), dirty, pool, chosen, owned, survivors;
   for (Id t = 0; t < nt; ++t)
   {
     live[t] = t;
   }
+  std::vector<CollapseCandidate> candidates;
+  std::vector<unsigned char> outcome;
   vtkSMPThreadLocal<CostScratch> scratch;
-  Star star;
-  CostScratch& local = scratch.Local();
-  CollapseCandidate candidate;
+  vtkSMPThreadLocal<Star> stars;
+  enum : unsigned char
+  {
+    Refused = 0,
+    Collapsed = 1,
+    NeedsSwap = 2,
+    TooLarge = 3, // legal, but above MaximumError
+    Skipped = 4,  // legal, not needed for this pass's budget
+  };
+  std::int64_t idlePasses = 0;
 
   while (!this->Finished())
   {
@@ -442,17 +474,16 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     // LevelFraction is the paper's fraction of triangles selected per pass; a triangle
     // collapse removes four, so a pass removes up to 4 * LevelFraction of the triangles, in
     // whatever mix of triangle and edge collapses.
-    const std::int64_t budget =
-      std::max<std::int64_t>(1, static_cast<std::int64_t>(4.0 * this->Options.LevelFraction * alive));
-    const Id wanted = static_cast<Id>(std::max<std::int64_t>(1, budget / 2));
+    const std::int64_t budget = std::min<std::int64_t>(
+      std::max<std::int64_t>(1, static_cast<std::int64_t>(4.0 * this->Options.LevelFraction * alive)),
+      static_cast<std::int64_t>(alive) - this->CurrentTarget());
     pool.clear();
     std::copy_if(live.begin(), live.end(), std::back_inserter(pool),
       [&](Id t) { return this->Costs[t] < Infinity; });
     auto cheaper = [&](Id a, Id b) {
       return this->Costs[a] < this->Costs[b] || (this->Costs[a] == this->Costs[b] && a < b);
     };
-    const std::size_t poolSize =
-      std::min<std::size_t>(pool.size(), 3 * static_cast<std::size_t>(wanted) + 64);
+    const std::size_t poolSize = std::min<std::size_t>(pool.size(), 4 * budget + 64);
     if (poolSize < pool.size())
     {
       std::nth_element(pool.begin(), pool.begin() + poolSize, pool.end(), cheaper);
@@ -460,26 +491,18 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     }
     std::sort(pool.begin(), pool.end(), cheaper);
 
-    // 3. Walk the pool cheapest first and collapse every legal candidate whose stencil shares
-    // no vertex with one collapsed earlier in this pass (an independent set). Collapsing at
-    // once is safe: a stencil disjoint from all earlier ones saw none of their changes, so
-    // legality checked now equals legality at the start of the pass.
-    survivors.clear();
-    std::int64_t removing = 0;
-    const std::int64_t needed = static_cast<std::int64_t>(alive) - this->CurrentTarget();
-    bool errorLimited = false;
-    for (std::size_t i = 0;
-         i < pool.size() && removing < budget && removing < needed; ++i)
+    // 3. Choose, cheapest first, triangles whose neighbourhoods (every triangle around their
+    // corners: it holds the stencil of the triangle's collapse and of each edge's) share no
+    // vertex, until the pass's budget of removed triangles is reached. These collapses are
+    // independent: none can change another's legality, so they can be checked and made at once.
+    chosen.clear();
+    std::int64_t estimate = 0;
+    // Choose a little beyond the budget: some of the chosen will not be legal.
+    for (std::size_t i = 0; i < pool.size() && estimate < budget + budget / 4 + 4; ++i)
     {
       const Id t = pool[i];
-      if (!this->State.IsAlive(t))
-      {
-        continue;
-      }
-      // Cheap rejection first: the triangle's whole neighbourhood (which contains the stencil
-      // of its collapse and of its edges' collapses) must be unmarked.
       const Id* tri = this->State.Mesh.Triangle(t);
-      if (marked[tri[0]] || marked[tri[1]] || marked[tri[2]])
+      if (owner[tri[0]] || owner[tri[1]] || owner[tri[2]])
       {
         continue;
       }
@@ -488,63 +511,134 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       {
         this->State.ForEachTriangle(tri[k], [&](Id s) {
           const Id* st = this->State.Mesh.Triangle(s);
-          blocked = blocked || marked[st[0]] || marked[st[1]] || marked[st[2]];
+          blocked = blocked || owner[st[0]] || owner[st[1]] || owner[st[2]];
         });
       }
       if (blocked)
       {
         continue;
       }
-      if (!this->Check(t, star, candidate, local))
+      chosen.push_back(t);
+      const Id mark = static_cast<Id>(chosen.size());
+      for (int k = 0; k < 3; ++k)
       {
-        // Parked until a collapse nearby changes its neighbourhood (see step 4).
-        this->Costs[t] = Infinity;
-        parked[t] = 1;
-        continue;
+        this->State.ForEachTriangle(tri[k], [&](Id s) {
+          const Id* st = this->State.Mesh.Triangle(s);
+          for (int c = 0; c < 3; ++c)
+          {
+            if (!owner[st[c]])
+            {
+              owner[st[c]] = mark;
+              owned.push_back(st[c]);
+            }
+          }
+        });
       }
-      if (!this->ErrorAllows(candidate.Error))
+      estimate += this->Removes[t];
+    }
+
+    // 4. Check the chosen ones (in parallel), keep the cheapest legal ones up to the pass's
+    // budget, and collapse those (in parallel). Collapse numbers follow the choice order, so
+    // the levels' ranks do not depend on the thread count.
+    const Id count = static_cast<Id>(chosen.size());
+    candidates.resize(count);
+    outcome.assign(count, Refused);
+    survivors.assign(count, InvalidId);
+    vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+      CostScratch& mine = scratch.Local();
+      Star& star = stars.Local();
+      for (Id i = begin; i < end; ++i)
       {
-        errorLimited = true;
-        break;
-      }
-      stencilVertices.clear();
-      auto collect = [&](Id s) {
-        const Id* st = this->State.Mesh.Triangle(s);
-        stencilVertices.insert(stencilVertices.end(), st, st + 3);
-      };
-      std::for_each(star.Dying.begin(), star.Dying.end(), collect);
-      std::for_each(star.Ring.begin(), star.Ring.end(), collect);
-      if (candidate.Swapped &&
-        std::any_of(stencilVertices.begin(), stencilVertices.end(), [&](Id v) { return marked[v]; }))
-      {
-        continue; // a swap reaches one ring further than the check above
-      }
-      for (const Id v : stencilVertices)
-      {
-        if (!marked[v])
+        const Legality legality = this->CheckDirect(chosen[i], star, candidates[i], mine);
+        candidates[i].Dying = static_cast<int>(star.Dying.size());
+        if (legality == Legality::Legal)
         {
-          marked[v] = 1;
-          markedVertices.push_back(v);
+          outcome[i] = this->ErrorAllows(candidates[i].Error) ? Collapsed : TooLarge;
+        }
+        else if (legality == Legality::LowValenceApex && candidates[i].MemberCount == 3)
+        {
+          outcome[i] = NeedsSwap;
         }
       }
-      this->Collapse(star, candidate, this->Sequence++);
-      survivors.push_back(star.Members[0]);
-      removing += static_cast<std::int64_t>(star.Dying.size());
+    });
+    std::int64_t removed = 0;
+    bool errorLimited = false;
+    for (Id i = 0; i < count; ++i)
+    {
+      if (outcome[i] == Collapsed && removed >= budget)
+      {
+        outcome[i] = Skipped; // the level's target is reached without it
+      }
+      removed += outcome[i] == Collapsed ? candidates[i].Dying : 0;
     }
-    if (survivors.empty())
+    const std::int64_t base = this->Sequence;
+    vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+      Star& star = stars.Local();
+      for (Id i = begin; i < end; ++i)
+      {
+        if (outcome[i] == Collapsed)
+        {
+          this->State.GatherStar(candidates[i].Members, candidates[i].MemberCount, star);
+          this->Collapse(star, candidates[i], base + i);
+          survivors[i] = star.Members[0];
+        }
+      }
+    });
+    this->Sequence += count;
+
+    // 5. Triangles blocked by a low-valence apex try the swap (paper 000, figure 3), one after
+    // the other: the swap reaches one ring beyond the chosen neighbourhood.
+    Star& star = stars.Local();
+    CostScratch& mine = scratch.Local();
+    for (Id i = 0; i < count; ++i)
+    {
+      if (outcome[i] == NeedsSwap && removed < budget)
+      {
+        const Id t = chosen[i];
+        outcome[i] = Refused;
+        if (this->CheckDirect(t, star, candidates[i], mine) == Legality::LowValenceApex &&
+          this->TrySwap(t, star, candidates[i], mine))
+        {
+          outcome[i] = this->ErrorAllows(candidates[i].Error) ? Collapsed : TooLarge;
+          if (outcome[i] == Collapsed)
+          {
+            removed += this->Collapse(star, candidates[i], this->Sequence++);
+            survivors[i] = star.Members[0];
+          }
+        }
+      }
+      if (outcome[i] == Collapsed)
+      {
+        this->Result.Swaps += candidates[i].Swapped ? 1 : 0;
+        ++this->Result.Collapses;
+      }
+      else if (outcome[i] == TooLarge)
+      {
+        errorLimited = true;
+      }
+      else if (outcome[i] == Refused)
+      {
+        // Parked until a collapse nearby changes its neighbourhood (see step 6).
+        this->Costs[chosen[i]] = Infinity;
+        parked[chosen[i]] = 1;
+      }
+    }
+    this->State.AliveTriangles -= static_cast<Id>(removed);
+    for (const Id v : owned)
+    {
+      owner[v] = 0;
+    }
+    owned.clear();
+    // Stuck when nothing can be chosen, or when passes keep failing even after the parked
+    // triangles had their retry.
+    idlePasses = removed > 0 ? 0 : idlePasses + 1;
+    if (count == 0 || idlePasses > ParkedRetryPasses)
     {
       break; // nothing collapsible (or allowed by MaximumError) is left
     }
-    this->Result.Collapses += static_cast<std::int64_t>(survivors.size());
-    this->State.AliveTriangles -= static_cast<Id>(removing);
 
-    // 4. Unmark, and list for re-weighting the triangles whose weight changed: those around the
-    // survivors (for the curvature method also one ring further out, whose stencils moved).
-    for (const Id v : markedVertices)
-    {
-      marked[v] = 0;
-    }
-    markedVertices.clear();
+    // 6. List for re-weighting the triangles whose weight changed: those around the survivors
+    // (for the curvature method also one ring further out, whose stencils moved).
     const bool widen = this->Options.Method == CollapseMethod::Curvature;
     auto markDirty = [&](Id s) {
       if (!isDirty[s])
@@ -556,6 +650,10 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     };
     for (const Id survivor : survivors)
     {
+      if (survivor == InvalidId)
+      {
+        continue;
+      }
       this->State.ForEachTriangle(survivor, [&](Id s) {
         markDirty(s);
         if (widen)
