@@ -2,7 +2,7 @@
 # vtk_module_build() (ours, or VTK's own for a remote module) re-enters it.
 
 set(meshlod_classes
-  )
+  vtkLODGeomorph)
 
 # Exported helpers that are not VTK classes: not wrapped, but usable from C++ (the tests and the
 # benchmark measure with the yardstick).
@@ -12,14 +12,22 @@ set(meshlod_nowrap_headers
 # Private headers (not installed): the VTK-free algorithm code under Core/ and the glue between
 # it and VTK. The tests in the build tree include them directly.
 set(meshlod_private_headers
+  Filters/Core/CollapseSchedule.h
+  Filters/Core/EdgeMerge.h
   Filters/Core/TriangleMesh.h
+  Filters/MeshLODBlend.h
   Filters/MeshLODHierarchy.h
-  Filters/MeshLODInputMesh.h)
+  Filters/MeshLODInputMesh.h
+  Filters/MeshLODNearestCorrespondence.h)
 
 set(meshlod_sources
+  Filters/Core/CollapseSchedule.cxx
+  Filters/Core/EdgeMerge.cxx
   Filters/Core/TriangleMesh.cxx
+  Filters/MeshLODBlend.cxx
   Filters/MeshLODHierarchy.cxx
   Filters/MeshLODInputMesh.cxx
+  Filters/MeshLODNearestCorrespondence.cxx
   Filters/MeshLODSurfaceDistance.cxx)
 
 list(TRANSFORM meshlod_classes PREPEND "Filters/")
