@@ -93,16 +93,19 @@ void TestSmallCorrespondence()
   MESHLOD_CHECK_EQ(x[0], 2.1);
   MESHLOD_CHECK_EQ(x[1], 0.5);
 
-  // Two coarse points nearest to fine point 4: the nearer keeps it, the other takes its
-  // nearest free fine point (5).
-  vtkNew<vtkPoints> pair;
-  pair->InsertNextPoint(0.9, 1.0, 0.0);
-  pair->InsertNextPoint(1.2, 1.0, 0.0);
-  NearestVertexCorrespondence(fine->GetPoints(), pair, partner);
+  // Coarse points 0 (0.9, 1) and 1 (1.45, 0.9) both nearest to fine point 4; 2 (2.05, 1) takes
+  // 5. Point 0 is nearer and keeps 4; point 1 takes its nearest free fine point, 1 (at 1.006),
+  // although fine point 1 is a little nearer to coarse point 0 (1.005): without that, coarse
+  // point 1 would be reached by nobody.
+  vtkNew<vtkPoints> three;
+  three->InsertNextPoint(0.9, 1.0, 0.0);
+  three->InsertNextPoint(1.45, 0.9, 0.0);
+  three->InsertNextPoint(2.05, 1.0, 0.0);
+  NearestVertexCorrespondence(fine->GetPoints(), three, partner);
   MESHLOD_CHECK_EQ(partner[4], 0);
-  MESHLOD_CHECK_EQ(partner[5], 1);
-  MESHLOD_CHECK_EQ(partner[3], 0);
-  MESHLOD_CHECK_EQ(partner[2], 1);
+  MESHLOD_CHECK_EQ(partner[5], 2);
+  MESHLOD_CHECK_EQ(partner[1], 1);
+  MESHLOD_CHECK_EQ(partner[0], 0);
 }
 
 // Two decimations of an isosurface, with point data.
