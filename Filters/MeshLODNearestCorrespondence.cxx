@@ -53,18 +53,16 @@ void NearestVertexCorrespondence(vtkPoints* fine, vtkPoints* coarse, std::vector
   std::vector<double> pickedDistance2(nc);
   {
     PointSearch fineSearch(fine);
-    vtkSMPTools::For(0, nc,
-      [&](vtkIdType begin, vtkIdType end)
+    vtkSMPTools::For(0, nc, [&](vtkIdType begin, vtkIdType end) {
+      double x[3];
+      for (vtkIdType c = begin; c < end; ++c)
       {
-        double x[3];
-        for (vtkIdType c = begin; c < end; ++c)
-        {
-          coarse->GetPoint(c, x);
-          const vtkIdType f = fineSearch.Locator->FindClosestPoint(x);
-          picked[c] = static_cast<Id>(f);
-          pickedDistance2[c] = Distance2(coarse, c, fine, f);
-        }
-      });
+        coarse->GetPoint(c, x);
+        const vtkIdType f = fineSearch.Locator->FindClosestPoint(x);
+        picked[c] = static_cast<Id>(f);
+        pickedDistance2[c] = Distance2(coarse, c, fine, f);
+      }
+    });
     // Conflicts: the nearest coarse point keeps the fine point (increasing c and a strict
     // comparison keep the lowest id on ties).
     std::vector<Id>& owner = partner;
@@ -116,19 +114,17 @@ void NearestVertexCorrespondence(vtkPoints* fine, vtkPoints* coarse, std::vector
 
   // Step 2: fine points without a partner take their nearest coarse point.
   PointSearch coarseSearch(coarse);
-  vtkSMPTools::For(0, nf,
-    [&](vtkIdType begin, vtkIdType end)
+  vtkSMPTools::For(0, nf, [&](vtkIdType begin, vtkIdType end) {
+    double x[3];
+    for (vtkIdType f = begin; f < end; ++f)
     {
-      double x[3];
-      for (vtkIdType f = begin; f < end; ++f)
+      if (partner[f] == InvalidId)
       {
-        if (partner[f] == InvalidId)
-        {
-          fine->GetPoint(f, x);
-          partner[f] = static_cast<Id>(coarseSearch.Locator->FindClosestPoint(x));
-        }
+        fine->GetPoint(f, x);
+        partner[f] = static_cast<Id>(coarseSearch.Locator->FindClosestPoint(x));
       }
-    });
+    }
+  });
 }
 
 } // namespace meshlod

@@ -24,6 +24,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTypeInt32Array.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,6 +39,15 @@ namespace
 {
 using meshlod::Id;
 constexpr const char* LevelOfDetailName = "LevelOfDetail";
+
+// The merged topology of the nearest-vertex mode, for one set of short edges.
+struct MergedTopology
+{
+  std::vector<std::uint8_t> ShortEdges;
+  std::vector<Id> Source; // output point -> level point
+  vtkSmartPointer<vtkCellArray> Cells;
+  vtkSmartPointer<vtkCellData> CellData;
+};
 
 // Everything the filter keeps about one level between executions (valid while the input is
 // unchanged). Built lazily: only the levels and modes actually asked for pay.
@@ -57,6 +67,7 @@ struct LevelCache
   std::vector<Id> Partner;
   meshlod::EdgeList Edges;
   double Diagonal = 0.0;
+  MergedTopology Merged;
 };
 
 // The latest exact-count topology, reused while only CollapseFraction changes.
@@ -97,8 +108,7 @@ bool ReadTriangles(vtkPolyData* poly, std::vector<Id>& triangles)
   const vtkIdType n = polys->GetNumberOfCells();
   triangles.resize(3 * static_cast<size_t>(n));
   bool ok = true;
-  auto visit = [&](auto* offsets, auto* connectivity)
-  {
+  auto visit = [&](auto* offsets, auto* connectivity) {
     const auto off = vtk::DataArrayValueRange<1>(offsets);
     const auto conn = vtk::DataArrayValueRange<1>(connectivity);
     for (vtkIdType c = 0; c < n && ok; ++c)
@@ -125,14 +135,12 @@ std::vector<Id> ToIds(vtkDataArray* array)
 {
   std::vector<Id> ids(array->GetNumberOfTuples());
   const auto values = vtk::DataArrayValueRange<1>(array);
-  vtkSMPTools::For(0, array->GetNumberOfTuples(),
-    [&](vtkIdType b, vtkIdType e)
+  vtkSMPTools::For(0, array->GetNumberOfTuples(), [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType i = b; i < e; ++i)
     {
-      for (vtkIdType i = b; i < e; ++i)
-      {
-        ids[i] = static_cast<Id>(values[i]);
-      }
-    });
+      ids[i] = static_cast<Id>(values[i]);
+    }
+  });
   return ids;
 }
 
@@ -180,23 +188,53 @@ vtkSmartPointer<vtkPoints> PointsFrom(vtkDataArray* data)
   return points;
 }
 
-// Triangles (3 ids each, renumbered through `newId`) that keep three distinct corners.
-void RemapTriangles(const std::vector<Id>& triangles, const std::vector<Id>& newId,
-  std::vector<Id>& kept, std::vector<Id>& keptTriangles)
+// The triangles t with keep(t) whose corners, renumbered through newId(), are three distinct
+// points, as a cell array built in place (parallel flags, a prefix sum, a parallel fill);
+// `keptTriangles` gets their ids in the level, for the cell data.
+template <typename NewId, typename Keep>
+vtkSmartPointer<vtkCellArray> CompactTriangles(const std::vector<Id>& triangles, const NewId& newId,
+  const Keep& keep, std::vector<Id>& keptTriangles)
 {
-  kept.clear();
-  keptTriangles.clear();
-  const size_t n = triangles.size() / 3;
-  for (size_t t = 0; t < n; ++t)
-  {
-    const Id a = newId[triangles[3 * t]], b = newId[triangles[3 * t + 1]],
-             c = newId[triangles[3 * t + 2]];
-    if (a != b && b != c && c != a)
+  const vtkIdType n = static_cast<vtkIdType>(triangles.size() / 3);
+  std::vector<std::uint8_t> kept(n);
+  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType t = b; t < e; ++t)
     {
-      kept.insert(kept.end(), { a, b, c });
+      const Id x = newId(triangles[3 * t]), y = newId(triangles[3 * t + 1]),
+               z = newId(triangles[3 * t + 2]);
+      kept[t] = (keep(t) && x != y && y != z && z != x) ? 1 : 0;
+    }
+  });
+  keptTriangles.clear();
+  keptTriangles.reserve(n);
+  for (vtkIdType t = 0; t < n; ++t)
+  {
+    if (kept[t])
+    {
       keptTriangles.push_back(static_cast<Id>(t));
     }
   }
+  const vtkIdType m = static_cast<vtkIdType>(keptTriangles.size());
+  vtkNew<vtkTypeInt32Array> offsets;
+  vtkNew<vtkTypeInt32Array> connectivity;
+  offsets->SetNumberOfValues(m + 1);
+  connectivity->SetNumberOfValues(3 * m);
+  std::int32_t* off = offsets->GetPointer(0);
+  std::int32_t* conn = connectivity->GetPointer(0);
+  vtkSMPTools::For(0, m, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      const Id* tri = triangles.data() + 3 * static_cast<size_t>(keptTriangles[i]);
+      off[i] = static_cast<std::int32_t>(3 * i);
+      conn[3 * i] = newId(tri[0]);
+      conn[3 * i + 1] = newId(tri[1]);
+      conn[3 * i + 2] = newId(tri[2]);
+    }
+  });
+  off[m] = static_cast<std::int32_t>(3 * m);
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, connectivity);
+  return cells;
 }
 } // namespace
 
@@ -209,29 +247,27 @@ struct ShortEdgeWorker
   double Tolerance2;
   std::vector<std::uint8_t>* Flags;
 
-  template<typename PointArray>
+  template <typename PointArray>
   void operator()(PointArray* points) const
   {
     const auto x = vtk::DataArrayTupleRange<3>(points);
     const std::vector<Id>& ends = this->Edges->Ends;
     std::uint8_t* flags = this->Flags->data();
     const double tolerance2 = this->Tolerance2;
-    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Edges->Size()),
-      [&](vtkIdType b, vtkIdType e)
+    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Edges->Size()), [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
       {
-        for (vtkIdType i = b; i < e; ++i)
+        const auto p = x[ends[2 * i]];
+        const auto q = x[ends[2 * i + 1]];
+        double d2 = 0.0;
+        for (int c = 0; c < 3; ++c)
         {
-          const auto p = x[ends[2 * i]];
-          const auto q = x[ends[2 * i + 1]];
-          double d2 = 0.0;
-          for (int c = 0; c < 3; ++c)
-          {
-            const double d = static_cast<double>(p[c]) - static_cast<double>(q[c]);
-            d2 += d * d;
-          }
-          flags[i] = d2 <= tolerance2 ? 1 : 0;
+          const double d = static_cast<double>(p[c]) - static_cast<double>(q[c]);
+          d2 += d * d;
         }
-      });
+        flags[i] = d2 <= tolerance2 ? 1 : 0;
+      }
+    });
   }
 };
 
@@ -243,43 +279,41 @@ struct DegenerateWorker
   double Tolerance2;
   std::vector<std::uint8_t>* Flags;
 
-  template<typename PointArray>
+  template <typename PointArray>
   void operator()(PointArray* points) const
   {
     const auto x = vtk::DataArrayTupleRange<3>(points);
     const Id* tri = this->Triangles->data();
     std::uint8_t* flags = this->Flags->data();
     const double tolerance2 = this->Tolerance2;
-    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Flags->size()),
-      [&](vtkIdType b, vtkIdType e)
+    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Flags->size()), [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType t = b; t < e; ++t)
       {
-        for (vtkIdType t = b; t < e; ++t)
+        double p[3][3];
+        for (int k = 0; k < 3; ++k)
         {
-          double p[3][3];
-          for (int k = 0; k < 3; ++k)
-          {
-            const auto v = x[tri[3 * t + k]];
-            p[k][0] = v[0];
-            p[k][1] = v[1];
-            p[k][2] = v[2];
-          }
-          bool degenerate = false;
-          for (int k = 0; k < 3; ++k)
-          {
-            degenerate =
-              degenerate || vtkMath::Distance2BetweenPoints(p[k], p[(k + 1) % 3]) <= tolerance2;
-          }
-          const double u[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
-          const double w[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
-          double n[3];
-          vtkMath::Cross(u, w, n);
-          flags[t] = (degenerate || (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0)) ? 1 : 0;
+          const auto v = x[tri[3 * t + k]];
+          p[k][0] = v[0];
+          p[k][1] = v[1];
+          p[k][2] = v[2];
         }
-      });
+        bool degenerate = false;
+        for (int k = 0; k < 3; ++k)
+        {
+          degenerate =
+            degenerate || vtkMath::Distance2BetweenPoints(p[k], p[(k + 1) % 3]) <= tolerance2;
+        }
+        const double u[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
+        const double w[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
+        double n[3];
+        vtkMath::Cross(u, w, n);
+        flags[t] = (degenerate || (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0)) ? 1 : 0;
+      }
+    });
   }
 };
 
-template<typename Worker>
+template <typename Worker>
 void DispatchPoints(vtkDataArray* points, Worker& worker)
 {
   if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(points, worker))
@@ -396,18 +430,16 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
   vtkDataArray* points = poly->GetPoints()->GetData();
   std::vector<std::int64_t> rank(n);
   std::vector<std::uint8_t> atTarget(n);
-  vtkSMPTools::For(0, n,
-    [&](vtkIdType b, vtkIdType e)
+  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+    double x[3], y[3];
+    for (vtkIdType p = b; p < e; ++p)
     {
-      double x[3], y[3];
-      for (vtkIdType p = b; p < e; ++p)
-      {
-        rank[p] = static_cast<std::int64_t>(rankArray->GetComponent(p, 0));
-        points->GetTuple(p, x);
-        target->GetTuple(p, y);
-        atTarget[p] = (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) ? 1 : 0;
-      }
-    });
+      rank[p] = static_cast<std::int64_t>(rankArray->GetComponent(p, 0));
+      points->GetTuple(p, x);
+      target->GetTuple(p, y);
+      atTarget[p] = (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) ? 1 : 0;
+    }
+  });
   cache.Schedule.reset(new meshlod::CollapseSchedule);
   cache.Schedule->Build(cache.Triangles.data(), static_cast<Id>(cache.Triangles.size() / 3),
     static_cast<Id>(n), cache.TargetIds.data(), rank.data(), atTarget.data());
@@ -506,17 +538,10 @@ bool vtkLODGeomorph::Internals::ProducePartialCollapse(
     output->GetCellData()->ShallowCopy(poly->GetCellData());
     return true;
   }
-  std::vector<Id> kept, keptTriangles;
-  for (size_t tri = 0; tri < degenerate.size(); ++tri)
-  {
-    if (!degenerate[tri])
-    {
-      kept.insert(
-        kept.end(), cache.Triangles.begin() + 3 * tri, cache.Triangles.begin() + 3 * tri + 3);
-      keptTriangles.push_back(static_cast<Id>(tri));
-    }
-  }
-  output->SetPolys(meshlod::MakeTriangleCells(kept.data(), static_cast<Id>(keptTriangles.size())));
+  std::vector<Id> keptTriangles;
+  output->SetPolys(CompactTriangles(
+    cache.Triangles, [](Id p) { return p; }, [&](vtkIdType tri) { return !degenerate[tri]; },
+    keptTriangles));
   output->GetCellData()->ShallowCopy(SubsetCellData(poly->GetCellData(), keptTriangles));
   return true;
 }
@@ -563,10 +588,7 @@ bool vtkLODGeomorph::Internals::ProduceNearestBlend(
   const double tolerance = self->MergeTolerance * cache.Diagonal;
   ShortEdgeWorker lengths{ &cache.Edges, tolerance * tolerance, &shortEdge };
   DispatchPoints(points.Get(), lengths);
-  std::vector<Id> representative;
-  const Id merged =
-    meshlod::MergeAlongEdges(cache.Edges, shortEdge.data(), static_cast<Id>(n), representative);
-  if (merged == 0)
+  if (std::find(shortEdge.begin(), shortEdge.end(), 1) == shortEdge.end())
   {
     output->SetPoints(PointsFrom(points));
     output->SetPolys(poly->GetPolys());
@@ -575,29 +597,43 @@ bool vtkLODGeomorph::Internals::ProduceNearestBlend(
       poly->GetPointData(), coarse->GetPointData(), plan, output->GetPointData());
     return true;
   }
-  std::vector<Id> newId(n), source;
-  source.reserve(n - merged);
-  for (vtkIdType p = 0; p < n; ++p)
+  // The merged topology only changes when the set of short edges does (a few times between
+  // t = 0 and 1): keep the last one.
+  MergedTopology& merged = cache.Merged;
+  if (shortEdge != merged.ShortEdges)
   {
-    if (representative[p] == p)
+    merged.ShortEdges.swap(shortEdge);
+    std::vector<Id> representative;
+    meshlod::MergeAlongEdges(
+      cache.Edges, merged.ShortEdges.data(), static_cast<Id>(n), representative);
+    std::vector<Id> newId(n);
+    merged.Source.clear();
+    merged.Source.reserve(n);
+    for (vtkIdType p = 0; p < n; ++p)
     {
-      newId[p] = static_cast<Id>(source.size());
-      source.push_back(static_cast<Id>(p));
+      if (representative[p] == p)
+      {
+        newId[p] = static_cast<Id>(merged.Source.size());
+        merged.Source.push_back(static_cast<Id>(p));
+      }
+      else
+      {
+        newId[p] = newId[representative[p]]; // the representative has a lower id
+      }
     }
-    else
-    {
-      newId[p] = newId[representative[p]]; // the representative has a lower id
-    }
+    std::vector<Id> keptTriangles;
+    merged.Cells = CompactTriangles(
+      cache.Triangles, [&](Id p) { return newId[p]; }, [](vtkIdType) { return true; },
+      keptTriangles);
+    merged.CellData = SubsetCellData(poly->GetCellData(), keptTriangles);
   }
-  plan.NumberOfPoints = static_cast<vtkIdType>(source.size());
-  plan.Source = source.data();
+  plan.NumberOfPoints = static_cast<vtkIdType>(merged.Source.size());
+  plan.Source = merged.Source.data();
   output->SetPoints(PointsFrom(meshlod::BlendRealArray(finePoints, coarsePoints, plan, false)));
   meshlod::BlendPointData(
     poly->GetPointData(), coarse->GetPointData(), plan, output->GetPointData());
-  std::vector<Id> kept, keptTriangles;
-  RemapTriangles(cache.Triangles, newId, kept, keptTriangles);
-  output->SetPolys(meshlod::MakeTriangleCells(kept.data(), static_cast<Id>(keptTriangles.size())));
-  output->GetCellData()->ShallowCopy(SubsetCellData(poly->GetCellData(), keptTriangles));
+  output->SetPolys(merged.Cells);
+  output->GetCellData()->ShallowCopy(merged.CellData);
   return true;
 }
 
@@ -634,21 +670,10 @@ void vtkLODGeomorph::Internals::BuildExactTopology(int level, Id steps, Id nextS
     exact.Source.push_back(p);
     exact.State.push_back(step <= steps ? 2 : (nextStep > 0 && step <= nextStep ? 1 : 0));
   }
-  std::vector<Id> kept, keptTriangles;
-  const Id numberOfTriangles = static_cast<Id>(cache.Triangles.size() / 3);
-  for (Id tri = 0; tri < numberOfTriangles; ++tri)
-  {
-    if (schedule.RemovalStep[tri] <= steps)
-    {
-      continue;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      kept.push_back(newId[cache.Triangles[3 * static_cast<size_t>(tri) + k]]);
-    }
-    keptTriangles.push_back(tri);
-  }
-  exact.Cells = meshlod::MakeTriangleCells(kept.data(), static_cast<Id>(keptTriangles.size()));
+  std::vector<Id> keptTriangles;
+  exact.Cells = CompactTriangles(
+    cache.Triangles, [&](Id p) { return newId[p]; },
+    [&](vtkIdType tri) { return schedule.RemovalStep[tri] > steps; }, keptTriangles);
   exact.CellData = SubsetCellData(cache.Poly->GetCellData(), keptTriangles);
 }
 
@@ -723,14 +748,12 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
   const ExactTopology& exact = this->Exact;
   const vtkIdType m = static_cast<vtkIdType>(exact.Source.size());
   std::vector<double> weights(m);
-  vtkSMPTools::For(0, m,
-    [&](vtkIdType b, vtkIdType e)
+  vtkSMPTools::For(0, m, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType q = b; q < e; ++q)
     {
-      for (vtkIdType q = b; q < e; ++q)
-      {
-        weights[q] = exact.State[q] == 2 ? 1.0 : (exact.State[q] == 1 ? fraction : 0.0);
-      }
-    });
+      weights[q] = exact.State[q] == 2 ? 1.0 : (exact.State[q] == 1 ? fraction : 0.0);
+    }
+  });
   LevelCache& cache = this->Levels[level];
   vtkPolyData* poly = cache.Poly;
   meshlod::BlendPlan plan;

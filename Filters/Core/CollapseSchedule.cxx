@@ -47,20 +47,18 @@ std::vector<Id> SortMovingPoints(
     }
   }
   auto key = [&](Id p) { return rank[p] < 0 ? std::numeric_limits<std::int64_t>::max() : rank[p]; };
-  std::sort(moving.begin(), moving.end(),
-    [&](Id a, Id b)
+  std::sort(moving.begin(), moving.end(), [&](Id a, Id b) {
+    const std::int64_t ka = key(a), kb = key(b);
+    if (ka != kb)
     {
-      const std::int64_t ka = key(a), kb = key(b);
-      if (ka != kb)
-      {
-        return ka < kb;
-      }
-      if (target[a] != target[b])
-      {
-        return target[a] < target[b];
-      }
-      return a < b;
-    });
+      return ka < kb;
+    }
+    if (target[a] != target[b])
+    {
+      return target[a] < target[b];
+    }
+    return a < b;
+  });
   return moving;
 }
 } // namespace
@@ -93,8 +91,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   // Which collapse a moving point belongs to (its first index in `moving` + 1).
   std::vector<Id> collapseOf(numberOfPoints, 0);
   std::priority_queue<Id, std::vector<Id>, std::greater<Id>> frontier;
-  auto pushNeighbors = [&](Id p, Id collapse)
-  {
+  auto pushNeighbors = [&](Id p, Id collapse) {
     for (Id i = adjacency.Begin(p); i < adjacency.End(p); ++i)
     {
       const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[i]);
@@ -164,24 +161,22 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
 
   // A triangle disappears when the second of two corners with the same target settles.
   this->RemovalStep.resize(numberOfTriangles);
-  vtkSMPTools::For(0, numberOfTriangles,
-    [&](Id b, Id e)
+  vtkSMPTools::For(0, numberOfTriangles, [&](Id b, Id e) {
+    for (Id tri = b; tri < e; ++tri)
     {
-      for (Id tri = b; tri < e; ++tri)
+      const Id* v = triangles + 3 * static_cast<size_t>(tri);
+      Id removal = Never;
+      for (int k = 0; k < 3; ++k)
       {
-        const Id* v = triangles + 3 * static_cast<size_t>(tri);
-        Id removal = Never;
-        for (int k = 0; k < 3; ++k)
+        const Id x = v[k], y = v[(k + 1) % 3];
+        if (target[x] == target[y])
         {
-          const Id x = v[k], y = v[(k + 1) % 3];
-          if (target[x] == target[y])
-          {
-            removal = std::min(removal, std::max(this->Step[x], this->Step[y]));
-          }
+          removal = std::min(removal, std::max(this->Step[x], this->Step[y]));
         }
-        this->RemovalStep[tri] = removal;
       }
-    });
+      this->RemovalStep[tri] = removal;
+    }
+  });
 
   const Id steps = this->NumberOfSteps();
   this->CountAfter.assign(static_cast<size_t>(steps) + 1, 0);

@@ -46,36 +46,32 @@ void EdgeList::Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoint
   adjacency.Build(triangles, numberOfTriangles, numberOfPoints);
   // Two passes over the vertices: count each row, then fill it at its prefix-sum offset.
   std::vector<Id> offsets(static_cast<size_t>(numberOfPoints) + 1, 0);
-  vtkSMPTools::For(0, numberOfPoints,
-    [&](Id begin, Id end)
+  vtkSMPTools::For(0, numberOfPoints, [&](Id begin, Id end) {
+    std::vector<Id> row;
+    for (Id a = begin; a < end; ++a)
     {
-      std::vector<Id> row;
-      for (Id a = begin; a < end; ++a)
-      {
-        HigherNeighbors(triangles, adjacency, a, row);
-        offsets[a + 1] = static_cast<Id>(row.size());
-      }
-    });
+      HigherNeighbors(triangles, adjacency, a, row);
+      offsets[a + 1] = static_cast<Id>(row.size());
+    }
+  });
   for (Id a = 0; a < numberOfPoints; ++a)
   {
     offsets[a + 1] += offsets[a];
   }
   this->Ends.resize(2 * static_cast<size_t>(offsets[numberOfPoints]));
-  vtkSMPTools::For(0, numberOfPoints,
-    [&](Id begin, Id end)
+  vtkSMPTools::For(0, numberOfPoints, [&](Id begin, Id end) {
+    std::vector<Id> row;
+    for (Id a = begin; a < end; ++a)
     {
-      std::vector<Id> row;
-      for (Id a = begin; a < end; ++a)
+      HigherNeighbors(triangles, adjacency, a, row);
+      Id* out = this->Ends.data() + 2 * static_cast<size_t>(offsets[a]);
+      for (const Id b : row)
       {
-        HigherNeighbors(triangles, adjacency, a, row);
-        Id* out = this->Ends.data() + 2 * static_cast<size_t>(offsets[a]);
-        for (const Id b : row)
-        {
-          *out++ = a;
-          *out++ = b;
-        }
+        *out++ = a;
+        *out++ = b;
       }
-    });
+    }
+  });
 }
 
 //------------------------------------------------------------------------------

@@ -26,6 +26,7 @@
 #include "vtkTestErrorObserver.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace
@@ -245,6 +246,22 @@ void TestClamp(vtkMultiBlockDataSet* h)
   MESHLOD_CHECK_EQ(filter->GetActualLevelOfDetail(), 3.0);
   filter->SetLevelOfDetail(-2.0);
   MESHLOD_CHECK_EQ(filter->GetLevelOfDetail(), 0.0);
+  filter->SetTimeScale(-1.0);
+  MESHLOD_CHECK_GT(filter->GetTimeScale(), 0.0);
+  filter->SetMergeTolerance(2.0);
+  MESHLOD_CHECK_EQ(filter->GetMergeTolerance(), 1.0);
+  filter->SetCollapseFraction(-0.5);
+  MESHLOD_CHECK_EQ(filter->GetCollapseFraction(), 0.0);
+
+  // Every setting printed.
+  std::ostringstream printed;
+  filter->Print(printed);
+  for (const char* setting : { "LevelOfDetail", "UsePipelineTime", "TimeScale",
+         "TargetNumberOfTriangles", "CollapseFraction", "DropDegenerateTriangles",
+         "Correspondence", "MergeTolerance" })
+  {
+    MESHLOD_CHECK(printed.str().find(setting) != std::string::npos);
+  }
 }
 
 int ExpectError(vtkDataObject* input, const std::string& expected)
@@ -319,8 +336,7 @@ void TestErrors(vtkMultiBlockDataSet* h)
 // The same points, arrays and cells for the sequential and the default SMP backend.
 void TestBackends(vtkMultiBlockDataSet* h)
 {
-  auto compute = [&](const char* backend)
-  {
+  auto compute = [&](const char* backend) {
     vtkSMPTools::SetBackend(backend);
     vtkNew<vtkLODGeomorph> filter;
     filter->SetInputData(h);

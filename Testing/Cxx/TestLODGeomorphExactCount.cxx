@@ -290,8 +290,7 @@ void TestCluster()
 
 void TestBackends(vtkMultiBlockDataSet* h)
 {
-  auto compute = [&](const char* backend)
-  {
+  auto compute = [&](const char* backend) {
     vtkSMPTools::SetBackend(backend);
     vtkNew<vtkLODGeomorph> filter;
     filter->SetInputData(h);

@@ -228,8 +228,7 @@ void TestDecimatedPair()
   observer->Clear();
 
   // Same output for the sequential and the default backend.
-  auto compute = [&](const char* backend)
-  {
+  auto compute = [&](const char* backend) {
     vtkSMPTools::SetBackend(backend);
     vtkNew<vtkLODGeomorph> f;
     f->SetInputData(h);
