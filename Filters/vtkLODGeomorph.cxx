@@ -813,10 +813,16 @@ int vtkLODGeomorph::FillInputPortInformation(int vtkNotUsed(port), vtkInformatio
 int vtkLODGeomorph::RequestInformation(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** vtkNotUsed(inputVector), vtkInformationVector* outputVector)
 {
+  // Without pipeline time the filter is transparent to time: the executive has already copied
+  // the input's time steps, if any, to the output.
+  if (!this->UsePipelineTime)
+  {
+    return 1;
+  }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
   outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
-  if (!this->UsePipelineTime || this->GetNumberOfInputConnections(0) == 0)
+  if (this->GetNumberOfInputConnections(0) == 0)
   {
     return 1;
   }
@@ -848,8 +854,10 @@ int vtkLODGeomorph::RequestInformation(vtkInformation* vtkNotUsed(request),
 int vtkLODGeomorph::RequestUpdateExtent(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* vtkNotUsed(outputVector))
 {
-  // The hierarchy does not depend on time: do not pass our time request upstream.
-  if (vtkInformation* inInfo = inputVector[0]->GetInformationObject(0))
+  // With pipeline time, the time is the level of detail, not a request for the hierarchy: do
+  // not pass it upstream.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (this->UsePipelineTime && inInfo)
   {
     inInfo->Remove(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
   }

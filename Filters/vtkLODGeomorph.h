@@ -39,15 +39,16 @@
  * counts the builds); changing L only recomputes the points and the merge.
  *
  * @par Exact triangle count (TargetNumberOfTriangles >= 0, needs the morph arrays)
- * The output has exactly TargetNumberOfTriangles triangles when that count is reachable. The
- * finest level i whose next level has fewer triangles than asked is taken (a count equal to a
- * level's own gives that level itself), and level i's collapses are applied in CollapseRank
- * order, one point at a time (see Core/CollapseSchedule.h): a point that reaches its
- * MorphTarget merges with the points already there, and a triangle disappears as soon as two
- * of its corners have merged. A point step removes 0, 1 or 2 triangles (on a closed manifold
- * always 0 or 2, so only counts of the parity of the level's are reachable). When the count
- * is not reachable, the output has the largest reachable count below it. Counts above the
- * finest level's or below the coarsest level's are clamped to them, with a warning.
+ * The output has exactly TargetNumberOfTriangles triangles when that count is reachable. A
+ * count equal to a level's own gives that level itself; otherwise the transition from the
+ * coarsest level with more triangles (level i) to the next one is used, and level i's
+ * collapses are applied in CollapseRank order, one point at a time (Core/CollapseSchedule.h):
+ * a point that reaches its MorphTarget merges with the points already there, and a triangle
+ * disappears as soon as two of its corners have merged. A point joining a collapse is an edge
+ * collapse: it removes the two triangles of that edge (one on a boundary; a large cluster may
+ * remove more at once), so a closed manifold only reaches counts of its levels' parity. When
+ * the count is not reachable, the output has the largest reachable count below it. Counts
+ * above the finest level's or below the coarsest level's are clamped to them, with a warning.
  * CollapseFraction geomorphs the next collapse: the points of the next step that removes
  * triangles (with the steps before it that remove none) are moved that fraction of the way to
  * their targets, so that raising CollapseFraction from 0 to 1 and then lowering the count
@@ -70,11 +71,14 @@
  * UPDATE_TIME_STEP u gives L = u / s (clamped to [0, n - 1] silently, as readers clamp time);
  * the output's DATA_TIME_STEP is u. ParaView then shows one time step per level; to see the
  * continuous transitions, animate in Sequence mode rather than Snap To TimeSteps. Without a
- * time request, or with UsePipelineTime off, LevelOfDetail rules (and no time is published).
- * The number of levels is a property of the data, so RequestInformation brings the input up
- * to date first (the upstream runs then rather than in the data pass). The time request is not
- * passed upstream: the hierarchy does not depend on time and is never recomputed because time
- * changes.
+ * time request LevelOfDetail rules. The number of levels is a property of the data, so
+ * RequestInformation brings the input up to date first (the upstream runs then rather than in
+ * the data pass). The time request is not passed upstream: the hierarchy is taken to be
+ * independent of time and is never recomputed because time changes (an upstream with time
+ * steps of its own produces its default one).
+ * With UsePipelineTime off, LevelOfDetail always rules and the filter is transparent to time:
+ * the input's time steps, if any, are passed on and time requests go upstream, so a
+ * hierarchy that changes with time can be animated at a fixed level of detail.
  *
  * @par Errors
  * An input that is not a multiblock of vtkPolyData blocks, a hierarchy without levels,
@@ -118,8 +122,8 @@ public:
   ///@{
   /**
    * When on, a requested pipeline time u gives the level of detail L = u / TimeScale and the
-   * filter publishes one time step per level; when off, LevelOfDetail always rules and no time
-   * is published. Default on.
+   * filter publishes one time step per level; when off, LevelOfDetail always rules and the
+   * filter passes the input's time through. Default on.
    */
   vtkSetMacro(UsePipelineTime, bool);
   vtkGetMacro(UsePipelineTime, bool);
@@ -137,7 +141,8 @@ public:
   ///@{
   /**
    * Exact number of triangles wanted; negative turns the exact-count mode off. When on, it
-   * overrides the level of detail (time and LevelOfDetail). Needs the morph arrays. Range
+   * overrides the level of detail (time and LevelOfDetail). Needs the morph arrays: without
+   * them, the level with the largest count not above it is produced, with a warning. Range
    * [-1, VTK_ID_MAX], default -1 (off).
    */
   vtkSetClampMacro(TargetNumberOfTriangles, vtkIdType, -1, VTK_ID_MAX);

@@ -34,12 +34,30 @@ public:
   vtkTypeMacro(HierarchySource, vtkMultiBlockDataSetAlgorithm);
   vtkSmartPointer<vtkMultiBlockDataSet> Hierarchy;
   int Executions = 0;
+  std::vector<double> TimeSteps; // published when not empty
+  double RequestedTime = -1.0;   // the time of the last execution, -1 when none was asked
 
 protected:
   HierarchySource() { this->SetNumberOfInputPorts(0); }
+  int RequestInformation(
+    vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    vtkInformation* info = out->GetInformationObject(0);
+    if (!this->TimeSteps.empty())
+    {
+      const double range[2] = { this->TimeSteps.front(), this->TimeSteps.back() };
+      info->Set(
+        SDDP::TIME_STEPS(), this->TimeSteps.data(), static_cast<int>(this->TimeSteps.size()));
+      info->Set(SDDP::TIME_RANGE(), range, 2);
+    }
+    return 1;
+  }
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
   {
     ++this->Executions;
+    vtkInformation* info = out->GetInformationObject(0);
+    this->RequestedTime =
+      info->Has(SDDP::UPDATE_TIME_STEP()) ? info->Get(SDDP::UPDATE_TIME_STEP()) : -1.0;
     vtkMultiBlockDataSet::GetData(out)->ShallowCopy(this->Hierarchy);
     return 1;
   }
@@ -156,5 +174,24 @@ int TestLODGeomorphTime(int, char*[])
   MESHLOD_CHECK_EQ(timed->GetActualLevelOfDetail(), 0.5);
   MESHLOD_CHECK_EQ(timed->GetNumberOfLevels(), 2);
   MESHLOD_CHECK_EQ(source->Executions, 2);
+
+  // An upstream with time steps of its own. With pipeline time, the levels are the time steps
+  // and the upstream gets no time request; without, the filter is transparent to time.
+  vtkNew<HierarchySource> temporal;
+  temporal->Hierarchy = source->Hierarchy;
+  temporal->TimeSteps = { 10.0, 20.0, 30.0 };
+  vtkNew<vtkLODGeomorph> transparent;
+  transparent->SetInputConnection(temporal->GetOutputPort());
+  transparent->UpdateTimeStep(1.0);
+  MESHLOD_CHECK_EQ(transparent->GetOutputInformation(0)->Length(SDDP::TIME_STEPS()), 2);
+  MESHLOD_CHECK_EQ(temporal->RequestedTime, -1.0);
+  transparent->UsePipelineTimeOff();
+  transparent->SetLevelOfDetail(0.25);
+  transparent->UpdateTimeStep(20.0);
+  MESHLOD_CHECK_EQ(transparent->GetOutputInformation(0)->Length(SDDP::TIME_STEPS()), 3);
+  MESHLOD_CHECK_EQ(temporal->RequestedTime, 20.0);
+  MESHLOD_CHECK_EQ(transparent->GetActualLevelOfDetail(), 0.25);
+  MESHLOD_CHECK_EQ(
+    transparent->GetOutput()->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()), 20.0);
   return testing::Result();
 }
