@@ -39,35 +39,41 @@ struct Rows
   double W(vtkIdType q) const { return HasWeights ? this->Plan.Weights[q] : this->Plan.Weight; }
 };
 
-// Three components (points, normals, vectors), optionally scaled back to unit length.
-template <bool Renormalize, typename RowsT, typename ARange, typename BRange, typename OutRange>
+// Three components (points, normals, vectors).
+template <typename RowsT, typename ARange, typename BRange, typename OutRange>
 void Blend3(const RowsT& rows, const ARange& a, const BRange& b, OutRange& out, vtkIdType count)
 {
   using OutT = typename OutRange::value_type;
   vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType q = begin; q < end; ++q)
     {
-      const vtkIdType ia = 3 * rows.A(q);
-      const vtkIdType ib = 3 * rows.B(ia / 3);
+      const vtkIdType ia = rows.A(q);
+      const vtkIdType ib = rows.B(ia);
       const double w = rows.W(q);
-      double x = (1.0 - w) * static_cast<double>(a[ia]) + w * static_cast<double>(b[ib]);
-      double y = (1.0 - w) * static_cast<double>(a[ia + 1]) + w * static_cast<double>(b[ib + 1]);
-      double z = (1.0 - w) * static_cast<double>(a[ia + 2]) + w * static_cast<double>(b[ib + 2]);
-      if (Renormalize)
+      for (vtkIdType c = 0; c < 3; ++c)
       {
-        // In the output's precision: a float sqrt and division are several times cheaper.
-        const OutT length2 = static_cast<OutT>(x * x + y * y + z * z);
-        if (length2 > OutT(0))
-        {
-          const OutT scale = OutT(1) / std::sqrt(length2);
-          x *= scale;
-          y *= scale;
-          z *= scale;
-        }
+        out[3 * q + c] = static_cast<OutT>(
+          (1.0 - w) * static_cast<double>(a[3 * ia + c]) + w * static_cast<double>(b[3 * ib + c]));
       }
-      out[3 * q] = static_cast<OutT>(x);
-      out[3 * q + 1] = static_cast<OutT>(y);
-      out[3 * q + 2] = static_cast<OutT>(z);
+    }
+  });
+}
+
+// Scale 3-component tuples back to unit length, in place: a separate pass over contiguous
+// values, cheaper than doing it inside the gathering blend loop.
+template <typename OutRange>
+void RenormalizeTuples(OutRange& out, vtkIdType count)
+{
+  using T = typename OutRange::value_type;
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType q = begin; q < end; ++q)
+    {
+      const T x = out[3 * q], y = out[3 * q + 1], z = out[3 * q + 2];
+      const T length2 = x * x + y * y + z * z;
+      const T scale = length2 > T(0) ? T(1) / std::sqrt(length2) : T(1);
+      out[3 * q] = x * scale;
+      out[3 * q + 1] = y * scale;
+      out[3 * q + 2] = z * scale;
     }
   });
 }
@@ -99,13 +105,13 @@ void BlendRows(
   const BlendPlan& plan, const ARange& a, const BRange& b, OutRange& out, int nc, bool renormalize)
 {
   const Rows<HasSource, HasMap, HasWeights> rows{ plan };
-  if (nc == 3 && renormalize)
+  if (nc == 3)
   {
-    Blend3<true>(rows, a, b, out, plan.NumberOfPoints);
-  }
-  else if (nc == 3)
-  {
-    Blend3<false>(rows, a, b, out, plan.NumberOfPoints);
+    Blend3(rows, a, b, out, plan.NumberOfPoints);
+    if (renormalize)
+    {
+      RenormalizeTuples(out, plan.NumberOfPoints);
+    }
   }
   else
   {
