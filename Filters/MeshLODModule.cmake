@@ -42,7 +42,7 @@ vtk_module_include(MeshLOD::FiltersMeshLOD
     "$<BUILD_INTERFACE:${CMAKE_CURRENT_LIST_DIR}>")
 
 # The blend renormalises normals every frame: without errno, sqrt is a single instruction with
-# no library call behind it (about 25% faster here; nothing in MeshLOD reads errno).
+# no library call behind it (nothing in MeshLOD reads errno).
 set_source_files_properties(Filters/MeshLODBlend.cxx
   PROPERTIES
     COMPILE_OPTIONS "$<$<CXX_COMPILER_ID:GNU,Clang,AppleClang>:-fno-math-errno>")
