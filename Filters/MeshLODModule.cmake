@@ -2,6 +2,7 @@
 # vtk_module_build() (ours, or VTK's own for a remote module) re-enters it.
 
 set(meshlod_classes
+  vtkLODGeomorph
   vtkTriangleCollapseDecimation)
 
 # Exported helpers that are not VTK classes: not wrapped, but usable from C++ (the tests and the
@@ -14,6 +15,8 @@ set(meshlod_nowrap_headers
 set(meshlod_private_headers
   Filters/Core/CollapseCosts.h
   Filters/Core/CollapseMesh.h
+  Filters/Core/CollapseSchedule.h
+  Filters/Core/EdgeMerge.h
   Filters/Core/IndexedHeap.h
   Filters/Core/LevelData.h
   Filters/Core/LevelTracker.h
@@ -21,19 +24,25 @@ set(meshlod_private_headers
   Filters/Core/QuadricMetric.h
   Filters/Core/TriangleCollapse.h
   Filters/Core/TriangleMesh.h
+  Filters/MeshLODBlend.h
   Filters/MeshLODHierarchy.h
-  Filters/MeshLODInputMesh.h)
+  Filters/MeshLODInputMesh.h
+  Filters/MeshLODNearestCorrespondence.h)
 
 set(meshlod_sources
   Filters/Core/CollapseCosts.cxx
   Filters/Core/CollapseMesh.cxx
+  Filters/Core/CollapseSchedule.cxx
+  Filters/Core/EdgeMerge.cxx
   Filters/Core/LevelTracker.cxx
   Filters/Core/LocalSurfaceFit.cxx
   Filters/Core/QuadricMetric.cxx
   Filters/Core/TriangleCollapse.cxx
   Filters/Core/TriangleMesh.cxx
+  Filters/MeshLODBlend.cxx
   Filters/MeshLODHierarchy.cxx
   Filters/MeshLODInputMesh.cxx
+  Filters/MeshLODNearestCorrespondence.cxx
   Filters/MeshLODSurfaceDistance.cxx)
 
 list(TRANSFORM meshlod_classes PREPEND "Filters/")
@@ -46,3 +55,9 @@ vtk_module_add_module(MeshLOD::FiltersMeshLOD
 vtk_module_include(MeshLOD::FiltersMeshLOD
   PUBLIC
     "$<BUILD_INTERFACE:${CMAKE_CURRENT_LIST_DIR}>")
+
+# The blend renormalises normals every frame: without errno, sqrt is a single instruction with
+# no library call behind it (nothing in MeshLOD reads errno).
+set_source_files_properties(Filters/MeshLODBlend.cxx
+  PROPERTIES
+    COMPILE_OPTIONS "$<$<CXX_COMPILER_ID:GNU,Clang,AppleClang>:-fno-math-errno>")

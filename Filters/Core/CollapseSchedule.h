@@ -1,0 +1,53 @@
+// MeshLOD core: the order in which the collapses of one transition M_i -> M_i+1 are applied one
+// point at a time, and how many triangles are left after each step. vtkLODGeomorph uses it to
+// produce a mesh with an exact number of triangles.
+//
+// A point "settles" when it reaches its target (the point of level i+1 it becomes). A triangle
+// disappears as soon as two of its corners have settled on the same target. The steps:
+// - Step 0: the points already at their target (among them the points with CollapseRank -1,
+//   which keep their position).
+// - Then every other point, one per step. Collapses in increasing CollapseRank (a moving point
+//   with rank -1 counts as a collapse after all the others), the collapses of one rank in
+//   increasing target id. Points of one rank with the same target form one collapse; inside
+//   it, the next point is the lowest-id point joined by an edge to a point already settled on
+//   that target, or the lowest-id point left when none is.
+//   Settling a point next to a settled one is an edge collapse, so the intermediate meshes of a
+//   valid triangle collapse stay manifold, and a closed manifold loses two triangles per step.
+#ifndef meshlod_CollapseSchedule_h
+#define meshlod_CollapseSchedule_h
+
+#include "TriangleMesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace meshlod
+{
+struct VTKFILTERSMESHLOD_EXPORT CollapseSchedule
+{
+  /// RemovalStep of a triangle that survives the whole transition.
+  static constexpr Id Never = 0x7fffffff;
+
+  std::vector<Id> Step;        // per point: the step at which it settles (0: from the start)
+  std::vector<Id> Order;       // Order[s - 1] is the point that settles at step s
+  std::vector<Id> RemovalStep; // per triangle: the step at which it disappears, or Never
+  std::vector<Id> CountAfter;  // triangles left after k steps, k = 0 .. NumberOfSteps()
+
+  /// `target` and `rank` hold one entry per point; `atTarget[p]` is non-zero when point p is
+  /// already at its target position.
+  void Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints, const Id* target,
+    const std::int64_t* rank, const std::uint8_t* atTarget);
+
+  Id NumberOfSteps() const { return static_cast<Id>(this->Order.size()); }
+
+  /// The fewest steps that leave at most `count` triangles, or -1 when even all steps leave
+  /// more.
+  Id StepsForCount(std::int64_t count) const;
+
+  /// The first step after `steps` that removes a triangle, or -1 when none does.
+  Id NextRemovingStep(Id steps) const;
+};
+
+} // namespace meshlod
+
+#endif

@@ -1,0 +1,336 @@
+#include "MeshLODBlend.h"
+
+#include "MeshLODHierarchy.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
+#include "vtkPointData.h"
+#include "vtkSMPTools.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace meshlod
+{
+namespace
+{
+bool IsReal(vtkAbstractArray* array)
+{
+  return vtkDataArray::SafeDownCast(array) &&
+    (array->GetDataType() == VTK_FLOAT || array->GetDataType() == VTK_DOUBLE);
+}
+
+bool IsMorphArray(const char* name)
+{
+  return name &&
+    (!std::strcmp(name, names::MorphTarget) || !std::strcmp(name, names::MorphTargetId) ||
+      !std::strcmp(name, names::CollapseRank));
+}
+
+// Output rows: which finer-level row (A), coarser row (B) and weight output point q takes.
+// Specialised on the plan's indirections, so the common cases have no branch per point.
+template <bool HasSource, bool HasMap, bool HasWeights>
+struct Rows
+{
+  const BlendPlan& Plan;
+  vtkIdType A(vtkIdType q) const { return HasSource ? this->Plan.Source[q] : q; }
+  vtkIdType B(vtkIdType a) const { return HasMap ? this->Plan.Map[a] : a; }
+  double W(vtkIdType q) const { return HasWeights ? this->Plan.Weights[q] : this->Plan.Weight; }
+};
+
+// Three components (points, normals, vectors).
+template <typename RowsT, typename ARange, typename BRange, typename OutRange>
+void Blend3(const RowsT& rows, const ARange& a, const BRange& b, OutRange& out, vtkIdType count)
+{
+  using OutT = typename OutRange::value_type;
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType q = begin; q < end; ++q)
+    {
+      const vtkIdType ia = rows.A(q);
+      const vtkIdType ib = rows.B(ia);
+      const double w = rows.W(q);
+      for (vtkIdType c = 0; c < 3; ++c)
+      {
+        out[3 * q + c] = static_cast<OutT>(
+          (1.0 - w) * static_cast<double>(a[3 * ia + c]) + w * static_cast<double>(b[3 * ib + c]));
+      }
+    }
+  });
+}
+
+// Scale 3-component tuples back to unit length, in place: a separate pass over contiguous
+// values, cheaper than doing it inside the gathering blend loop.
+template <typename OutRange>
+void RenormalizeTuples(OutRange& out, vtkIdType count)
+{
+  using T = typename OutRange::value_type;
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType q = begin; q < end; ++q)
+    {
+      const T x = out[3 * q], y = out[3 * q + 1], z = out[3 * q + 2];
+      const T length2 = x * x + y * y + z * z;
+      const T scale = length2 > T(0) ? T(1) / std::sqrt(length2) : T(1);
+      out[3 * q] = x * scale;
+      out[3 * q + 1] = y * scale;
+      out[3 * q + 2] = z * scale;
+    }
+  });
+}
+
+// Any number of components.
+template <typename RowsT, typename ARange, typename BRange, typename OutRange>
+void BlendN(
+  const RowsT& rows, const ARange& a, const BRange& b, OutRange& out, vtkIdType count, int nc)
+{
+  using OutT = typename OutRange::value_type;
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType q = begin; q < end; ++q)
+    {
+      const vtkIdType ia = rows.A(q);
+      const vtkIdType ib = rows.B(ia);
+      const double w = rows.W(q);
+      for (int c = 0; c < nc; ++c)
+      {
+        out[q * nc + c] = static_cast<OutT>((1.0 - w) * static_cast<double>(a[ia * nc + c]) +
+          w * static_cast<double>(b[ib * nc + c]));
+      }
+    }
+  });
+}
+
+template <bool HasSource, bool HasMap, bool HasWeights, typename ARange, typename BRange,
+  typename OutRange>
+void BlendRows(
+  const BlendPlan& plan, const ARange& a, const BRange& b, OutRange& out, int nc, bool renormalize)
+{
+  const Rows<HasSource, HasMap, HasWeights> rows{ plan };
+  if (nc == 3)
+  {
+    Blend3(rows, a, b, out, plan.NumberOfPoints);
+    if (renormalize)
+    {
+      RenormalizeTuples(out, plan.NumberOfPoints);
+    }
+  }
+  else
+  {
+    BlendN(rows, a, b, out, plan.NumberOfPoints, nc);
+  }
+}
+
+struct BlendWorker
+{
+  const BlendPlan* Plan;
+  vtkDataArray* Out;
+  bool Renormalize;
+
+  template <typename AArray, typename BArray>
+  void operator()(AArray* a, BArray* b) const
+  {
+    const auto ar = vtk::DataArrayValueRange(a);
+    const auto br = vtk::DataArrayValueRange(b);
+    // Out is a->NewInstance(): the same concrete class as a.
+    auto outr = vtk::DataArrayValueRange(static_cast<AArray*>(this->Out));
+    const int nc = a->GetNumberOfComponents();
+    const BlendPlan& p = *this->Plan;
+    const bool renormalize = this->Renormalize;
+    if (!p.Source && !p.Map && !p.Weights && !renormalize)
+    {
+      // Same ids, one weight: a flat loop over the values.
+      using OutT = typename decltype(outr)::value_type;
+      const double w = p.Weight;
+      vtkSMPTools::For(0, p.NumberOfPoints * nc, [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType v = begin; v < end; ++v)
+        {
+          outr[v] = static_cast<OutT>(
+            (1.0 - w) * static_cast<double>(ar[v]) + w * static_cast<double>(br[v]));
+        }
+      });
+      return;
+    }
+    switch ((p.Source ? 4 : 0) + (p.Map ? 2 : 0) + (p.Weights ? 1 : 0))
+    {
+      case 0:
+        BlendRows<false, false, false>(p, ar, br, outr, nc, renormalize);
+        break;
+      case 1:
+        BlendRows<false, false, true>(p, ar, br, outr, nc, renormalize);
+        break;
+      case 2:
+        BlendRows<false, true, false>(p, ar, br, outr, nc, renormalize);
+        break;
+      case 3:
+        BlendRows<false, true, true>(p, ar, br, outr, nc, renormalize);
+        break;
+      case 4:
+        BlendRows<true, false, false>(p, ar, br, outr, nc, renormalize);
+        break;
+      case 5:
+        BlendRows<true, false, true>(p, ar, br, outr, nc, renormalize);
+        break;
+      case 6:
+        BlendRows<true, true, false>(p, ar, br, outr, nc, renormalize);
+        break;
+      default:
+        BlendRows<true, true, true>(p, ar, br, outr, nc, renormalize);
+        break;
+    }
+  }
+};
+
+// Row of the finer array (a) or of the coarser one (b) that output point q takes.
+struct SwitchRows
+{
+  const BlendPlan& Plan;
+  bool HasB;
+
+  bool TakesB(vtkIdType q) const { return this->HasB && this->Plan.WeightOf(q) >= 0.5; }
+  vtkIdType RowA(vtkIdType q) const { return this->Plan.Source ? this->Plan.Source[q] : q; }
+  vtkIdType RowB(vtkIdType q) const
+  {
+    const vtkIdType ia = this->RowA(q);
+    return this->Plan.Map ? this->Plan.Map[ia] : ia;
+  }
+};
+
+struct SwitchWorker
+{
+  const SwitchRows* Rows;
+  vtkDataArray* Out;
+
+  template <typename AArray, typename BArray>
+  void operator()(AArray* a, BArray* b) const
+  {
+    const auto at = vtk::DataArrayTupleRange(a);
+    const auto bt = vtk::DataArrayTupleRange(b);
+    auto outt = vtk::DataArrayTupleRange(static_cast<AArray*>(this->Out));
+    const SwitchRows& rows = *this->Rows;
+    vtkSMPTools::For(0, outt.size(), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType q = begin; q < end; ++q)
+      {
+        if (rows.TakesB(q))
+        {
+          outt[q] = bt[rows.RowB(q)];
+        }
+        else
+        {
+          outt[q] = at[rows.RowA(q)];
+        }
+      }
+    });
+  }
+};
+
+// The array of `coarse` matching `a` (same name, components and kind), or null.
+vtkAbstractArray* Counterpart(vtkPointData* coarse, vtkAbstractArray* a)
+{
+  if (!coarse || !a->GetName())
+  {
+    return nullptr;
+  }
+  vtkAbstractArray* b = coarse->GetAbstractArray(a->GetName());
+  if (!b || b->GetNumberOfComponents() != a->GetNumberOfComponents() || IsReal(a) != IsReal(b) ||
+    (vtkDataArray::SafeDownCast(a) == nullptr) != (vtkDataArray::SafeDownCast(b) == nullptr))
+  {
+    return nullptr;
+  }
+  return b;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkDataArray> BlendRealArray(
+  vtkDataArray* a, vtkDataArray* b, const BlendPlan& plan, bool renormalize)
+{
+  auto out = vtk::TakeSmartPointer(a->NewInstance());
+  out->SetName(a->GetName());
+  out->SetNumberOfComponents(a->GetNumberOfComponents());
+  out->SetNumberOfTuples(plan.NumberOfPoints);
+  renormalize = renormalize && a->GetNumberOfComponents() == 3;
+  BlendWorker worker{ &plan, out, renormalize };
+  using Reals = vtkArrayDispatch::Reals;
+  if (!vtkArrayDispatch::Dispatch2ByValueType<Reals, Reals>::Execute(a, b, worker))
+  {
+    worker(a, b); // any other array implementation, through the generic API
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkAbstractArray> SwitchArray(
+  vtkAbstractArray* a, vtkAbstractArray* b, const BlendPlan& plan)
+{
+  auto out = vtk::TakeSmartPointer(a->NewInstance());
+  out->SetName(a->GetName());
+  out->SetNumberOfComponents(a->GetNumberOfComponents());
+  out->SetNumberOfTuples(plan.NumberOfPoints);
+  const SwitchRows rows{ plan, b != nullptr };
+  auto* da = vtkDataArray::SafeDownCast(a);
+  auto* db = vtkDataArray::SafeDownCast(b);
+  if (da && (db || !b))
+  {
+    SwitchWorker worker{ &rows, vtkDataArray::SafeDownCast(out) };
+    if (!vtkArrayDispatch::Dispatch2SameValueType::Execute(da, db ? db : da, worker))
+    {
+      worker(da, db ? db : da);
+    }
+    return out;
+  }
+  // String and other non-numeric arrays: one tuple at a time.
+  for (vtkIdType q = 0; q < plan.NumberOfPoints; ++q)
+  {
+    if (rows.TakesB(q))
+    {
+      out->SetTuple(q, rows.RowB(q), b);
+    }
+    else
+    {
+      out->SetTuple(q, rows.RowA(q), a);
+    }
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+void BlendPointData(
+  vtkPointData* fine, vtkPointData* coarse, const BlendPlan& plan, vtkPointData* out)
+{
+  out->Initialize();
+  const bool sameRows = plan.Source == nullptr && plan.Weights == nullptr;
+  for (int i = 0; i < fine->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* a = fine->GetAbstractArray(i);
+    if (IsMorphArray(a->GetName()))
+    {
+      continue;
+    }
+    vtkAbstractArray* b = Counterpart(coarse, a);
+    vtkSmartPointer<vtkAbstractArray> result;
+    if (sameRows && (plan.Weight == 0.0 || !b || (!IsReal(a) && plan.Weight < 0.5)))
+    {
+      result = a; // the output equals the finer level's array: share it
+    }
+    else if (IsReal(a) && b)
+    {
+      const bool normals = a == fine->GetNormals();
+      result =
+        BlendRealArray(vtkDataArray::SafeDownCast(a), vtkDataArray::SafeDownCast(b), plan, normals);
+    }
+    else
+    {
+      result = SwitchArray(a, b, plan);
+    }
+    const int attribute = fine->IsArrayAnAttribute(i);
+    if (attribute >= 0)
+    {
+      out->SetAttribute(result, attribute);
+    }
+    else
+    {
+      out->AddArray(result);
+    }
+  }
+}
+
+} // namespace meshlod

@@ -1,0 +1,49 @@
+// Blending point arrays between two levels, for vtkLODGeomorph: output point q takes
+// (1 - w) a[A] + w b[B], with A = Source[q] the point of the finer level it comes from and
+// B = Map[A] the row of the coarser arrays that point goes to.
+#ifndef MeshLODBlend_h
+#define MeshLODBlend_h
+
+#include "Core/TriangleMesh.h"
+#include "vtkFiltersMeshLODModule.h"
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+class vtkAbstractArray;
+class vtkDataArray;
+class vtkPointData;
+
+namespace meshlod
+{
+struct BlendPlan
+{
+  vtkIdType NumberOfPoints = 0;    // output points
+  const Id* Source = nullptr;      // output point -> finer-level point; null: the same id
+  const Id* Map = nullptr;         // finer-level point -> row of the coarser arrays; null: same
+  const double* Weights = nullptr; // per output point; null: `Weight` for every point
+  double Weight = 0.0;
+
+  double WeightOf(vtkIdType q) const { return this->Weights ? this->Weights[q] : this->Weight; }
+};
+
+/// (1 - w) a + w b for floating-point arrays, in a's type, computed in double (so w = 0 gives a
+/// and w = 1 gives b exactly), one vtkSMPTools loop. With `renormalize`, 3-component tuples
+/// are scaled back to unit length (normals).
+VTKFILTERSMESHLOD_EXPORT vtkSmartPointer<vtkDataArray> BlendRealArray(
+  vtkDataArray* a, vtkDataArray* b, const BlendPlan& plan, bool renormalize);
+
+/// Arrays that are not interpolated (integers: ids, labels; strings): b's value where w >= 0.5,
+/// a's value elsewhere (a's value everywhere when b is null).
+VTKFILTERSMESHLOD_EXPORT vtkSmartPointer<vtkAbstractArray> SwitchArray(
+  vtkAbstractArray* a, vtkAbstractArray* b, const BlendPlan& plan);
+
+/// Every array of `fine` except the morph arrays, blended with the array of the same name and
+/// number of components in `coarse` (floating-point arrays blended, the others switched; an
+/// array `coarse` lacks keeps the finer level's values). Attributes are kept; Normals are
+/// renormalised. Arrays are shared, not copied, wherever the output equals them.
+VTKFILTERSMESHLOD_EXPORT void BlendPointData(
+  vtkPointData* fine, vtkPointData* coarse, const BlendPlan& plan, vtkPointData* out);
+
+} // namespace meshlod
+
+#endif

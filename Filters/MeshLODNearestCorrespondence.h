@@ -1,0 +1,31 @@
+// Correspondence between two LOD models that share no morph data, by nearest vertices (Pan,
+// Zhou, Shi, "A New Mesh Simplification Algorithm Based on Triangle Collapses", section 4,
+// steps 1 and 2; the same method is in Zhou, Zhang, Shi, Pan, section 5). Used by
+// vtkLODGeomorph.
+#ifndef MeshLODNearestCorrespondence_h
+#define MeshLODNearestCorrespondence_h
+
+#include "Core/TriangleMesh.h"
+#include "vtkFiltersMeshLODModule.h"
+
+#include <vector>
+
+class vtkPoints;
+
+namespace meshlod
+{
+/// For every point of `fine`, its partner point in `coarse`:
+/// 1. every coarse point takes its nearest fine point. When several coarse points pick the same
+///    fine point, the nearest keeps it (the lowest id on ties) and the others, in increasing id,
+///    take their nearest fine point not taken yet, so that every coarse point is reached at
+///    t = 1 whenever the fine model has at least as many points (the paper leaves such
+///    conflicts open);
+/// 2. every fine point left without a partner takes its nearest coarse point.
+/// Nearest-point queries run on vtkStaticPointLocator, in parallel; the result does not depend
+/// on the number of threads.
+VTKFILTERSMESHLOD_EXPORT void NearestVertexCorrespondence(
+  vtkPoints* fine, vtkPoints* coarse, std::vector<Id>& partner);
+
+} // namespace meshlod
+
+#endif

@@ -1,0 +1,247 @@
+/**
+ * @class   vtkLODGeomorph
+ * @brief   continuous level of detail between the levels of a LOD hierarchy (geomorphs)
+ *
+ * vtkLODGeomorph takes a LOD hierarchy and produces one triangle mesh at a continuous level of
+ * detail L in [0, n - 1], n being the number of levels: L = i + t (i = floor(L), 0 <= t < 1)
+ * is level i's connectivity with every point moved the fraction t of the way to where it goes
+ * in level i + 1. L = n - 1 is the coarsest level itself. The level of detail comes from the
+ * pipeline time (animating time walks smoothly through the levels) or from LevelOfDetail; or
+ * TargetNumberOfTriangles asks for an exact triangle count.
+ *
+ * @par Input
+ * A vtkMultiBlockDataSet of vtkPolyData levels, block 0 the finest (the layout of
+ * MeshLODHierarchy.h, produced by vtkTriangleCollapseDecimation and vtkVertexClusterOctree).
+ * Any list of LOD meshes works too, e.g. several outputs of vtkQuadricDecimation gathered in a
+ * multiblock: see Correspondence.
+ *
+ * @par With morph data (Correspondence MorphArrays)
+ * The levels carry the point arrays MorphTarget, MorphTargetId and CollapseRank. The output at
+ * L = i + t is the partial collapse M_i(t) of Gieng, Hamann, Joy, Schussman and Trotts, "Smooth
+ * Hierarchical Surface Triangulations" (section 6): level i's triangles, every point p at
+ * (1 - t) p + t MorphTarget(p). It shares level i's cell arrays (the connectivity does not
+ * change within a level) and computes only the points, in one vtkSMPTools loop. At t = 0 the
+ * output equals level i (its arrays are shared); as t -> 1 its geometry tends to level i + 1's
+ * (the collapsing triangles shrink to their collapse points and are kept, with vanishing area:
+ * the output stays a valid mesh with fixed connectivity). DropDegenerateTriangles removes the
+ * triangles whose corners coincide in the output up to rounding.
+ *
+ * @par Without morph data (Correspondence NearestVertices)
+ * The correspondence between level i and level i + 1 is built by nearest vertices, as in Pan,
+ * Zhou and Shi, "A New Mesh Simplification Algorithm Based on Triangle Collapses" (section 4):
+ * every coarse point takes its nearest fine point, then every fine point left alone takes its
+ * nearest coarse point (vtkStaticPointLocator; a fine point wanted by several coarse points
+ * goes to the nearest, the others take their nearest free fine point). Each fine point p of
+ * level i goes to (1 - t) p + t partner(p); then the points joined by an edge of level i that
+ * are closer than MergeTolerance are merged (into the lowest id of each group, at its
+ * position) and the triangles that degenerate are removed. The correspondence of a pair of
+ * levels is built once and kept until the input changes (GetNumberOfCorrespondenceBuilds()
+ * counts the builds); changing L only recomputes the points and the merge.
+ *
+ * @par Exact triangle count (TargetNumberOfTriangles >= 0, needs the morph arrays)
+ * The output has exactly TargetNumberOfTriangles triangles when that count is reachable. A
+ * count equal to a level's own gives that level itself; otherwise the transition from the
+ * coarsest level with more triangles (level i) to the next one is used, and level i's
+ * collapses are applied in CollapseRank order, one point at a time (Core/CollapseSchedule.h):
+ * a point that reaches its MorphTarget merges with the points already there, and a triangle
+ * disappears as soon as two of its corners have merged. A point joining a collapse is an edge
+ * collapse: it removes the two triangles of that edge (one on a boundary; a large cluster may
+ * remove more at once), so a closed manifold only reaches counts of its levels' parity. When
+ * the count is not reachable, the output has the largest reachable count below it. Counts
+ * above the finest level's or below the coarsest level's are clamped to them, with a warning.
+ * CollapseFraction geomorphs the next collapse: the points of the next step that removes
+ * triangles (with the steps before it that remove none) are moved that fraction of the way to
+ * their targets, so that raising CollapseFraction from 0 to 1 and then lowering the count
+ * moves continuously. The output has the triangle count asked for whatever the fraction.
+ *
+ * @par Point and cell data
+ * Every point-data array of level i is carried to the output. Floating-point arrays are
+ * blended like the points: (1 - t) a(p) + t a'(MorphTargetId(p)), a' being the array of the
+ * same name in level i + 1 (the partner point's value without morph data); the Normals
+ * attribute is renormalised. Integer and string arrays (ids, labels, categories) are not
+ * interpolated: a point takes level i + 1's value from t >= 0.5 on, level i's before (in the
+ * exact-count mode: once it has settled, or moved at least half way). An array level i + 1
+ * lacks keeps level i's values. The morph arrays themselves are not passed. Cell data: level
+ * i's, for the triangles kept. Field data: LevelOfDetail (double), the L produced (for an
+ * exact count: i + the fraction of level i's steps applied).
+ *
+ * @par Time
+ * With UsePipelineTime on (the default), RequestInformation publishes TIME_STEPS = {0, s, 2s,
+ * ..., (n - 1) s} and TIME_RANGE = [0, (n - 1) s], s = TimeScale, and a requested
+ * UPDATE_TIME_STEP u gives L = u / s (clamped to [0, n - 1] silently, as readers clamp time);
+ * the output's DATA_TIME_STEP is u. ParaView then shows one time step per level; to see the
+ * continuous transitions, animate in Sequence mode rather than Snap To TimeSteps. Without a
+ * time request LevelOfDetail rules. The number of levels is a property of the data, so
+ * RequestInformation brings the input up to date first (the upstream runs then rather than in
+ * the data pass). The time request is not passed upstream: the hierarchy is taken to be
+ * independent of time and is never recomputed because time changes (an upstream with time
+ * steps of its own produces its default one).
+ * With UsePipelineTime off, LevelOfDetail always rules and the filter is transparent to time:
+ * the input's time steps, if any, are passed on and time requests go upstream, so a
+ * hierarchy that changes with time can be animated at a fixed level of detail.
+ *
+ * @par Errors
+ * An input that is not a multiblock of vtkPolyData blocks, a hierarchy without levels,
+ * incomplete or out-of-range morph arrays (meshlod::CheckHierarchyLayout), an exact count or
+ * NearestVertices on levels that are not all triangles: an error and an empty output. A level
+ * without points gives an empty output without error.
+ *
+ * @sa vtkTriangleCollapseDecimation vtkVertexClusterOctree vtkQuadricDecimation
+ */
+#ifndef vtkLODGeomorph_h
+#define vtkLODGeomorph_h
+
+#include "vtkFiltersMeshLODModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+#include <memory>
+
+class VTKFILTERSMESHLOD_EXPORT vtkLODGeomorph : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkLODGeomorph* New();
+  vtkTypeMacro(vtkLODGeomorph, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum CorrespondenceModes
+  {
+    AUTOMATIC = 0,       // MORPH_ARRAYS when level 0 has any morph array, else NEAREST_VERTICES
+    MORPH_ARRAYS = 1,    // MorphTarget / MorphTargetId / CollapseRank (an error when missing)
+    NEAREST_VERTICES = 2 // nearest-vertex correspondence, morph arrays ignored
+  };
+
+  ///@{
+  /**
+   * The level of detail L, used when no pipeline time rules (see UsePipelineTime). Range
+   * [0, n - 1]: larger values are clamped to the coarsest level with a warning. Default 0.
+   */
+  vtkSetClampMacro(LevelOfDetail, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(LevelOfDetail, double);
+  ///@}
+
+  ///@{
+  /**
+   * When on, a requested pipeline time u gives the level of detail L = u / TimeScale and the
+   * filter publishes one time step per level; when off, LevelOfDetail always rules and the
+   * filter passes the input's time through. Default on.
+   */
+  vtkSetMacro(UsePipelineTime, bool);
+  vtkGetMacro(UsePipelineTime, bool);
+  vtkBooleanMacro(UsePipelineTime, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Pipeline time per level: level i is at time i * TimeScale. Range (0, inf), default 1.
+   */
+  vtkSetClampMacro(TimeScale, double, VTK_DBL_MIN, VTK_DOUBLE_MAX);
+  vtkGetMacro(TimeScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * Exact number of triangles wanted; negative turns the exact-count mode off. When on, it
+   * overrides the level of detail (time and LevelOfDetail). Needs the morph arrays: without
+   * them, the level with the largest count not above it is produced, with a warning. Range
+   * [-1, VTK_ID_MAX], default -1 (off).
+   */
+  vtkSetClampMacro(TargetNumberOfTriangles, vtkIdType, -1, VTK_ID_MAX);
+  vtkGetMacro(TargetNumberOfTriangles, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * Exact-count mode only: how far the points of the next collapse have moved toward their
+   * targets. At 1 they have arrived, but the triangles they remove are still there (with zero
+   * area). Range [0, 1], default 0.
+   */
+  vtkSetClampMacro(CollapseFraction, double, 0.0, 1.0);
+  vtkGetMacro(CollapseFraction, double);
+  ///@}
+
+  ///@{
+  /**
+   * With morph data, remove the triangles that are degenerate in the output: two corners
+   * closer than 4 units in the last place of the point type at the scale of the level (4
+   * epsilon times the diagonal of its bounding box), or exactly zero area. Collapsing triangles
+   * become such near t = 1 (float coordinates round onto the collapse points). Level i itself
+   * (t = 0) is never touched. Off keeps level i's connectivity (shared). Default off.
+   */
+  vtkSetMacro(DropDegenerateTriangles, bool);
+  vtkGetMacro(DropDegenerateTriangles, bool);
+  vtkBooleanMacro(DropDegenerateTriangles, bool);
+  ///@}
+
+  ///@{
+  /**
+   * How points of level i correspond to points of level i + 1 (CorrespondenceModes). Default
+   * AUTOMATIC.
+   */
+  vtkSetClampMacro(Correspondence, int, AUTOMATIC, NEAREST_VERTICES);
+  vtkGetMacro(Correspondence, int);
+  void SetCorrespondenceToAutomatic() { this->SetCorrespondence(AUTOMATIC); }
+  void SetCorrespondenceToMorphArrays() { this->SetCorrespondence(MORPH_ARRAYS); }
+  void SetCorrespondenceToNearestVertices() { this->SetCorrespondence(NEAREST_VERTICES); }
+  ///@}
+
+  ///@{
+  /**
+   * NearestVertices only: points joined by an edge and closer than MergeTolerance times the
+   * diagonal of level i's bounding box are merged. The default 1e-4 is well below a pixel when
+   * the mesh fills a 4K screen (1 / 3840 = 2.6e-4), so merging is invisible; 0 merges only
+   * coincident points (which always happens at t = 1). Range [0, 1], default 1e-4.
+   */
+  vtkSetClampMacro(MergeTolerance, double, 0.0, 1.0);
+  vtkGetMacro(MergeTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Results of the last execution: number of levels of the input, level of detail produced,
+   * triangles in the output, correspondence used (MORPH_ARRAYS or NEAREST_VERTICES).
+   */
+  vtkGetMacro(NumberOfLevels, int);
+  vtkGetMacro(ActualLevelOfDetail, double);
+  vtkGetMacro(ActualNumberOfTriangles, vtkIdType);
+  vtkGetMacro(ActualCorrespondence, int);
+  ///@}
+
+  /**
+   * How many nearest-vertex correspondences (one per pair of levels) have been built since the
+   * filter was created. Stays put when only the level of detail changes.
+   */
+  vtkGetMacro(NumberOfCorrespondenceBuilds, int);
+
+protected:
+  vtkLODGeomorph();
+  ~vtkLODGeomorph() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double LevelOfDetail = 0.0;
+  bool UsePipelineTime = true;
+  double TimeScale = 1.0;
+  vtkIdType TargetNumberOfTriangles = -1;
+  double CollapseFraction = 0.0;
+  bool DropDegenerateTriangles = false;
+  int Correspondence = AUTOMATIC;
+  double MergeTolerance = 1e-4;
+
+  int NumberOfLevels = 0;
+  double ActualLevelOfDetail = 0.0;
+  vtkIdType ActualNumberOfTriangles = 0;
+  int ActualCorrespondence = AUTOMATIC;
+  int NumberOfCorrespondenceBuilds = 0;
+
+private:
+  vtkLODGeomorph(const vtkLODGeomorph&) = delete;
+  void operator=(const vtkLODGeomorph&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
+#endif

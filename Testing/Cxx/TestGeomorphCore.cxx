@@ -1,0 +1,137 @@
+// The core pieces of vtkLODGeomorph on tiny hand-made meshes with known answers: the collapse
+// schedule of the exact-count mode and the edge merge of the nearest-vertex mode.
+#include "Core/CollapseSchedule.h"
+#include "Core/EdgeMerge.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestHierarchies.h"
+#include "MeshLODTestMeshes.h"
+
+#include "vtkPolyData.h"
+
+#include <vector>
+
+namespace
+{
+using namespace meshlod;
+
+// The 3x3 grid (points j * 4 + i; square (i, j) split along a - c into (a, a+1, a+5) and
+// (a, a+5, a+4), triangle ids 2 s and 2 s + 1 for square s = 3 j + i), with the four middle
+// points 5, 6, 9, 10 clustered into one collapse (rank 0, target 5) and every other point
+// fixed.
+//
+//   12 13 14 15
+//    8 [9 10] 11
+//    4 [5  6]  7
+//    0  1  2  3
+void TestCluster()
+{
+  const TriangleMesh grid = testing::ToTriangleMesh(testing::MakeGrid(3, 3));
+  std::vector<Id> target(16);
+  std::vector<std::int64_t> rank(16, -1);
+  std::vector<std::uint8_t> atTarget(16, 1);
+  for (Id p = 0; p < 16; ++p)
+  {
+    target[p] = p;
+  }
+  for (const Id p : { 5, 6, 9, 10 })
+  {
+    target[p] = 5;
+    rank[p] = 0;
+    atTarget[p] = 0;
+  }
+  CollapseSchedule s;
+  s.Build(grid.Triangles.data(), 18, 16, target.data(), rank.data(), atTarget.data());
+  // 5 first (lowest id), then the lowest id joined to a settled point: 6, 9, then 10.
+  MESHLOD_CHECK(s.Order == std::vector<Id>({ 5, 6, 9, 10 }));
+  MESHLOD_CHECK_EQ(s.Step[0], 0);
+  MESHLOD_CHECK_EQ(s.Step[10], 4);
+  // 6 joins 5: (1, 6, 5) and (5, 6, 10) go; 9: (5, 10, 9) and (4, 5, 9); 10: (6, 11, 10) and
+  // (9, 10, 14).
+  MESHLOD_CHECK(s.CountAfter == std::vector<Id>({ 18, 18, 16, 14, 12 }));
+  MESHLOD_CHECK_EQ(s.RemovalStep[3], 2);
+  MESHLOD_CHECK_EQ(s.RemovalStep[8], 2);
+  MESHLOD_CHECK_EQ(s.RemovalStep[9], 3);
+  MESHLOD_CHECK_EQ(s.RemovalStep[6], 3);
+  MESHLOD_CHECK_EQ(s.RemovalStep[11], 4);
+  MESHLOD_CHECK_EQ(s.RemovalStep[14], 4);
+  MESHLOD_CHECK_EQ(s.RemovalStep[0], CollapseSchedule::Never);
+  MESHLOD_CHECK_EQ(s.StepsForCount(100), 0);
+  MESHLOD_CHECK_EQ(s.StepsForCount(18), 0);
+  MESHLOD_CHECK_EQ(s.StepsForCount(17), 2);
+  MESHLOD_CHECK_EQ(s.StepsForCount(16), 2);
+  MESHLOD_CHECK_EQ(s.StepsForCount(15), 3);
+  MESHLOD_CHECK_EQ(s.StepsForCount(12), 4);
+  MESHLOD_CHECK_EQ(s.StepsForCount(11), -1);
+  MESHLOD_CHECK_EQ(s.NextRemovingStep(0), 2);
+  MESHLOD_CHECK_EQ(s.NextRemovingStep(2), 3);
+  MESHLOD_CHECK_EQ(s.NextRemovingStep(4), -1);
+
+  // Point 9 already at the collapse point: it settles at step 0, then each time the lowest id
+  // joined to a settled point: 5 (joined to 9), 6 (joined to 5), 10.
+  atTarget[9] = 1;
+  s.Build(grid.Triangles.data(), 18, 16, target.data(), rank.data(), atTarget.data());
+  MESHLOD_CHECK(s.Order == std::vector<Id>({ 5, 6, 10 }));
+  MESHLOD_CHECK_EQ(s.Step[9], 0);
+  // 5 joins 9: (5, 10, 9) and (4, 5, 9); 6 joins: (1, 6, 5), (5, 6, 10); 10: (6, 11, 10),
+  // (9, 10, 14).
+  MESHLOD_CHECK(s.CountAfter == std::vector<Id>({ 18, 16, 14, 12 }));
+
+  // Two collapses: {1, 2} (rank 1) and {13, 14} (rank 0): rank order first.
+  atTarget.assign(16, 1);
+  rank.assign(16, -1);
+  for (Id p = 0; p < 16; ++p)
+  {
+    target[p] = p;
+  }
+  target[2] = 1;
+  target[14] = 13;
+  rank[1] = rank[2] = 1;
+  rank[13] = rank[14] = 0;
+  atTarget[1] = atTarget[2] = atTarget[13] = atTarget[14] = 0;
+  s.Build(grid.Triangles.data(), 18, 16, target.data(), rank.data(), atTarget.data());
+  MESHLOD_CHECK(s.Order == std::vector<Id>({ 13, 14, 1, 2 }));
+  // Edge 13-14 has one triangle (9, 14, 13), edge 1-2 one triangle (1, 2, 6): boundary edges.
+  MESHLOD_CHECK(s.CountAfter == std::vector<Id>({ 18, 18, 17, 17, 16 }));
+
+  // One collapse {0, 3, 4}: 4 (joined to 0) settles before 3 (joined to neither), so the
+  // boundary triangle (0, 5, 4) goes one step earlier than in plain id order.
+  atTarget.assign(16, 1);
+  rank.assign(16, -1);
+  for (Id p = 0; p < 16; ++p)
+  {
+    target[p] = p;
+  }
+  for (const Id p : { 0, 3, 4 })
+  {
+    target[p] = 0;
+    rank[p] = 0;
+    atTarget[p] = 0;
+  }
+  s.Build(grid.Triangles.data(), 18, 16, target.data(), rank.data(), atTarget.data());
+  MESHLOD_CHECK(s.Order == std::vector<Id>({ 0, 4, 3 }));
+  MESHLOD_CHECK(s.CountAfter == std::vector<Id>({ 18, 18, 17, 17 }));
+}
+
+// The 1x1 grid: edges (0,1) (0,2) (0,3) (1,3) (2,3); merging along (1,3) and (2,3).
+void TestEdgeMerge()
+{
+  const TriangleMesh square = testing::ToTriangleMesh(testing::MakeGrid(1, 1));
+  EdgeList edges;
+  edges.Build(square.Triangles.data(), 2, 4);
+  MESHLOD_CHECK(edges.Ends == std::vector<Id>({ 0, 1, 0, 2, 0, 3, 1, 3, 2, 3 }));
+  const std::uint8_t merge[5] = { 0, 0, 0, 1, 1 };
+  std::vector<Id> representative;
+  MESHLOD_CHECK_EQ(MergeAlongEdges(edges, merge, 4, representative), 2);
+  MESHLOD_CHECK(representative == std::vector<Id>({ 0, 1, 1, 1 }));
+  const std::uint8_t none[5] = { 0, 0, 0, 0, 0 };
+  MESHLOD_CHECK_EQ(MergeAlongEdges(edges, none, 4, representative), 0);
+  MESHLOD_CHECK(representative == std::vector<Id>({ 0, 1, 2, 3 }));
+}
+} // namespace
+
+int TestGeomorphCore(int, char*[])
+{
+  TestCluster();
+  TestEdgeMerge();
+  return meshlod::testing::Result();
+}

@@ -1,0 +1,284 @@
+// vtkLODGeomorph without morph data: the nearest-vertex correspondence (hand-made cases with
+// known partners, conflicts), the blend and merge between two vtkQuadricDecimation outputs,
+// the correspondence cache, and the same output for every SMP backend.
+#include "vtkLODGeomorph.h"
+
+#include "MeshLODHierarchy.h"
+#include "MeshLODNearestCorrespondence.h"
+#include "MeshLODSurfaceDistance.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestHierarchies.h"
+#include "MeshLODTestMeshes.h"
+
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkIntArray.h"
+#include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkQuadricDecimation.h"
+#include "vtkSMPTools.h"
+#include "vtkStaticPointLocator.h"
+#include "vtkTestErrorObserver.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace
+{
+using namespace meshlod;
+
+vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, int i)
+{
+  return vtkPolyData::SafeDownCast(hierarchy->GetBlock(i));
+}
+
+vtkPolyData* Run(vtkLODGeomorph* filter, double lod)
+{
+  filter->SetLevelOfDetail(lod);
+  filter->Update();
+  return filter->GetOutput();
+}
+
+// Largest distance from a point of `a` to the nearest point of `b`.
+double OneSidedPointDistance(vtkPolyData* a, vtkPolyData* b)
+{
+  vtkNew<vtkStaticPointLocator> locator;
+  locator->SetDataSet(b);
+  locator->BuildLocator();
+  double worst = 0.0;
+  for (vtkIdType p = 0; p < a->GetNumberOfPoints(); ++p)
+  {
+    double x[3], y[3];
+    a->GetPoint(p, x);
+    b->GetPoint(locator->FindClosestPoint(x), y);
+    worst = std::max(worst, std::sqrt(vtkMath::Distance2BetweenPoints(x, y)));
+  }
+  return worst;
+}
+
+// Fine: the 2x2 grid (points j * 3 + i at (i, j)). Coarse: a square on (0, 0), (2.2, 0),
+// (0, 2.2), (2.2, 2.2). Partners: coarse corners take the fine corners 0, 2, 6, 8; the others
+// their nearest corner: 1, 3, 4 -> 0; 5 -> 1; 7 -> 2.
+void TestSmallCorrespondence()
+{
+  vtkSmartPointer<vtkPolyData> fine = testing::MakeGrid(2, 2);
+  vtkSmartPointer<vtkPolyData> coarse =
+    testing::MakePolyData({ 0, 0, 0, 2.2, 0, 0, 0, 2.2, 0, 2.2, 2.2, 0 }, { 0, 1, 3, 0, 3, 2 });
+  std::vector<Id> partner;
+  NearestVertexCorrespondence(fine->GetPoints(), coarse->GetPoints(), partner);
+  MESHLOD_CHECK(partner == std::vector<Id>({ 0, 0, 1, 0, 0, 1, 2, 2, 3 }));
+
+  // At t -> 1: the groups {0, 1, 3, 4}, {2, 5}, {6, 7}, {8} merge (they are joined by edges)
+  // and only the two triangles of the coarse square are left.
+  vtkSmartPointer<vtkMultiBlockDataSet> h = testing::GatherLevels({ fine, coarse });
+  vtkNew<vtkLODGeomorph> filter;
+  filter->SetInputData(h);
+  vtkPolyData* out = Run(filter, 1.0 - 1e-9);
+  MESHLOD_CHECK_EQ(filter->GetActualCorrespondence(), vtkLODGeomorph::NEAREST_VERTICES);
+  MESHLOD_CHECK_EQ(out->GetNumberOfPoints(), 4);
+  MESHLOD_CHECK_EQ(out->GetNumberOfPolys(), 2);
+  MESHLOD_CHECK_LE(OneSidedPointDistance(out, coarse), 1e-8);
+  MESHLOD_CHECK_LE(OneSidedPointDistance(coarse, out), 1e-8);
+  // Halfway: nothing merges, the grid keeps its connectivity.
+  out = Run(filter, 0.5);
+  MESHLOD_CHECK_EQ(out->GetNumberOfPoints(), 9);
+  MESHLOD_CHECK(out->GetPolys() == fine->GetPolys());
+  double x[3];
+  out->GetPoint(5, x); // (2, 1) halfway to (2.2, 0)
+  MESHLOD_CHECK_EQ(x[0], 2.1);
+  MESHLOD_CHECK_EQ(x[1], 0.5);
+
+  // Coarse points 0 (0.9, 1) and 1 (1.45, 0.9) both nearest to fine point 4; 2 (2.05, 1) takes
+  // 5. Point 0 is nearer and keeps 4; point 1 takes its nearest free fine point, 1 (at 1.006),
+  // although fine point 1 is a little nearer to coarse point 0 (1.005): without that, coarse
+  // point 1 would be reached by nobody.
+  vtkNew<vtkPoints> three;
+  three->InsertNextPoint(0.9, 1.0, 0.0);
+  three->InsertNextPoint(1.45, 0.9, 0.0);
+  three->InsertNextPoint(2.05, 1.0, 0.0);
+  NearestVertexCorrespondence(fine->GetPoints(), three, partner);
+  MESHLOD_CHECK_EQ(partner[4], 0);
+  MESHLOD_CHECK_EQ(partner[5], 2);
+  MESHLOD_CHECK_EQ(partner[1], 1);
+  MESHLOD_CHECK_EQ(partner[0], 0);
+}
+
+// Two decimations of an isosurface, with point data.
+vtkSmartPointer<vtkMultiBlockDataSet> MakeDecimatedPair(vtkPolyData* surface)
+{
+  vtkNew<vtkQuadricDecimation> half;
+  half->SetInputData(surface);
+  half->SetTargetReduction(0.5);
+  half->Update();
+  vtkNew<vtkQuadricDecimation> tenth;
+  tenth->SetInputData(surface);
+  tenth->SetTargetReduction(0.9);
+  tenth->Update();
+  std::vector<vtkPolyData*> levels = { half->GetOutput(), tenth->GetOutput() };
+  for (vtkPolyData* level : levels)
+  {
+    vtkNew<vtkDoubleArray> height;
+    height->SetName("Height");
+    for (vtkIdType p = 0; p < level->GetNumberOfPoints(); ++p)
+    {
+      height->InsertNextValue(level->GetPoint(p)[2]);
+    }
+    level->GetPointData()->AddArray(height);
+  }
+  return testing::GatherLevels(levels);
+}
+
+void TestDecimatedPair()
+{
+  vtkSmartPointer<vtkPolyData> surface = testing::MakeIsosurface(testing::Field::Metaballs, 48);
+  vtkSmartPointer<vtkMultiBlockDataSet> h = MakeDecimatedPair(surface);
+  vtkPolyData* fine = Level(h, 0);
+  vtkPolyData* coarse = Level(h, 1);
+  const double diagonal = fine->GetLength();
+  const double epsilon = 1e-4 * diagonal; // the default MergeTolerance
+
+  vtkNew<vtkLODGeomorph> filter;
+  filter->SetInputData(h);
+  vtkNew<vtkTest::ErrorObserver> observer;
+  filter->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+
+  // t = 0 and t = 1: the two meshes.
+  MESHLOD_CHECK(Run(filter, 0.0)->GetPoints() == fine->GetPoints());
+  MESHLOD_CHECK(Run(filter, 1.0)->GetPoints() == coarse->GetPoints());
+  MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 0);
+
+  // Next to t = 0: the fine mesh within epsilon, nothing merged.
+  vtkPolyData* out = Run(filter, 1e-9);
+  MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 1);
+  MESHLOD_CHECK_EQ(out->GetNumberOfPoints(), fine->GetNumberOfPoints());
+  MESHLOD_CHECK(out->GetPolys() == fine->GetPolys());
+  MESHLOD_CHECK_LE(OneSidedPointDistance(out, fine), epsilon);
+
+  // Next to t = 1: the coarse mesh within epsilon. Every point on a coarse point, every coarse
+  // point reached (fine has more points), the fine points that met merged.
+  out = Run(filter, 1.0 - 1e-9);
+  MESHLOD_CHECK_LE(OneSidedPointDistance(out, coarse), epsilon);
+  MESHLOD_CHECK_LE(OneSidedPointDistance(coarse, out), epsilon);
+  MESHLOD_CHECK_LT(out->GetNumberOfPoints(), fine->GetNumberOfPoints());
+  MESHLOD_CHECK_LT(out->GetNumberOfPolys(), fine->GetNumberOfPolys());
+  const SurfaceDistance d = MeasureSurfaceDistance(coarse, out);
+  std::cout << "t -> 1: " << out->GetNumberOfPoints() << " points (coarse "
+            << coarse->GetNumberOfPoints() << "), " << out->GetNumberOfPolys()
+            << " triangles (coarse " << coarse->GetNumberOfPolys() << "), Hausdorff "
+            << d.HausdorffPercent() << " %, RMS " << d.RmsPercent() << " %\n";
+  MESHLOD_CHECK_LE(d.HausdorffPercent(), 1.0);
+  // No triangle repeats a point.
+  const TriangleMesh mesh = testing::ToTriangleMesh(out);
+  int repeated = 0;
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    const Id* tri = mesh.Triangle(t);
+    repeated += tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0];
+  }
+  MESHLOD_CHECK_EQ(repeated, 0);
+
+  // Halfway: points and Height blended with the partners.
+  out = Run(filter, 0.5);
+  vtkDataArray* height = out->GetPointData()->GetArray("Height");
+  MESHLOD_CHECK(height != nullptr);
+  int wrong = 0;
+  for (vtkIdType p = 0; height && p < out->GetNumberOfPoints(); ++p)
+  {
+    wrong += std::abs(height->GetTuple1(p) - out->GetPoint(p)[2]) > 1e-6;
+  }
+  MESHLOD_CHECK_EQ(wrong, 0);
+
+  // Only L changed: the correspondence was built once.
+  for (const double lod : { 0.1, 0.3, 0.7, 0.9 })
+  {
+    Run(filter, lod);
+  }
+  MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 1);
+  // A larger tolerance merges more.
+  const vtkIdType defaultPoints = Run(filter, 0.9)->GetNumberOfPoints();
+  filter->SetMergeTolerance(0.01);
+  MESHLOD_CHECK_LT(Run(filter, 0.9)->GetNumberOfPoints(), defaultPoints);
+  MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 1);
+  filter->SetMergeTolerance(1e-4);
+  // The input changed: built again.
+  coarse->GetPoints()->Modified();
+  Run(filter, 0.5);
+  MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 2);
+
+  // An exact count needs the morph arrays: the next level instead, with a warning.
+  MESHLOD_CHECK(!observer->GetWarning());
+  filter->SetTargetNumberOfTriangles(fine->GetNumberOfPolys() - 10);
+  out = Run(filter, 0.0);
+  MESHLOD_CHECK(observer->GetWarning());
+  MESHLOD_CHECK(out->GetPoints() == coarse->GetPoints());
+  filter->SetTargetNumberOfTriangles(-1);
+  MESHLOD_CHECK(!observer->GetError());
+
+  // Asking for the morph arrays on meshes without them: an error.
+  filter->SetCorrespondenceToMorphArrays();
+  Run(filter, 0.5);
+  MESHLOD_CHECK(observer->GetError());
+  MESHLOD_CHECK_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+  observer->Clear();
+
+  // Same output for the sequential and the default backend.
+  auto compute = [&](const char* backend) {
+    vtkSMPTools::SetBackend(backend);
+    vtkNew<vtkLODGeomorph> f;
+    f->SetInputData(h);
+    auto copy = vtkSmartPointer<vtkPolyData>::New();
+    copy->DeepCopy(Run(f, 0.97));
+    return copy;
+  };
+  const std::string initial = vtkSMPTools::GetBackend();
+  vtkSmartPointer<vtkPolyData> sequential = compute("Sequential");
+  vtkSmartPointer<vtkPolyData> parallel = compute(initial.c_str());
+  MESHLOD_CHECK_EQ(sequential->GetNumberOfPoints(), parallel->GetNumberOfPoints());
+  bool same = sequential->GetNumberOfPoints() == parallel->GetNumberOfPoints();
+  for (vtkIdType p = 0; p < sequential->GetNumberOfPoints() && same; ++p)
+  {
+    double a[3], b[3];
+    sequential->GetPoint(p, a);
+    parallel->GetPoint(p, b);
+    same = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+  }
+  MESHLOD_CHECK(same);
+  MESHLOD_CHECK(
+    testing::ToTriangleMesh(sequential).Triangles == testing::ToTriangleMesh(parallel).Triangles);
+}
+
+// A morph hierarchy read with the nearest-vertex correspondence instead.
+void TestForcedNearest()
+{
+  testing::CollapseHierarchyOptions options;
+  options.MaximumLevels = 3;
+  vtkSmartPointer<vtkMultiBlockDataSet> h =
+    testing::MakeCollapseHierarchy(testing::MakeIcosphere(3), options);
+  vtkNew<vtkLODGeomorph> filter;
+  filter->SetInputData(h);
+  filter->SetCorrespondenceToNearestVertices();
+  vtkPolyData* out = Run(filter, 1.5);
+  MESHLOD_CHECK_EQ(filter->GetActualCorrespondence(), vtkLODGeomorph::NEAREST_VERTICES);
+  MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 1);
+  MESHLOD_CHECK(out->GetPointData()->GetArray(names::MorphTargetId) == nullptr);
+  MESHLOD_CHECK_EQ(out->GetNumberOfPoints(), Level(h, 1)->GetNumberOfPoints());
+  Run(filter, 0.5);
+  MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 2);
+  Run(filter, 1.25);
+  MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 2);
+}
+} // namespace
+
+int TestLODGeomorphNearest(int, char*[])
+{
+  TestSmallCorrespondence();
+  TestDecimatedPair();
+  TestForcedNearest();
+  return testing::Result();
+}

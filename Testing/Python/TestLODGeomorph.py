@@ -1,0 +1,153 @@
+"""vtkLODGeomorph from Python: a hand-made two-level hierarchy with morph arrays and a pair of
+vtkQuadricDecimation outputs without them; the time-driven update must give the same mesh as
+the explicit LevelOfDetail."""
+
+import sys
+
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIdTypeArray, vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkMultiBlockDataSet, vtkPolyData
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
+from vtkmodules.vtkFiltersCore import vtkQuadricDecimation
+from vtkmodules.vtkFiltersSources import vtkSphereSource
+
+import meshlod
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("CHECK failed:", what)
+
+
+def make_polydata(points, triangles):
+    poly = vtkPolyData()
+    pts = vtkPoints()
+    pts.SetDataTypeToDouble()
+    for p in points:
+        pts.InsertNextPoint(*p)
+    cells = vtkCellArray()
+    for t in triangles:
+        cells.InsertNextCell(3, t)
+    poly.SetPoints(pts)
+    poly.SetPolys(cells)
+    return poly
+
+
+def add_array(poly, name, values, array_type=vtkDoubleArray, components=1):
+    array = array_type()
+    array.SetName(name)
+    array.SetNumberOfComponents(components)
+    for v in values:
+        if components == 1:
+            array.InsertNextValue(v)
+        else:
+            array.InsertNextTuple(v)
+    poly.GetPointData().AddArray(array)
+
+
+def gather(levels):
+    hierarchy = vtkMultiBlockDataSet()
+    hierarchy.SetNumberOfBlocks(len(levels))
+    for i, level in enumerate(levels):
+        hierarchy.SetBlock(i, level)
+    return hierarchy
+
+
+def points_of(poly):
+    return [poly.GetPoint(i) for i in range(poly.GetNumberOfPoints())]
+
+
+def triangles_of(poly):
+    ids = poly.GetPolys().GetConnectivityArray()
+    return [int(ids.GetTuple1(i)) for i in range(ids.GetNumberOfTuples())]
+
+
+def same_mesh(a, b):
+    return points_of(a) == points_of(b) and triangles_of(a) == triangles_of(b)
+
+
+def morph_hierarchy():
+    """The 2x1 grid; points 1 and 4 collapse onto (1, 0.5)."""
+    fine_points = [(0, 0, 0), (1, 0, 0), (2, 0, 0), (0, 1, 0), (1, 1, 0), (2, 1, 0)]
+    coarse_points = [(0, 0, 0), (1, 0.5, 0), (2, 0, 0), (0, 1, 0), (2, 1, 0)]
+    fine = make_polydata(fine_points, [(0, 1, 4), (0, 4, 3), (1, 2, 5), (1, 5, 4)])
+    coarse = make_polydata(coarse_points, [(0, 1, 3), (1, 2, 4)])
+    target_id = [0, 1, 2, 3, 1, 4]
+    add_array(fine, "Height", [0, 1, 2, 3, 4, 5])
+    add_array(coarse, "Height", [0, 2.5, 2, 3, 5])
+    add_array(fine, "MorphTarget", [coarse_points[i] for i in target_id], components=3)
+    add_array(fine, "MorphTargetId", target_id, vtkIdTypeArray)
+    add_array(fine, "CollapseRank", [-1, 0, -1, -1, 0, -1], vtkIdTypeArray)
+    return gather([fine, coarse])
+
+
+def test_morph():
+    hierarchy = morph_hierarchy()
+    timed = meshlod.vtkLODGeomorph()
+    timed.SetInputData(hierarchy)
+    timed.UpdateInformation()
+    info = timed.GetOutputInformation(0)
+    check(info.Get(vtkStreamingDemandDrivenPipeline.TIME_STEPS()) == (0.0, 1.0), "time steps")
+
+    explicit = meshlod.vtkLODGeomorph()
+    explicit.SetInputData(hierarchy)
+    explicit.UsePipelineTimeOff()
+    explicit.SetLevelOfDetail(0.5)
+    explicit.Update()
+    out = explicit.GetOutput()
+    check(out.GetPoint(1) == (1.0, 0.25, 0.0), "point 1 halfway")
+    check(out.GetPoint(4) == (1.0, 0.75, 0.0), "point 4 halfway")
+    check(out.GetPointData().GetArray("Height").GetValue(1) == 1.75, "Height blended")
+    check(out.GetPointData().GetArray("MorphTarget") is None, "morph arrays not passed")
+    check(out.GetNumberOfPolys() == 4, "connectivity of level 0")
+
+    for time in (0.0, 0.25, 0.5, 0.8, 1.0):
+        timed.UpdateTimeStep(time)
+        explicit.SetLevelOfDetail(time)
+        explicit.Update()
+        check(same_mesh(timed.GetOutput(), explicit.GetOutput()), "time %g" % time)
+        check(timed.GetActualLevelOfDetail() == time, "level of detail at time %g" % time)
+
+    timed.SetTargetNumberOfTriangles(3)  # not reachable: two triangles go together
+    timed.Update()
+    check(timed.GetOutput().GetNumberOfPolys() == 2, "exact count")
+
+
+def test_nearest():
+    sphere = vtkSphereSource()
+    sphere.SetThetaResolution(40)
+    sphere.SetPhiResolution(40)
+    levels = []
+    for reduction in (0.5, 0.9):
+        decimate = vtkQuadricDecimation()
+        decimate.SetInputConnection(sphere.GetOutputPort())
+        decimate.SetTargetReduction(reduction)
+        decimate.Update()
+        level = vtkPolyData()
+        level.ShallowCopy(decimate.GetOutput())
+        levels.append(level)
+    hierarchy = gather(levels)
+
+    timed = meshlod.vtkLODGeomorph()
+    timed.SetInputData(hierarchy)
+    explicit = meshlod.vtkLODGeomorph()
+    explicit.SetInputData(hierarchy)
+    explicit.UsePipelineTimeOff()
+    for time in (0.0, 0.3, 0.7, 1.0):
+        timed.UpdateTimeStep(time)
+        explicit.SetLevelOfDetail(time)
+        explicit.Update()
+        check(same_mesh(timed.GetOutput(), explicit.GetOutput()), "nearest, time %g" % time)
+    check(timed.GetActualCorrespondence() == meshlod.vtkLODGeomorph.NEAREST_VERTICES,
+          "nearest-vertex correspondence")
+    check(timed.GetNumberOfCorrespondenceBuilds() == 1, "correspondence built once")
+    check(timed.GetOutput().GetNumberOfPoints() == levels[1].GetNumberOfPoints(), "t = 1")
+
+
+test_morph()
+test_nearest()
+if failures:
+    print(len(failures), "check(s) failed")
+    sys.exit(1)
