@@ -113,6 +113,23 @@ bool CollapseCostModel::Evaluate(Id t, CollapseCandidate& c, CostScratch& scratc
 }
 
 //------------------------------------------------------------------------------
+bool CollapseCostModel::EvaluateChoice(
+  Id t, int choice, CollapseCandidate& c, CostScratch& scratch) const
+{
+  const Id* tri = this->State.Mesh.Triangle(t);
+  if (choice == TriangleChoice)
+  {
+    return this->EvaluateTriple(tri, c, scratch);
+  }
+  if (this->State.IsLocked(tri[choice]) || this->State.IsLocked(tri[(choice + 1) % 3]))
+  {
+    return false;
+  }
+  this->Edge(tri, choice, c);
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, CostScratch& scratch) const
 {
   const double* p[3];
@@ -127,6 +144,7 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   c.Area = 0.5 * TriangleNormal(p[0], p[1], p[2], c.Normal);
   std::copy_n(members, 3, c.Members);
   c.MemberCount = 3;
+  c.Choice = TriangleChoice;
   c.Swapped = false;
   const Quadric q = this->State.Quadrics[members[0]] + this->State.Quadrics[members[1]] +
     this->State.Quadrics[members[2]];
@@ -167,9 +185,29 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
 }
 
 //------------------------------------------------------------------------------
+double CollapseCostModel::Edge(const Id* tri, int k, CollapseCandidate& c) const
+{
+  const int l = (k + 1) % 3;
+  const double* a = this->State.Mesh.Point(tri[k]);
+  const double* b = this->State.Mesh.Point(tri[l]);
+  const Quadric q = this->State.Quadrics[tri[k]] + this->State.Quadrics[tri[l]];
+  const double middle[3] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
+  q.Minimize(middle, c.Position);
+  c.Cost = q.Evaluate(c.Position);
+  c.Error = q.Weight > 0.0 ? std::sqrt(c.Cost / q.Weight) : 0.0;
+  c.Members[0] = tri[k];
+  c.Members[1] = tri[l];
+  c.MemberCount = 2;
+  c.Choice = k;
+  c.Swapped = false;
+  return c.Cost;
+}
+
 double CollapseCostModel::BestEdge(const Id* tri, CollapseCandidate& c, double& worst) const
 {
-  double best = Infinity, bestWeight = 0.0;
+  // Solve the three edges, keep the cheapest (ties: the first).
+  double best = Infinity, bestError = 0.0, bestPosition[3] = { 0, 0, 0 };
+  int bestEdge = 0;
   worst = 0.0;
   for (int k = 0; k < 3; ++k)
   {
@@ -185,16 +223,19 @@ double CollapseCostModel::BestEdge(const Id* tri, CollapseCandidate& c, double& 
     if (cost < best)
     {
       best = cost;
-      bestWeight = q.Weight;
-      std::copy_n(x, 3, c.Position);
-      c.Members[0] = tri[k];
-      c.Members[1] = tri[l];
+      bestError = q.Weight > 0.0 ? std::sqrt(cost / q.Weight) : 0.0;
+      bestEdge = k;
+      std::copy_n(x, 3, bestPosition);
     }
   }
-  c.MemberCount = 2;
-  c.Swapped = false;
   c.Cost = best;
-  c.Error = bestWeight > 0.0 ? std::sqrt(best / bestWeight) : 0.0;
+  c.Error = bestError;
+  std::copy_n(bestPosition, 3, c.Position);
+  c.Members[0] = tri[bestEdge];
+  c.Members[1] = tri[(bestEdge + 1) % 3];
+  c.MemberCount = 2;
+  c.Choice = bestEdge;
+  c.Swapped = false;
   return best;
 }
 

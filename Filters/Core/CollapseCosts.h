@@ -12,6 +12,9 @@ namespace meshlod
 class CollapseMesh;
 class LevelTracker;
 
+/// CollapseCandidate::Choice for a collapse of the whole triangle.
+constexpr int TriangleChoice = 3;
+
 /// The evaluation of one triangle collapse.
 struct CollapseCandidate
 {
@@ -21,6 +24,7 @@ struct CollapseCandidate
   double Normal[3] = { 0, 0, 1 }; // unit normal of the collapsing triangle
   Id Members[3] = { InvalidId, InvalidId, InvalidId }; // the merging vertices: 3, or 2 for an edge
   int MemberCount = 0;
+  int Choice = TriangleChoice; // edge k (0, 1, 2) of the evaluated triangle, or the triangle
   bool Swapped = false; // the members are the path left by an edge swap, not a triangle
   int Dying = 0;        // set when made: the number of triangles the collapse removed
   // Curvature method: the terms of W = A (wk kappa + wa alpha + wv V) before normalisation.
@@ -48,6 +52,10 @@ public:
   /// left by swapping the edge between a triangle and a neighbour (paper 000, figure 3).
   bool EvaluateTriple(const Id* members, CollapseCandidate& candidate, CostScratch& scratch) const;
 
+  /// Evaluate again the collapse an earlier Evaluate(t) chose (candidate.Choice), when nothing
+  /// around t changed since: one solve instead of four.
+  bool EvaluateChoice(Id t, int choice, CollapseCandidate& candidate, CostScratch& scratch) const;
+
   /// Quadric method: evaluate the cheapest of the triangle's three edge collapses.
   bool EvaluateBestEdge(const Id* triangle, CollapseCandidate& candidate) const;
 
@@ -70,6 +78,8 @@ private:
   bool EvaluateTriangleOrEdge(const Id* tri, CollapseCandidate& c) const;
   // The cheapest edge of the triangle into c; returns its cost and the dearest edge's in worst.
   double BestEdge(const Id* tri, CollapseCandidate& c, double& worst) const;
+  // Edge k of the triangle into c; returns its cost.
+  double Edge(const Id* tri, int k, CollapseCandidate& c) const;
   void FitSurface(const Id* tri, CollapseCandidate& candidate, CostScratch& scratch) const;
 
   const TriangleCollapseOptions& Options;

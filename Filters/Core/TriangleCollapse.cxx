@@ -20,6 +20,10 @@ namespace
 {
 constexpr double Infinity = std::numeric_limits<double>::infinity();
 
+// Independent sets: a pass chooses among the cheapest PoolFactor times as many triangles as
+// its budget of removed triangles.
+constexpr std::int64_t PoolFactor = 4;
+
 // Independent sets: triangles found illegal are retried after this many passes.
 constexpr std::int64_t ParkedRetryPasses = 8;
 
@@ -49,7 +53,7 @@ public:
     this->Targets = options.LevelTargets;
     this->LastEmitted = this->InitialTriangles;
     this->Costs.assign(this->InitialTriangles, Infinity);
-    this->Removes.assign(this->InitialTriangles, 4);
+    this->Choices.assign(this->InitialTriangles, TriangleChoice);
   }
 
   TriangleCollapseResult RunGreedy();
@@ -95,7 +99,9 @@ private:
   CollapseCostModel Model;
   CollapseRules Rules;
   std::vector<double> Costs;
-  std::vector<std::uint8_t> Removes; // triangles the evaluated collapse removes (at most)
+  // What the last evaluation of each triangle chose (CollapseCandidate::Choice), so that the
+  // check of a chosen triangle solves for that collapse only.
+  std::vector<std::uint8_t> Choices;
   std::vector<std::int64_t> Targets;
   std::size_t NextTarget = 0;
   Id InitialTriangles = 0;
@@ -112,7 +118,7 @@ double Collapser::EvaluateCost(Id t, CostScratch& scratch)
   {
     return Infinity;
   }
-  this->Removes[t] = static_cast<std::uint8_t>(c.MemberCount == 2 ? 2 : 4);
+  this->Choices[t] = static_cast<std::uint8_t>(c.Choice);
   return c.Cost;
 }
 
@@ -159,7 +165,7 @@ void Collapser::EvaluateAll()
 Legality Collapser::CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const
 {
   c.MemberCount = 0;
-  if (!this->State.IsAlive(t) || !this->Model.Evaluate(t, c, scratch))
+  if (!this->State.IsAlive(t) || !this->Model.EvaluateChoice(t, this->Choices[t], c, scratch))
   {
     return Legality::Illegal;
   }
@@ -431,7 +437,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
   std::vector<unsigned char> isDirty(nt, 0), parked(nt, 0);
   // Vertex -> 1 + the index of the pass's candidate whose neighbourhood holds it, 0 if none.
   std::vector<Id> owner(this->State.Mesh.GetNumberOfPoints(), 0);
-  std::vector<Id> live(nt), dirty, pool, chosen, owned, survivors;
+  std::vector<Id> live(nt), dirty, pool, chosen, owned, survivors, neighbourhood;
   for (Id t = 0; t < nt; ++t)
   {
     live[t] = t;
@@ -483,58 +489,68 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     auto cheaper = [&](Id a, Id b) {
       return this->Costs[a] < this->Costs[b] || (this->Costs[a] == this->Costs[b] && a < b);
     };
-    const std::size_t poolSize = std::min<std::size_t>(pool.size(), 4 * budget + 64);
-    if (poolSize < pool.size())
-    {
-      std::nth_element(pool.begin(), pool.begin() + poolSize, pool.end(), cheaper);
-      pool.resize(poolSize);
-    }
-    std::sort(pool.begin(), pool.end(), cheaper);
 
     // 3. Choose, cheapest first, triangles whose neighbourhoods (every triangle around their
     // corners: it holds the stencil of the triangle's collapse and of each edge's) share no
-    // vertex, until the pass's budget of removed triangles is reached. These collapses are
-    // independent: none can change another's legality, so they can be checked and made at once.
+    // vertex, until the pass's budget of removed triangles is reached (a little beyond it:
+    // some of the chosen will not be legal). These collapses are independent: none can change
+    // another's legality, so they can be checked and made at once. Only the cheapest
+    // PoolFactor * budget triangles are eligible, so that a pass stays greedy even when their
+    // neighbourhoods overlap a lot; they are ordered a block at a time, as far as the choice gets.
     chosen.clear();
     std::int64_t estimate = 0;
-    // Choose a little beyond the budget: some of the chosen will not be legal.
-    for (std::size_t i = 0; i < pool.size() && estimate < budget + budget / 4 + 4; ++i)
+    const std::int64_t wanted = budget + budget / 4 + 4;
+    const std::size_t eligible =
+      std::min<std::size_t>(pool.size(), static_cast<std::size_t>(PoolFactor * budget + 64));
+    if (eligible < pool.size())
     {
-      const Id t = pool[i];
-      const Id* tri = this->State.Mesh.Triangle(t);
-      if (owner[tri[0]] || owner[tri[1]] || owner[tri[2]])
+      std::nth_element(pool.begin(), pool.begin() + eligible, pool.end(), cheaper);
+    }
+    const std::size_t block = static_cast<std::size_t>(std::max<std::int64_t>(64, budget));
+    for (std::size_t first = 0; first < eligible && estimate < wanted; first += block)
+    {
+      const std::size_t last = std::min(eligible, first + block);
+      if (last < eligible)
       {
-        continue;
+        std::nth_element(pool.begin() + first, pool.begin() + last, pool.begin() + eligible, cheaper);
       }
-      bool blocked = false;
-      for (int k = 0; k < 3 && !blocked; ++k)
+      std::sort(pool.begin() + first, pool.begin() + last, cheaper);
+      for (std::size_t i = first; i < last && estimate < wanted; ++i)
       {
-        this->State.ForEachTriangle(tri[k], [&](Id s) {
-          const Id* st = this->State.Mesh.Triangle(s);
-          blocked = blocked || owner[st[0]] || owner[st[1]] || owner[st[2]];
-        });
-      }
-      if (blocked)
-      {
-        continue;
-      }
-      chosen.push_back(t);
-      const Id mark = static_cast<Id>(chosen.size());
-      for (int k = 0; k < 3; ++k)
-      {
-        this->State.ForEachTriangle(tri[k], [&](Id s) {
-          const Id* st = this->State.Mesh.Triangle(s);
-          for (int c = 0; c < 3; ++c)
+        const Id t = pool[i];
+        const Id* tri = this->State.Mesh.Triangle(t);
+        if (owner[tri[0]] || owner[tri[1]] || owner[tri[2]])
+        {
+          continue;
+        }
+        neighbourhood.clear();
+        bool blocked = false;
+        for (int k = 0; k < 3 && !blocked; ++k)
+        {
+          this->State.ForEachTriangle(tri[k], [&](Id n) {
+            const Id* nt = this->State.Mesh.Triangle(n);
+            blocked = blocked || owner[nt[0]] || owner[nt[1]] || owner[nt[2]];
+            neighbourhood.push_back(nt[0]);
+            neighbourhood.push_back(nt[1]);
+            neighbourhood.push_back(nt[2]);
+          });
+        }
+        if (blocked)
+        {
+          continue;
+        }
+        chosen.push_back(t);
+        const Id mark = static_cast<Id>(chosen.size());
+        for (const Id v : neighbourhood)
+        {
+          if (!owner[v])
           {
-            if (!owner[st[c]])
-            {
-              owner[st[c]] = mark;
-              owned.push_back(st[c]);
-            }
+            owner[v] = mark;
+            owned.push_back(v);
           }
-        });
+        }
+        estimate += this->Choices[t] == TriangleChoice ? 4 : 2; // at most
       }
-      estimate += this->Removes[t];
     }
 
     // 4. Check the chosen ones (in parallel), keep the cheapest legal ones up to the pass's
