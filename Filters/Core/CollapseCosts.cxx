@@ -358,7 +358,10 @@ void CollapseCostModel::FitSurface(const Id* tri, CollapseCandidate& c, CostScra
     fit = FitQuadraticHeightField(
       centroid, c.Normal, points.data(), static_cast<int>(points.size() / 3), scale);
   }
-  const double height = fit.Valid ? fit.Height : 0.0;
+  // A quadratic fitted to points spread far beyond the triangle can extrapolate wildly at its
+  // centre; the surface cannot be further from the centroid than about the triangle's size.
+  const double height =
+    fit.Valid ? std::max(-scale, std::min(scale, fit.Height)) : 0.0;
   c.Kappa = fit.Valid ? fit.AbsoluteCurvature : 0.0;
   for (int i = 0; i < 3; ++i)
   {

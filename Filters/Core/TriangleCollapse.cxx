@@ -434,7 +434,12 @@ TriangleCollapseResult Collapser::RunIndependentSets()
 {
   this->EvaluateAll();
   const Id nt = this->InitialTriangles;
-  std::vector<unsigned char> isDirty(nt, 0), parked(nt, 0);
+  std::vector<unsigned char> isDirty(nt, 0);
+  // Parked (refused) triangles: the pass they were refused in, -1 if not parked; vertices: the
+  // last pass that changed their position or neighbourhood. A parked triangle is tried again
+  // only when something around it changed after it was refused.
+  std::vector<std::int64_t> parkedIn(nt, -1);
+  std::vector<std::int64_t> changedIn(this->State.Mesh.GetNumberOfPoints(), 0);
   // Vertex -> 1 + the index of the pass's candidate whose neighbourhood holds it, 0 if none.
   std::vector<Id> owner(this->State.Mesh.GetNumberOfPoints(), 0);
   std::vector<Id> live(nt), dirty, pool, chosen, owned, survivors, neighbourhood;
@@ -454,7 +459,6 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     TooLarge = 3, // legal, but above MaximumError
     Skipped = 4,  // legal, not needed for this pass's budget
   };
-  std::int64_t idlePasses = 0;
 
   while (!this->Finished())
   {
@@ -492,14 +496,14 @@ TriangleCollapseResult Collapser::RunIndependentSets()
 
     // 3. Choose, cheapest first, triangles whose neighbourhoods (every triangle around their
     // corners: it holds the stencil of the triangle's collapse and of each edge's) share no
-    // vertex, until the pass's budget of removed triangles is reached (a little beyond it:
-    // some of the chosen will not be legal). These collapses are independent: none can change
+    // vertex, until the pass's budget of removed triangles is reached (a little beyond it,
+    // and a few dozen at least: some of the chosen will not be legal). These collapses are independent: none can change
     // another's legality, so they can be checked and made at once. Only the cheapest
     // PoolFactor * budget triangles are eligible, so that a pass stays greedy even when their
     // neighbourhoods overlap a lot; they are ordered a block at a time, as far as the choice gets.
     chosen.clear();
     std::int64_t estimate = 0;
-    const std::int64_t wanted = budget + budget / 4 + 4;
+    const std::int64_t wanted = budget + budget / 4 + 64;
     const std::size_t eligible =
       std::min<std::size_t>(pool.size(), static_cast<std::size_t>(PoolFactor * budget + 64));
     if (eligible < pool.size())
@@ -636,7 +640,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       {
         // Parked until a collapse nearby changes its neighbourhood (see step 6).
         this->Costs[chosen[i]] = Infinity;
-        parked[chosen[i]] = 1;
+        parkedIn[chosen[i]] = this->Result.Passes;
       }
     }
     this->State.AliveTriangles -= static_cast<Id>(removed);
@@ -645,13 +649,6 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       owner[v] = 0;
     }
     owned.clear();
-    // Stuck when nothing can be chosen, or when passes keep failing even after the parked
-    // triangles had their retry.
-    idlePasses = removed > 0 ? 0 : idlePasses + 1;
-    if (count == 0 || idlePasses > ParkedRetryPasses)
-    {
-      break; // nothing collapsible (or allowed by MaximumError) is left
-    }
 
     // 6. List for re-weighting the triangles whose weight changed: those around the survivors
     // (for the curvature method also one ring further out, whose stencils moved).
@@ -660,7 +657,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       if (!isDirty[s])
       {
         isDirty[s] = 1;
-        parked[s] = 0;
+        parkedIn[s] = -1;
         dirty.push_back(s);
       }
     };
@@ -672,6 +669,8 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       }
       this->State.ForEachTriangle(survivor, [&](Id s) {
         markDirty(s);
+        const Id* around = this->State.Mesh.Triangle(s);
+        changedIn[around[0]] = changedIn[around[1]] = changedIn[around[2]] = this->Result.Passes;
         if (widen)
         {
           const Id* st = this->State.Mesh.Triangle(s);
@@ -683,16 +682,35 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       });
     }
     // Parked triangles further out may have become legal (valences and positions changed);
-    // rather than searching for them around every collapse, retry them all now and then.
-    if (this->Result.Passes % ParkedRetryPasses == 0)
+    // rather than searching for them around every collapse, look now and then.
+    if (this->Result.Passes % ParkedRetryPasses == 0 || count == 0)
     {
       for (const Id t : live)
       {
-        if (parked[t] && this->State.IsAlive(t))
+        if (parkedIn[t] < 0 || !this->State.IsAlive(t))
+        {
+          continue;
+        }
+        bool changed = false;
+        const Id* tri = this->State.Mesh.Triangle(t);
+        for (int k = 0; k < 3 && !changed; ++k)
+        {
+          this->State.ForEachTriangle(tri[k], [&](Id n) {
+            const Id* nt = this->State.Mesh.Triangle(n);
+            changed = changed || changedIn[nt[0]] > parkedIn[t] || changedIn[nt[1]] > parkedIn[t] ||
+              changedIn[nt[2]] > parkedIn[t];
+          });
+        }
+        if (changed)
         {
           markDirty(t);
         }
       }
+    }
+    // Stuck when nothing could be chosen and no refused triangle has a changed neighbourhood.
+    if (count == 0 && dirty.empty())
+    {
+      break; // nothing collapsible (or allowed by MaximumError) is left
     }
     if (errorLimited || !this->AfterProgress())
     {
