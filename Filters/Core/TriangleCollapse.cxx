@@ -30,6 +30,84 @@ constexpr std::int64_t ParkedRetryPasses = 8;
 // Rows are rebuilt once this fraction of the triangles alive at the last rebuild has died.
 constexpr double RebuildAfterDying = 0.5;
 
+// Triangles refused by the legality check wait here until something around them changes: a
+// collapse moves vertices and changes valences, which can make a refused collapse legal.
+// "Time" is any increasing counter (collapses for the greedy schedule, passes for the
+// independent sets); rather than searching around every collapse for refused triangles, the
+// lot is checked now and then.
+class ParkingLot
+{
+public:
+  ParkingLot(Id triangles, Id vertices)
+    : ParkedAt(triangles, -1)
+    , ChangedAt(vertices, 0)
+  {
+  }
+
+  void Park(Id t, std::int64_t now)
+  {
+    if (this->ParkedAt[t] < 0)
+    {
+      this->Waiting.push_back(t);
+    }
+    this->ParkedAt[t] = now;
+  }
+
+  /// The triangle was re-weighted for another reason: it is no longer waiting.
+  void Unpark(Id t) { this->ParkedAt[t] = -1; }
+
+  /// Every vertex of triangle t changed (position, neighbours) at `now`.
+  void Touch(const Id* t, std::int64_t now)
+  {
+    this->ChangedAt[t[0]] = this->ChangedAt[t[1]] = this->ChangedAt[t[2]] = now;
+  }
+
+  /// Call release(t) for every live waiting triangle with a vertex of a triangle around its
+  /// corners changed after it was parked; those leave the lot.
+  template <typename F>
+  void Release(const CollapseMesh& state, F&& release)
+  {
+    std::size_t kept = 0;
+    for (const Id t : this->Waiting)
+    {
+      if (this->ParkedAt[t] < 0 || !state.IsAlive(t))
+      {
+        this->ParkedAt[t] = -1;
+        continue;
+      }
+      bool changed = false;
+      const Id* tri = state.Mesh.Triangle(t);
+      const std::int64_t since = this->ParkedAt[t];
+      for (int k = 0; k < 3 && !changed; ++k)
+      {
+        state.ForEachTriangle(tri[k], [&](Id n) {
+          const Id* nt = state.Mesh.Triangle(n);
+          changed = changed || this->ChangedAt[nt[0]] > since || this->ChangedAt[nt[1]] > since ||
+            this->ChangedAt[nt[2]] > since;
+        });
+      }
+      if (changed)
+      {
+        this->ParkedAt[t] = -1;
+        release(t);
+      }
+      else
+      {
+        this->Waiting[kept++] = t;
+      }
+    }
+    this->Waiting.resize(kept);
+  }
+
+private:
+  std::vector<std::int64_t> ParkedAt; // per triangle, -1 when not waiting
+  std::vector<std::int64_t> ChangedAt; // per vertex
+  std::vector<Id> Waiting;
+};
+
+// Greedy schedule: the parking lot is checked after this many collapses.
+constexpr std::int64_t ParkedRetryCollapses = 256;
+
 // State shared by both schedules: the mesh, the level bookkeeping, the costs.
 class Collapser
 {
@@ -356,14 +434,26 @@ TriangleCollapseResult Collapser::RunGreedy()
   Star star;
   CostScratch scratch;
   CollapseCandidate c;
+  ParkingLot lot(this->InitialTriangles, this->State.Mesh.GetNumberOfPoints());
   const std::int64_t progressEvery = std::max<std::int64_t>(1000, this->InitialTriangles / 200);
+  const bool widen = this->Options.Method == CollapseMethod::Curvature;
   std::vector<Id> touched;
-  while (!this->Finished() && !heap.Empty())
+  auto release = [&](Id s) { heap.Update(s); };
+  while (!this->Finished())
   {
+    if (heap.Empty() || this->Result.Collapses % ParkedRetryCollapses == 0)
+    {
+      lot.Release(this->State, release);
+      if (heap.Empty())
+      {
+        break;
+      }
+    }
     const Id t = heap.Pop();
     if (!this->Check(t, star, c, scratch))
     {
-      continue; // parked: comes back when its neighbourhood changes
+      lot.Park(t, this->Result.Collapses);
+      continue;
     }
     if (!this->ErrorAllows(c.Error))
     {
@@ -379,40 +469,37 @@ TriangleCollapseResult Collapser::RunGreedy()
       heap.Remove(d);
     }
 
-    // New costs around the survivor (for the curvature method also one ring further out,
-    // whose stencils moved). Triangles parked nearby get another chance: a collapse changes the
-    // valences and positions their legality depends on.
+    // New costs around the survivor; its neighbours' valences and its position changed, which
+    // the parking lot takes note of. For the curvature method the triangles one ring further
+    // out are re-weighted too: their stencils moved.
     touched.clear();
     this->State.ForEachTriangle(survivor, [&](Id s) {
       const Id* tri = this->State.Mesh.Triangle(s);
-      touched.insert(touched.end(), tri, tri + 3);
+      lot.Touch(tri, this->Result.Collapses);
+      lot.Unpark(s);
       this->Costs[s] = this->EvaluateCost(s, scratch);
       if (this->Costs[s] < Infinity)
       {
         heap.Update(s);
       }
+      if (widen)
+      {
+        touched.insert(touched.end(), tri, tri + 3);
+      }
     });
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    const bool widen = this->Options.Method == CollapseMethod::Curvature;
     for (const Id u : touched)
     {
-      if (u == survivor)
-      {
-        continue;
-      }
       this->State.ForEachTriangle(u, [&](Id s) {
-        if (CornerOf(this->State.Mesh.Triangle(s), survivor) >= 0)
+        if (CornerOf(this->State.Mesh.Triangle(s), survivor) < 0)
         {
-          return;
-        }
-        if (widen)
-        {
+          lot.Unpark(s);
           this->Costs[s] = this->EvaluateCost(s, scratch);
-        }
-        if (this->Costs[s] < Infinity && (widen || !heap.Contains(s)))
-        {
-          heap.Update(s);
+          if (this->Costs[s] < Infinity)
+          {
+            heap.Update(s);
+          }
         }
       });
     }
@@ -435,11 +522,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
   this->EvaluateAll();
   const Id nt = this->InitialTriangles;
   std::vector<unsigned char> isDirty(nt, 0);
-  // Parked (refused) triangles: the pass they were refused in, -1 if not parked; vertices: the
-  // last pass that changed their position or neighbourhood. A parked triangle is tried again
-  // only when something around it changed after it was refused.
-  std::vector<std::int64_t> parkedIn(nt, -1);
-  std::vector<std::int64_t> changedIn(this->State.Mesh.GetNumberOfPoints(), 0);
+  ParkingLot lot(nt, this->State.Mesh.GetNumberOfPoints());
   // Vertex -> 1 + the index of the pass's candidate whose neighbourhood holds it, 0 if none.
   std::vector<Id> owner(this->State.Mesh.GetNumberOfPoints(), 0);
   std::vector<Id> live(nt), dirty, pool, chosen, owned, survivors, neighbourhood;
@@ -640,7 +723,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       {
         // Parked until a collapse nearby changes its neighbourhood (see step 6).
         this->Costs[chosen[i]] = Infinity;
-        parkedIn[chosen[i]] = this->Result.Passes;
+        lot.Park(chosen[i], this->Result.Passes);
       }
     }
     this->State.AliveTriangles -= static_cast<Id>(removed);
@@ -657,7 +740,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       if (!isDirty[s])
       {
         isDirty[s] = 1;
-        parkedIn[s] = -1;
+        lot.Unpark(s);
         dirty.push_back(s);
       }
     };
@@ -669,8 +752,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       }
       this->State.ForEachTriangle(survivor, [&](Id s) {
         markDirty(s);
-        const Id* around = this->State.Mesh.Triangle(s);
-        changedIn[around[0]] = changedIn[around[1]] = changedIn[around[2]] = this->Result.Passes;
+        lot.Touch(this->State.Mesh.Triangle(s), this->Result.Passes);
         if (widen)
         {
           const Id* st = this->State.Mesh.Triangle(s);
@@ -685,27 +767,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     // rather than searching for them around every collapse, look now and then.
     if (this->Result.Passes % ParkedRetryPasses == 0 || count == 0)
     {
-      for (const Id t : live)
-      {
-        if (parkedIn[t] < 0 || !this->State.IsAlive(t))
-        {
-          continue;
-        }
-        bool changed = false;
-        const Id* tri = this->State.Mesh.Triangle(t);
-        for (int k = 0; k < 3 && !changed; ++k)
-        {
-          this->State.ForEachTriangle(tri[k], [&](Id n) {
-            const Id* nt = this->State.Mesh.Triangle(n);
-            changed = changed || changedIn[nt[0]] > parkedIn[t] || changedIn[nt[1]] > parkedIn[t] ||
-              changedIn[nt[2]] > parkedIn[t];
-          });
-        }
-        if (changed)
-        {
-          markDirty(t);
-        }
-      }
+      lot.Release(this->State, markDirty);
     }
     // Stuck when nothing could be chosen and no refused triangle has a changed neighbourhood.
     if (count == 0 && dirty.empty())
