@@ -78,7 +78,7 @@ def test_hierarchy(contour, decimate):
         name = hierarchy.GetMetaData(i).Get(vtkCompositeDataSet.NAME())
         check(name == "Level %d" % i, "block %d named %r" % (i, name))
         if previous is not None:
-            check(triangles < previous, "level %d: %d triangles after %d" % (i, triangles, previous))
+            check(triangles < previous, "level %d: %d after %d" % (i, triangles, previous))
             # Level i keeps 0.01^(i / LEVELS) of the input; a collapse removes at most 4.
             target = int(input_triangles * 0.01 ** (i / LEVELS))
             check(target - 4 <= triangles <= target, "level %d: %d for %d" % (i, triangles, target))
