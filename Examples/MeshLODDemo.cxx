@@ -1,42 +1,49 @@
-// MeshLOD demo: a marching-cubes isosurface turned into levels of detail, with everything written
-// for ParaView and a picture of a few levels.
+// MeshLOD demo: a marching-cubes isosurface turned into levels of detail with smooth
+// transitions between them, everything written for ParaView, and a picture of a few levels.
 //
-//   MeshLODDemo [output-directory] [--field NAME] [--resolution N] [--no-render]
+//   MeshLODDemo [output-directory] [--field NAME] [--resolution N] [--frames N] [--no-render]
 //
 // output-directory  default demo-output; created if needed
 // --field           metaballs (default), gyroid, torus, sphere or wavelet
 // --resolution      samples per axis of the volume (default: about 200k triangles)
+// --frames          frames per level transition in the time series (default 8)
 // --no-render       skip the picture (it needs an X display; run-demo.sh provides one with Xvfb)
 //
-// It writes into the output directory
-//   hierarchy.vtm + hierarchy/        the levels of detail, block i = "Level i"; level 0 is the
-//                                     input (flying edges at 0 of the field)
-//   frames.pvd + frames/frame_NNN.vtp a time series from the finest to the coarsest level
-//   levels.png                        a few levels side by side, rendered off-screen
-// and prints a table: level, triangles, error to level 0 (symmetric Hausdorff and RMS surface
-// distance in % of the bounding-box diagonal) and time.
-//
-// The two places that make levels and frames are ProduceHierarchy() and ProduceFrames() below.
+// Each hierarchy producer (HierarchyProducers() below; today vtkTriangleCollapseDecimation,
+// named triangle_collapse) makes levels of detail of the same isosurface, and the demo writes
+// into the output directory, <name> being the producer's name:
+//   <name>.vtm + <name>/           the hierarchy: block i = "Level i", level 0 = the isosurface
+//                                  (flying edges at 0 of the field), with the morph arrays and
+//                                  the field data of MeshLODHierarchy.h
+//   <name>_frames.pvd +            vtkLODGeomorph driven through the pipeline time, as a
+//   <name>_frames/frame_NNN.vtp    ParaView animation drives it: time = level of detail, from 0
+//                                  (the finest level) to the coarsest, --frames per transition
+//   <name>_levels.png              a few levels side by side, rendered off-screen
+// and prints a table: level, triangles, the producer's own error estimate, the error measured
+// against level 0 (symmetric Hausdorff and RMS surface distance, all in % of the bounding-box
+// diagonal), and where the level is in the time series.
+#include "MeshLODHierarchy.h"
 #include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestMeshes.h"
+#include "vtkLODGeomorph.h"
+#include "vtkTriangleCollapseDecimation.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCoordinate.h"
+#include "vtkDataArray.h"
 #include "vtkFieldData.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
-#include "vtkIntArray.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
-#include "vtkQuadricDecimation.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
 #include "vtkWindowToImageFilter.h"
@@ -55,6 +62,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -70,169 +78,135 @@ double SecondsSince(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// The levels of detail and how they were made.
-struct Hierarchy
-{
-  vtkSmartPointer<vtkMultiBlockDataSet> Levels; // block i = level i, level 0 the input
-  std::string Method;                           // printed above the table
-  std::vector<double> LevelSeconds; // time spent on each level, if the producer knows it
-  double TotalSeconds = 0.0;
-};
-
-/// One step of the time series.
-struct Frame
-{
-  double Time = 0.0; // continuous level: 0 = finest, 1.5 = halfway from level 1 to level 2
-  vtkSmartPointer<vtkPolyData> Mesh;
-};
-
 vtkPolyData* Level(vtkMultiBlockDataSet* levels, unsigned int i)
 {
   return vtkPolyData::SafeDownCast(levels->GetBlock(i));
 }
 
 //==================================================================================================
-// HIERARCHY PRODUCER. Placeholder until vtkTriangleCollapseDecimation lands: VTK's own
-// vtkQuadricDecimation applied level after level (each level decimates the one before it), with
-// the blocks named and numbered like MeshLOD's hierarchy output. The real filter makes the whole
-// hierarchy in one Update() and adds the morph arrays vtkLODGeomorph needs.
+// HIERARCHY PRODUCERS. Each makes the levels of detail of the isosurface in the layout of
+// MeshLODHierarchy.h (vtkLODGeomorph needs its morph arrays). To show another method, write a
+// function like ProduceTriangleCollapse() and add one line to HierarchyProducers().
 //==================================================================================================
-Hierarchy ProduceHierarchy(vtkPolyData* surface)
+struct HierarchyProducer
 {
-  // Fractions of the input's triangles kept by levels 1, 2, ...
-  const double keep[] = { 0.3, 0.1, 0.03, 0.01, 0.003 };
+  std::string Name;        // file names: <Name>.vtm, <Name>_frames.pvd, <Name>_levels.png
+  std::string Description; // printed above the table
+  std::function<vtkSmartPointer<vtkMultiBlockDataSet>(vtkPolyData* surface)> Produce;
+};
 
-  Hierarchy result;
-  result.Method = "vtkQuadricDecimation level after level "
-                  "(placeholder until vtkTriangleCollapseDecimation lands)";
-  result.Levels = vtkSmartPointer<vtkMultiBlockDataSet>::New();
-  result.Levels->SetBlock(0, surface);
-  result.LevelSeconds.push_back(0.0);
-
-  const double inputTriangles = static_cast<double>(surface->GetNumberOfPolys());
-  vtkSmartPointer<vtkPolyData> previous = surface;
-  for (double fraction : keep)
-  {
-    const double target = fraction * inputTriangles;
-    const double have = static_cast<double>(previous->GetNumberOfPolys());
-    if (target < 4.0 || target >= have)
-    {
-      break;
-    }
-    const Clock::time_point start = Clock::now();
-    vtkNew<vtkQuadricDecimation> decimate;
-    decimate->SetInputData(previous);
-    decimate->SetTargetReduction(1.0 - target / have);
-    decimate->Update();
-    auto level = vtkSmartPointer<vtkPolyData>::New();
-    level->ShallowCopy(decimate->GetOutput());
-    result.LevelSeconds.push_back(SecondsSince(start));
-    result.TotalSeconds += result.LevelSeconds.back();
-    result.Levels->SetBlock(result.Levels->GetNumberOfBlocks(), level);
-    previous = level;
-  }
-
-  // Name and number the levels the way MeshLOD's hierarchy output does.
-  for (unsigned int i = 0; i < result.Levels->GetNumberOfBlocks(); ++i)
-  {
-    auto level = vtkSmartPointer<vtkPolyData>::New();
-    level->ShallowCopy(Level(result.Levels, i)); // do not add field data to the caller's input
-    vtkNew<vtkIntArray> index;
-    index->SetName("LevelIndex");
-    index->InsertNextValue(static_cast<int>(i));
-    vtkNew<vtkIdTypeArray> triangles;
-    triangles->SetName("NumberOfTriangles");
-    triangles->InsertNextValue(level->GetNumberOfPolys());
-    vtkNew<vtkFieldData> fieldData;
-    fieldData->AddArray(index);
-    fieldData->AddArray(triangles);
-    level->SetFieldData(fieldData);
-    result.Levels->SetBlock(i, level);
-    result.Levels->GetMetaData(i)->Set(
-      vtkCompositeDataSet::NAME(), ("Level " + std::to_string(i)).c_str());
-  }
-  return result;
+vtkSmartPointer<vtkMultiBlockDataSet> ProduceTriangleCollapse(vtkPolyData* surface)
+{
+  vtkNew<vtkTriangleCollapseDecimation> decimate;
+  decimate->SetInputData(surface);
+  decimate->Update();
+  return decimate->GetHierarchy();
 }
 
-//==================================================================================================
-// FRAME PRODUCER. Placeholder until vtkLODGeomorph lands: one frame per level at whole times
-// (0, 1, 2, ...), no blending in between. With the geomorph, the frames will include the
-// in-between meshes (e.g. eight per transition) so that the series plays as a smooth morph.
-//==================================================================================================
-std::vector<Frame> ProduceFrames(vtkMultiBlockDataSet* levels)
+std::vector<HierarchyProducer> HierarchyProducers()
 {
-  std::vector<Frame> frames;
-  for (unsigned int i = 0; i < levels->GetNumberOfBlocks(); ++i)
-  {
-    frames.push_back(Frame{ static_cast<double>(i), Level(levels, i) });
-  }
-  return frames;
+  return {
+    { "triangle_collapse",
+      "vtkTriangleCollapseDecimation (defaults: quadric method, greedy schedule, triangle and "
+      "edge collapses, 8 levels down to 1%)",
+      ProduceTriangleCollapse },
+    // vtkVertexClusterOctree, once it lands:
+    // { "vertex_cluster_octree", "vtkVertexClusterOctree (defaults)", ProduceVertexClusterOctree },
+  };
 }
 
 //--------------------------------------------------------------------------------------------------
-void PrintTable(const Hierarchy& hierarchy)
+/// A field-data value of a level, or a negative number when the level does not have it.
+double LevelField(vtkPolyData* level, const char* name)
 {
-  vtkPolyData* finest = Level(hierarchy.Levels, 0);
+  vtkDataArray* array = level->GetFieldData()->GetArray(name);
+  return array != nullptr && array->GetNumberOfTuples() > 0 ? array->GetTuple1(0) : -1.0;
+}
+
+/// The frames of the time series: framesPerTransition per level transition, then the
+/// coarsest level. Frame k * framesPerTransition is level k, at time k with vtkLODGeomorph's
+/// default TimeScale (1).
+std::vector<double> FrameTimes(const std::vector<double>& levelTimes, int framesPerTransition)
+{
+  std::vector<double> times;
+  for (size_t i = 0; i + 1 < levelTimes.size(); ++i)
+  {
+    for (int k = 0; k < framesPerTransition; ++k)
+    {
+      times.push_back(
+        levelTimes[i] + (levelTimes[i + 1] - levelTimes[i]) * k / framesPerTransition);
+    }
+  }
+  if (!levelTimes.empty())
+  {
+    times.push_back(levelTimes.back());
+  }
+  return times;
+}
+
+void PrintTable(const HierarchyProducer& producer, vtkMultiBlockDataSet* levels, double seconds,
+  int framesPerTransition)
+{
+  vtkPolyData* finest = Level(levels, 0);
+  const double diagonal = finest->GetLength();
   // Fewer samples than the yardstick's default (100k per surface): enough for a table a user
-  // reads, and it keeps the demo quick. The benchmark uses the default.
+  // reads, and far quicker than the filters' ComputeLevelError. The benchmark uses the default.
   meshlod::SurfaceDistanceOptions yardstick;
   yardstick.SamplesPerSurface = 20000;
   yardstick.MaximumVertexSamples = 20000;
-  std::cout << "\nLevels of detail: " << hierarchy.Method << "\n"
-            << "Error: surface distance to level 0 in % of the bounding-box diagonal.\n\n"
-            << "| level | triangles | Hausdorff % |   RMS %  | time (s) |\n"
-            << "|------:|----------:|------------:|---------:|---------:|\n";
-  for (unsigned int i = 0; i < hierarchy.Levels->GetNumberOfBlocks(); ++i)
+  const Clock::time_point start = Clock::now();
+  std::cout << "\nLevels of detail: " << producer.Description << "\n";
+  std::printf("All %u levels made in %.3f s.\n", levels->GetNumberOfBlocks(), seconds);
+  std::cout
+    << "Errors in % of the bounding-box diagonal: estimated = the producer's own EstimatedError;\n"
+       "Hausdorff and RMS = symmetric surface distance to level 0, measured here.\n"
+       "time = the level's time in "
+    << producer.Name << "_frames.pvd (its frame in " << producer.Name << "_frames/).\n\n"
+    << "| level | triangles | estimated % | Hausdorff % |   RMS %  | time |     frame     |\n"
+    << "|------:|----------:|------------:|------------:|---------:|-----:|--------------:|\n";
+  for (unsigned int i = 0; i < levels->GetNumberOfBlocks(); ++i)
   {
-    vtkPolyData* level = Level(hierarchy.Levels, i);
+    vtkPolyData* level = Level(levels, i);
     meshlod::SurfaceDistance distance;
     if (i > 0)
     {
       distance = meshlod::MeasureSurfaceDistance(finest, level, yardstick);
     }
-    char time[32] = "-";
-    if (i < hierarchy.LevelSeconds.size())
+    const double estimated = LevelField(level, meshlod::names::EstimatedError);
+    char estimatedText[32] = "-";
+    if (estimated >= 0.0 && diagonal > 0.0)
     {
-      std::snprintf(time, sizeof(time), "%.3f", hierarchy.LevelSeconds[i]);
+      std::snprintf(estimatedText, sizeof(estimatedText), "%.4f", 100.0 * estimated / diagonal);
     }
     char row[160];
-    std::snprintf(row,
-      sizeof(row),
-      "| %5u | %9lld | %11.4f | %8.5f | %8s |\n",
-      i,
-      static_cast<long long>(level->GetNumberOfPolys()),
-      distance.HausdorffPercent(),
-      distance.RmsPercent(),
-      time);
+    std::snprintf(row, sizeof(row),
+      "| %5u | %9lld | %11s | %11.4f | %8.5f | %4u | frame_%03u.vtp |\n", i,
+      static_cast<long long>(level->GetNumberOfPolys()), estimatedText, distance.HausdorffPercent(),
+      distance.RmsPercent(), i, i * framesPerTransition);
     std::cout << row;
   }
-  std::printf("\nAll levels: %.3f s\n", hierarchy.TotalSeconds);
+  std::printf("\nErrors measured in %.3f s\n", SecondsSince(start));
   std::cout.flush();
 }
 
 //--------------------------------------------------------------------------------------------------
-bool WritePolyData(vtkPolyData* mesh, const fs::path& path)
-{
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetInputData(mesh);
-  writer->SetFileName(path.string().c_str());
-  return writer->Write() == 1;
-}
-
 bool WriteHierarchy(vtkMultiBlockDataSet* levels, const fs::path& path)
 {
   vtkNew<vtkXMLMultiBlockDataWriter> writer;
   writer->SetInputData(levels);
   writer->SetFileName(path.string().c_str());
+  // Connectivity and MorphTargetId as 32-bit integers (enough below 2^31 points): smaller
+  // files, and vtkLODGeomorph reads such a hierarchy back as it is. zlib's fastest level:
+  // files about as small as the default level's, in half the time.
+  writer->SetIdTypeToInt32();
+  writer->SetCompressionLevel(1);
   return writer->Write() == 1;
 }
 
-/// frames/frame_NNN.vtp and a ParaView collection file (.pvd) listing them as a time series.
-bool WriteFrames(const std::vector<Frame>& frames, const fs::path& directory)
+/// Removes <folder>/frame_*.vtp: frames left over from an earlier, longer run would confuse a
+/// user browsing the folder.
+void RemoveOldFrames(const fs::path& folder)
 {
-  const fs::path folder = directory / "frames";
-  fs::create_directories(folder);
-  // Frames left over from an earlier, longer run would confuse a user browsing the folder.
   for (const fs::directory_entry& entry : fs::directory_iterator(folder))
   {
     const std::string name = entry.path().filename().string();
@@ -241,24 +215,57 @@ bool WriteFrames(const std::vector<Frame>& frames, const fs::path& directory)
       fs::remove(entry.path());
     }
   }
+}
 
-  std::ofstream pvd(directory / "frames.pvd");
+/// The geomorph time series: vtkLODGeomorph publishes one time step per level; each frame is
+/// an update at a requested time (UPDATE_TIME_STEP), as in a ParaView animation, written by a
+/// writer connected to the geomorph (its update keeps the requested time). Writes
+/// <name>_frames/frame_NNN.vtp and <name>_frames.pvd, a ParaView collection listing them with
+/// their times. Returns the number of frames, or -1 when a file cannot be written.
+int WriteGeomorphFrames(vtkMultiBlockDataSet* levels, const fs::path& directory,
+  const std::string& name, int framesPerTransition)
+{
+  vtkNew<vtkLODGeomorph> geomorph;
+  geomorph->SetInputData(levels);
+  geomorph->UpdateInformation();
+  vtkInformation* info = geomorph->GetOutputInformation(0);
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (!info->Has(SDDP::TIME_STEPS()))
+  {
+    return -1; // not a hierarchy vtkLODGeomorph accepts (it said why)
+  }
+  const double* steps = info->Get(SDDP::TIME_STEPS());
+  const std::vector<double> levelTimes(steps, steps + info->Length(SDDP::TIME_STEPS()));
+
+  const fs::path folder = directory / (name + "_frames");
+  fs::create_directories(folder);
+  RemoveOldFrames(folder);
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputConnection(geomorph->GetOutputPort());
+  writer->SetIdTypeToInt32();
+  writer->SetCompressionLevel(1);
+
+  std::ofstream pvd(directory / (name + "_frames.pvd"));
+  pvd.precision(12);
   pvd << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n";
-  for (size_t i = 0; i < frames.size(); ++i)
+  const std::vector<double> times = FrameTimes(levelTimes, framesPerTransition);
+  for (size_t k = 0; k < times.size(); ++k)
   {
-    char name[32];
-    std::snprintf(name, sizeof(name), "frame_%03zu.vtp", i);
-    if (!WritePolyData(frames[i].Mesh, folder / name))
+    char file[32];
+    std::snprintf(file, sizeof(file), "frame_%03zu.vtp", k);
+    geomorph->UpdateTimeStep(times[k]);
+    writer->SetFileName((folder / file).string().c_str());
+    if (writer->Write() != 1)
     {
-      return false;
+      return -1;
     }
-    pvd << "    <DataSet timestep=\"" << frames[i].Time << "\" group=\"\" part=\"0\" file=\"frames/"
-        << name << "\"/>\n";
+    pvd << "    <DataSet timestep=\"" << times[k] << "\" group=\"\" part=\"0\" file=\"" << name
+        << "_frames/" << file << "\"/>\n";
   }
   pvd << "  </Collection>\n</VTKFile>\n";
-  return static_cast<bool>(pvd);
+  return pvd ? static_cast<int>(times.size()) : -1;
 }
 
 //--------------------------------------------------------------------------------------------------
@@ -447,6 +454,7 @@ struct Options
   fs::path Output = "demo-output";
   meshlod::testing::Field Field = meshlod::testing::Field::Metaballs;
   int Resolution = 0; // 0: about DefaultTriangles
+  int FramesPerTransition = 8;
   bool Render = true;
 };
 
@@ -475,6 +483,15 @@ bool ParseArguments(int argc, char* argv[], Options& options)
         return false;
       }
     }
+    else if (arg == "--frames" && i + 1 < argc)
+    {
+      options.FramesPerTransition = std::atoi(argv[++i]);
+      if (options.FramesPerTransition < 1 || options.FramesPerTransition > 100)
+      {
+        std::cerr << "--frames must be between 1 and 100\n";
+        return false;
+      }
+    }
     else if (arg == "--no-render")
     {
       options.Render = false;
@@ -491,6 +508,67 @@ bool ParseArguments(int argc, char* argv[], Options& options)
   }
   return true;
 }
+
+/// One producer: its hierarchy, table, files and picture. False when a file cannot be written.
+bool Demonstrate(const HierarchyProducer& producer, vtkPolyData* surface, const Options& options)
+{
+  Clock::time_point start = Clock::now();
+  vtkSmartPointer<vtkMultiBlockDataSet> levels = producer.Produce(surface);
+  const double seconds = SecondsSince(start);
+  if (levels == nullptr || levels->GetNumberOfBlocks() == 0)
+  {
+    std::cerr << producer.Name << ": no levels\n";
+    return false;
+  }
+  PrintTable(producer, levels, seconds, options.FramesPerTransition);
+
+  // Files for ParaView.
+  start = Clock::now();
+  const fs::path vtm = options.Output / (producer.Name + ".vtm");
+  if (!WriteHierarchy(levels, vtm))
+  {
+    std::cerr << "cannot write " << vtm.string() << "\n";
+    return false;
+  }
+  const int frames =
+    WriteGeomorphFrames(levels, options.Output, producer.Name, options.FramesPerTransition);
+  if (frames < 0)
+  {
+    std::cerr << "cannot write the frames of " << producer.Name << " into " << options.Output
+              << "\n";
+    return false;
+  }
+  std::printf("\nWrote %s (+ %s/) and %s (+ %d frames in %s_frames/) in %.3f s\n",
+    vtm.string().c_str(), producer.Name.c_str(),
+    (options.Output / (producer.Name + "_frames.pvd")).string().c_str(), frames,
+    producer.Name.c_str(), SecondsSince(start));
+
+  // A picture of a few levels.
+  if (!options.Render)
+  {
+    std::cout << "No picture (--no-render).\n";
+    return true;
+  }
+  std::vector<vtkPolyData*> meshes;
+  std::vector<std::string> labels;
+  for (unsigned int level : PickLevelsToShow(levels->GetNumberOfBlocks()))
+  {
+    meshes.push_back(Level(levels, level));
+    labels.push_back("Level " + std::to_string(level) + ": " +
+      std::to_string(meshes.back()->GetNumberOfPolys()) + " triangles");
+  }
+  std::string why;
+  const fs::path png = options.Output / (producer.Name + "_levels.png");
+  if (RenderStrip(meshes, labels, png, why))
+  {
+    std::cout << "Wrote " << png.string() << "\n";
+  }
+  else
+  {
+    std::cout << "No picture: " << why << ". Everything else is written.\n";
+  }
+  return true;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -500,7 +578,7 @@ int main(int argc, char* argv[])
   {
     std::cerr << "usage: " << argv[0]
               << " [output-directory] [--field metaballs|gyroid|torus|sphere|wavelet]"
-                 " [--resolution N] [--no-render]\n";
+                 " [--resolution N] [--frames N] [--no-render]\n";
     return 2;
   }
   std::error_code error;
@@ -511,67 +589,24 @@ int main(int argc, char* argv[])
     return 1;
   }
 
-  // 1. The input: marching cubes (flying edges) on a sampled analytic field.
+  // The input: marching cubes (flying edges) on a sampled analytic field.
   const int resolution = options.Resolution > 0
     ? options.Resolution
     : meshlod::testing::ResolutionForTriangles(options.Field, DefaultTriangles);
-  Clock::time_point start = Clock::now();
+  const Clock::time_point start = Clock::now();
   vtkSmartPointer<vtkPolyData> surface =
     meshlod::testing::MakeIsosurface(options.Field, resolution, /*computeNormals=*/false);
   std::printf("Isosurface of %s on a %d^3 volume: %lld triangles, %lld points, %.3f s\n",
-    meshlod::testing::FieldName(options.Field),
-    resolution,
+    meshlod::testing::FieldName(options.Field), resolution,
     static_cast<long long>(surface->GetNumberOfPolys()),
-    static_cast<long long>(surface->GetNumberOfPoints()),
-    SecondsSince(start));
+    static_cast<long long>(surface->GetNumberOfPoints()), SecondsSince(start));
 
-  // 2. Levels of detail, and the table.
-  const Hierarchy hierarchy = ProduceHierarchy(surface);
-  start = Clock::now();
-  PrintTable(hierarchy);
-  std::printf("Errors measured in %.3f s\n", SecondsSince(start));
-  start = Clock::now();
-
-  // 3. Files for ParaView.
-  bool written = WriteHierarchy(hierarchy.Levels, options.Output / "hierarchy.vtm");
-  const std::vector<Frame> frames = ProduceFrames(hierarchy.Levels);
-  written = written && WriteFrames(frames, options.Output);
-  if (!written)
+  for (const HierarchyProducer& producer : HierarchyProducers())
   {
-    std::cerr << "cannot write into " << options.Output << "\n";
-    return 1;
-  }
-  std::printf("\nWrote %s (+ hierarchy/) and %s (+ %zu frames in frames/) in %.3f s\n",
-    (options.Output / "hierarchy.vtm").string().c_str(),
-    (options.Output / "frames.pvd").string().c_str(),
-    frames.size(),
-    SecondsSince(start));
-
-  // 4. A picture of a few levels.
-  if (options.Render)
-  {
-    std::vector<vtkPolyData*> meshes;
-    std::vector<std::string> labels;
-    for (unsigned int level : PickLevelsToShow(hierarchy.Levels->GetNumberOfBlocks()))
+    if (!Demonstrate(producer, surface, options))
     {
-      meshes.push_back(Level(hierarchy.Levels, level));
-      labels.push_back("Level " + std::to_string(level) + ": " +
-        std::to_string(meshes.back()->GetNumberOfPolys()) + " triangles");
+      return 1;
     }
-    std::string why;
-    const fs::path png = options.Output / "levels.png";
-    if (RenderStrip(meshes, labels, png, why))
-    {
-      std::cout << "Wrote " << png.string() << "\n";
-    }
-    else
-    {
-      std::cout << "No picture: " << why << ". Everything else is written.\n";
-    }
-  }
-  else
-  {
-    std::cout << "No picture (--no-render).\n";
   }
   return 0;
 }

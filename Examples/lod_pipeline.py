@@ -1,0 +1,43 @@
+"""Levels of detail of an isosurface, and the smooth meshes between them, in one VTK pipeline:
+vtkSampleFunction -> vtkFlyingEdges3D -> vtkTriangleCollapseDecimation (the levels) ->
+vtkLODGeomorph (time i is level i; time i + f moves level i the fraction f of the way to level
+i + 1, with level i's triangles).
+
+    /usr/bin/python3 lod_pipeline.py [output-prefix]
+
+writes <prefix>.vtm (the levels; open it in ParaView) and <prefix>_<time>.vtp for a few times.
+"""
+import sys
+
+import meshlod
+from vtkmodules.vtkCommonDataModel import vtkSphere
+from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
+from vtkmodules.vtkImagingHybrid import vtkSampleFunction
+from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataWriter, vtkXMLPolyDataWriter
+
+prefix = sys.argv[1] if len(sys.argv) > 1 else "lod"
+shape = vtkSphere()  # radius 0.5: its isosurface at 0 in a 50^3 volume over [-1, 1]^3
+volume = vtkSampleFunction()
+volume.SetImplicitFunction(shape)
+surface = vtkFlyingEdges3D()
+surface.SetInputConnection(volume.GetOutputPort())
+surface.SetValue(0, 0.0)
+levels = meshlod.vtkTriangleCollapseDecimation()  # levels 1-4 keep 38%, 14%, 5.3%, 2%
+levels.SetInputConnection(surface.GetOutputPort())
+levels.SetNumberOfLevels(4)
+levels.SetTargetReduction(0.98)
+level_writer = vtkXMLMultiBlockDataWriter()
+level_writer.SetInputConnection(levels.GetOutputPort())
+level_writer.SetFileName(prefix + ".vtm")
+written = level_writer.Write() == 1
+
+geomorph = meshlod.vtkLODGeomorph()
+geomorph.SetInputConnection(levels.GetOutputPort())
+mesh_writer = vtkXMLPolyDataWriter()
+mesh_writer.SetInputConnection(geomorph.GetOutputPort())
+for time in ("0", "0.5", "1", "2.25", "4"):
+    geomorph.UpdateTimeStep(float(time))  # as a ParaView animation asks; the writer keeps it
+    mesh_writer.SetFileName(prefix + "_" + time + ".vtp")
+    written = mesh_writer.Write() == 1 and written
+    print("time", time, ":", geomorph.GetOutput().GetNumberOfPolys(), "triangles")
+sys.exit(0 if written else 1)

@@ -1,0 +1,151 @@
+// vtkLODGeomorph's exact triangle count on vtkTriangleCollapseDecimation hierarchies of a small
+// closed isosurface, for EVERY count from the coarsest level to the finest (the four
+// schedule / operator combinations): even counts are met exactly, odd ones give the even count
+// below (a closed surface loses triangles two at a time), and every output is a closed,
+// manifold, consistently oriented mesh of the input's genus without degenerate or repeated
+// triangles. (TestLODGeomorphDecimation checks a sample of the counts with InspectMesh; this
+// one checks them all, with the flat topology of Core/TriangleMesh.h to stay quick.)
+//
+// KNOWN FAILURE, marked below: a few counts fall in the middle of a collapse cluster (the
+// points sharing one CollapseRank) and come out with a non-manifold edge and a pair of
+// coincident, oppositely oriented triangles (Euler characteristic 3 instead of 2). Applying
+// whole CollapseRank groups gives valid meshes at every group boundary of these hierarchies, so
+// the hierarchy is sound; the invalid states come from the order in which vtkLODGeomorph joins
+// the points of one cluster one at a time (an edge collapse that breaks the link condition).
+#include "vtkLODGeomorph.h"
+#include "vtkTriangleCollapseDecimation.h"
+
+#include "Core/TriangleMesh.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestHierarchies.h"
+#include "MeshLODTestMeshes.h"
+
+#include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <array>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+using namespace meshlod;
+
+vtkPolyData* Level(vtkMultiBlockDataSet* h, int i)
+{
+  return vtkPolyData::SafeDownCast(h->GetBlock(static_cast<unsigned int>(i)));
+}
+
+// What is wrong with a mesh that should be closed, manifold, consistently oriented, of Euler
+// characteristic `euler`, with every point used and no degenerate or repeated triangle; empty
+// when nothing is.
+std::string ClosedMeshProblems(vtkPolyData* poly, std::int64_t euler)
+{
+  const TriangleMesh mesh = testing::ToTriangleMesh(poly);
+  TriangleTopology topology;
+  topology.Build(mesh);
+  const TriangleTopology::EdgeCounts edges = topology.CountEdges(mesh);
+  std::string problems;
+  auto add = [&](std::int64_t count, const char* what) {
+    if (count != 0)
+    {
+      problems += " " + std::to_string(count) + " " + what;
+    }
+  };
+  add(edges.NonManifold, "non-manifold edges");
+  add(edges.Boundary, "boundary edges");
+  add(topology.CountVertices(VertexKind::NonManifold), "non-manifold vertices");
+  add(topology.CountVertices(VertexKind::Unused), "unused points");
+  add(topology.IsConsistentlyOriented(mesh) ? 0 : 1, "inconsistent orientation");
+  const std::int64_t chi = topology.EulerCharacteristic(mesh);
+  if (chi != euler)
+  {
+    problems += " Euler characteristic " + std::to_string(chi);
+  }
+
+  double bounds[6];
+  poly->GetBounds(bounds);
+  const double diagonal2 = (bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]);
+  std::vector<std::array<Id, 3>> sorted;
+  std::int64_t degenerate = 0;
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    const Id* tri = mesh.Triangle(t);
+    double u[3], v[3], n[3];
+    vtkMath::Subtract(mesh.Point(tri[1]), mesh.Point(tri[0]), u);
+    vtkMath::Subtract(mesh.Point(tri[2]), mesh.Point(tri[0]), v);
+    vtkMath::Cross(u, v, n);
+    degenerate += vtkMath::Norm(n) <= 1e-14 * diagonal2;
+    std::array<Id, 3> key = { tri[0], tri[1], tri[2] };
+    std::sort(key.begin(), key.end());
+    sorted.push_back(key);
+  }
+  std::sort(sorted.begin(), sorted.end());
+  add(degenerate, "degenerate triangles");
+  add(static_cast<std::int64_t>(sorted.end() - std::unique(sorted.begin(), sorted.end())),
+    "repeated triangles");
+  return problems;
+}
+
+void TestEveryCount(vtkPolyData* surface, int schedule, int op, const char* label)
+{
+  vtkNew<vtkTriangleCollapseDecimation> decimate;
+  decimate->SetInputData(surface);
+  decimate->SetSchedule(schedule);
+  decimate->SetOperator(op);
+  decimate->Update();
+  vtkMultiBlockDataSet* h = decimate->GetHierarchy();
+  const int n = static_cast<int>(h->GetNumberOfBlocks());
+  MESHLOD_CHECK_EQ(n, 9);
+  const std::int64_t euler = 2; // the metaballs: one closed genus-0 surface
+  MESHLOD_CHECK_EQ(ClosedMeshProblems(Level(h, 0), euler), std::string());
+
+  vtkNew<vtkLODGeomorph> geomorph;
+  geomorph->SetInputData(h);
+  const vtkIdType coarsest = Level(h, n - 1)->GetNumberOfPolys();
+  const vtkIdType finest = Level(h, 0)->GetNumberOfPolys();
+  int wrongCount = 0, invalid = 0;
+  for (vtkIdType count = coarsest; count <= finest; ++count)
+  {
+    geomorph->SetTargetNumberOfTriangles(count);
+    geomorph->Update();
+    vtkPolyData* out = geomorph->GetOutput();
+    const vtkIdType expected = count - count % 2;
+    wrongCount += out->GetNumberOfPolys() != expected;
+    wrongCount += geomorph->GetActualNumberOfTriangles() != expected;
+    const std::string problems = ClosedMeshProblems(out, euler);
+    if (!problems.empty() && ++invalid <= 4)
+    {
+      std::cerr << "  " << label << ", count " << count << " (level of detail "
+                << geomorph->GetActualLevelOfDetail() << "):" << problems << "\n";
+    }
+  }
+  std::cerr << label << ": " << finest - coarsest + 1 << " counts, " << invalid << " invalid\n";
+  MESHLOD_CHECK_EQ(wrongCount, 0);
+  // KNOWN FAILURE (vtkLODGeomorph, see the top of this file). Fails today for the greedy
+  // schedule: counts 3318 and 3319 (triangles and edges; the middle of a three-point cluster of
+  // the transition 0 -> 1, between 3320 and 3316 triangles) and 1290 and 1291 (triangles only,
+  // transition 1 -> 2); the independent-set hierarchies pass.
+  MESHLOD_CHECK_EQ(invalid, 0);
+}
+} // namespace
+
+int TestLODGeomorphDecimationExactCount(int, char*[])
+{
+  vtkSmartPointer<vtkPolyData> surface = testing::MakeIsosurface(testing::Field::Metaballs, 32);
+  TestEveryCount(surface, vtkTriangleCollapseDecimation::GREEDY,
+    vtkTriangleCollapseDecimation::TRIANGLES_AND_EDGES, "greedy, triangles and edges");
+  TestEveryCount(surface, vtkTriangleCollapseDecimation::INDEPENDENT_SETS,
+    vtkTriangleCollapseDecimation::TRIANGLES_AND_EDGES, "independent sets, triangles and edges");
+  TestEveryCount(surface, vtkTriangleCollapseDecimation::GREEDY,
+    vtkTriangleCollapseDecimation::TRIANGLES, "greedy, triangles only");
+  TestEveryCount(surface, vtkTriangleCollapseDecimation::INDEPENDENT_SETS,
+    vtkTriangleCollapseDecimation::TRIANGLES, "independent sets, triangles only");
+  return testing::Result();
+}

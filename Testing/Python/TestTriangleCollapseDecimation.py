@@ -1,0 +1,160 @@
+"""vtkTriangleCollapseDecimation from Python: a flying-edges isosurface made in Python, the
+hierarchy's levels, block names, morph arrays and field data, then vtkLODGeomorph driven by the
+pipeline time, compared with the explicit LevelOfDetail and an exact triangle count."""
+
+import sys
+
+from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet, vtkImplicitBoolean, vtkSphere
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
+from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
+from vtkmodules.vtkImagingHybrid import vtkSampleFunction
+
+import meshlod
+
+LEVELS = 3  # levels after level 0 (ComputeLevelError measures each: the slow part)
+MORPH_ARRAYS = ("MorphTarget", "MorphTargetId", "CollapseRank")
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("CHECK failed:", what)
+
+
+def three_blobs(resolution):
+    """A closed genus-0 isosurface: the union of three overlapping spheres."""
+    union = vtkImplicitBoolean()
+    union.SetOperationTypeToUnion()
+    for center, radius in (((-0.45, 0, 0), 0.4), ((0.1, 0.15, 0), 0.35), ((0.5, -0.1, 0.1), 0.3)):
+        sphere = vtkSphere()
+        sphere.SetCenter(*center)
+        sphere.SetRadius(radius)
+        union.AddFunction(sphere)
+    volume = vtkSampleFunction()
+    volume.SetImplicitFunction(union)
+    volume.SetModelBounds(-1, 1, -1, 1, -1, 1)
+    volume.SetSampleDimensions(resolution, resolution, resolution)
+    volume.ComputeNormalsOff()
+    contour = vtkFlyingEdges3D()
+    contour.SetInputConnection(volume.GetOutputPort())
+    contour.SetValue(0, 0.0)
+    return contour
+
+
+def field(level, name):
+    array = level.GetFieldData().GetArray(name)
+    return None if array is None else array.GetTuple1(0)
+
+
+def points_of(poly):
+    return [poly.GetPoint(i) for i in range(poly.GetNumberOfPoints())]
+
+
+def triangles_of(poly):
+    ids = poly.GetPolys().GetConnectivityArray()
+    return [int(ids.GetTuple1(i)) for i in range(ids.GetNumberOfTuples())]
+
+
+def same_mesh(a, b):
+    return points_of(a) == points_of(b) and triangles_of(a) == triangles_of(b)
+
+
+def test_hierarchy(contour, decimate):
+    contour.Update()
+    input_triangles = contour.GetOutput().GetNumberOfPolys()
+    check(input_triangles > 5000, "input has %d triangles" % input_triangles)
+    decimate.Update()
+    hierarchy = decimate.GetHierarchy()
+    n = hierarchy.GetNumberOfBlocks()
+    check(n == LEVELS + 1, "%d levels" % n)
+    check(decimate.GetNumberOfLevelsProduced() == n, "NumberOfLevelsProduced")
+    check(abs(decimate.GetActualReduction() - 0.99) < 0.001, "ActualReduction")
+    previous = None
+    for i in range(n):
+        level = hierarchy.GetBlock(i)
+        triangles = level.GetNumberOfPolys()
+        name = hierarchy.GetMetaData(i).Get(vtkCompositeDataSet.NAME())
+        check(name == "Level %d" % i, "block %d named %r" % (i, name))
+        if previous is not None:
+            check(triangles < previous, "level %d: %d after %d" % (i, triangles, previous))
+            # Level i keeps 0.01^(i / LEVELS) of the input; a collapse removes at most 4.
+            target = int(input_triangles * 0.01 ** (i / LEVELS))
+            check(target - 4 <= triangles <= target, "level %d: %d for %d" % (i, triangles, target))
+        previous = triangles
+        point_data = level.GetPointData()
+        for array in MORPH_ARRAYS:
+            present = point_data.GetArray(array) is not None
+            check(present == (i < n - 1), "level %d has %s: %s" % (i, array, present))
+        if i < n - 1:
+            check(point_data.GetArray("MorphTarget").GetNumberOfComponents() == 3, "MorphTarget")
+            next_points = hierarchy.GetBlock(i + 1).GetNumberOfPoints()
+            ids = point_data.GetArray("MorphTargetId").GetRange()
+            check(0 <= ids[0] and ids[1] < next_points, "MorphTargetId range on level %d" % i)
+        check(field(level, "LevelIndex") == i, "LevelIndex of level %d" % i)
+        check(field(level, "NumberOfTriangles") == triangles, "NumberOfTriangles of level %d" % i)
+        estimated = field(level, "EstimatedError")
+        hausdorff = field(level, "MeasuredHausdorff")
+        rms = field(level, "MeasuredRMS")
+        check(None not in (estimated, hausdorff, rms), "error fields on level %d" % i)
+        if None in (estimated, hausdorff, rms):
+            continue
+        if i == 0:
+            check(estimated == 0 and hausdorff == 0 and rms == 0, "level 0 has no error")
+        else:
+            check(estimated > 0 and 0 < rms <= hausdorff, "errors of level %d" % i)
+            # World units; the volume spans 2, the surface about 1.8: far below 5% of that.
+            check(hausdorff < 0.1, "Hausdorff %g on level %d" % (hausdorff, i))
+    return hierarchy
+
+
+def test_geomorph(decimate, hierarchy):
+    n = hierarchy.GetNumberOfBlocks()
+    runs = []
+    decimate.AddObserver("EndEvent", lambda caller, event: runs.append(event))
+
+    timed = meshlod.vtkLODGeomorph()
+    timed.SetInputConnection(decimate.GetOutputPort())
+    timed.UpdateInformation()
+    steps = timed.GetOutputInformation(0).Get(vtkStreamingDemandDrivenPipeline.TIME_STEPS())
+    check(steps == tuple(float(i) for i in range(n)), "time steps %s" % (steps,))
+
+    explicit = meshlod.vtkLODGeomorph()
+    explicit.SetInputConnection(decimate.GetOutputPort())
+    explicit.UsePipelineTimeOff()
+    for time in (0.0, 0.5, 1.0, 1.25, 2.875, n - 1.5, n - 1.0):
+        timed.UpdateTimeStep(time)
+        explicit.SetLevelOfDetail(time)
+        explicit.Update()
+        check(timed.GetActualLevelOfDetail() == time, "level of detail at time %g" % time)
+        check(same_mesh(timed.GetOutput(), explicit.GetOutput()), "same mesh at time %g" % time)
+        lod = timed.GetOutput().GetFieldData().GetArray("LevelOfDetail").GetValue(0)
+        check(lod == time, "LevelOfDetail field %g at time %g" % (lod, time))
+        level = hierarchy.GetBlock(min(int(time), n - 1))
+        check(timed.GetOutput().GetNumberOfPolys() == level.GetNumberOfPolys(),
+              "connectivity of level %d at time %g" % (int(time), time))
+        if time == int(time):
+            check(same_mesh(timed.GetOutput(), level), "time %g is level %d" % (time, time))
+
+    # An exact count between levels 1 and 2 (a closed surface: even counts are reachable).
+    fine = hierarchy.GetBlock(1).GetNumberOfPolys()
+    coarse = hierarchy.GetBlock(2).GetNumberOfPolys()
+    count = (fine + coarse) // 4 * 2
+    timed.SetTargetNumberOfTriangles(count)
+    timed.Update()
+    check(timed.GetOutput().GetNumberOfPolys() == count, "exact count %d" % count)
+    check(1.0 < timed.GetActualLevelOfDetail() < 2.0, "exact count between levels 1 and 2")
+    check(not runs, "the decimation re-ran %d times for the geomorph" % len(runs))
+
+
+contour = three_blobs(48)
+decimate = meshlod.vtkTriangleCollapseDecimation()
+decimate.SetInputConnection(contour.GetOutputPort())
+decimate.SetNumberOfLevels(LEVELS)
+decimate.ComputeLevelErrorOn()
+hierarchy = test_hierarchy(contour, decimate)
+test_geomorph(decimate, hierarchy)
+if failures:
+    print(len(failures), "check(s) failed")
+    sys.exit(1)
