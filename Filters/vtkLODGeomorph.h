@@ -46,8 +46,11 @@
  * a point that reaches its MorphTarget merges with the points already there, and a triangle
  * disappears as soon as two of its corners have merged. A point joining a collapse is an edge
  * collapse: it removes the two triangles of that edge (one on a boundary; a large cluster may
- * remove more at once), so a closed manifold only reaches counts of its levels' parity. When
- * the count is not reachable, the output has the largest reachable count below it. Counts
+ * remove more at once), so a closed manifold only reaches counts of its levels' parity. The
+ * points of a cluster join in an order that keeps every intermediate mesh manifold (each join
+ * is checked); a join that no order can make valid is passed through and its count is not
+ * reachable. When the count is not reachable, the output has the largest reachable count
+ * below it. Counts
  * above the finest level's or below the coarsest level's are clamped to them, with a warning.
  * CollapseFraction geomorphs the next collapse: the points of the next step that removes
  * triangles (with the steps before it that remove none) are moved that fraction of the way to

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <functional>
 #include <limits>
-#include <queue>
 
 namespace meshlod
 {
@@ -32,6 +31,92 @@ void GroupByTarget(const Id* target, Id numberOfPoints, Id numberOfTargets,
   {
     points[cursor[target[p]]++] = p;
   }
+}
+
+// Union-find over points, for the points settled on one target (they are one vertex then).
+Id Find(std::vector<Id>& parent, Id p)
+{
+  while (parent[p] != p)
+  {
+    parent[p] = parent[parent[p]];
+    p = parent[p];
+  }
+  return p;
+}
+
+// Whether the vertex `merged` (a class of the union-find) has one fan: the triangles around its
+// members, with corners replaced by their classes and degenerate ones left out, give link edges
+// u -> w that form one cycle of at least three edges or one path, each vertex leaving and
+// entering at most once.
+bool HasOneFan(const Id* triangles, const VertexTriangleAdjacency& adjacency,
+  std::vector<Id>& parent, const std::vector<Id>& members, Id merged, std::vector<Id>& from,
+  std::vector<Id>& to)
+{
+  from.clear();
+  to.clear();
+  for (const Id m : members)
+  {
+    for (Id i = adjacency.Begin(m); i < adjacency.End(m); ++i)
+    {
+      const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[i]);
+      const Id c[3] = { Find(parent, tri[0]), Find(parent, tri[1]), Find(parent, tri[2]) };
+      if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
+      {
+        continue; // gone
+      }
+      const int k = c[0] == merged ? 0 : (c[1] == merged ? 1 : 2);
+      if (tri[k] != m)
+      {
+        continue; // listed under the member at that corner
+      }
+      from.push_back(c[(k + 1) % 3]);
+      to.push_back(c[(k + 2) % 3]);
+    }
+  }
+  const size_t n = from.size();
+  size_t start = 0;
+  int starts = 0;
+  for (size_t i = 0; i < n; ++i)
+  {
+    int leaves = 0, enters = 0;
+    for (size_t j = 0; j < n; ++j)
+    {
+      leaves += from[j] == from[i] ? 1 : 0;
+      enters += to[j] == from[i] ? 1 : 0;
+    }
+    if (leaves != 1 || enters > 1)
+    {
+      return false;
+    }
+    if (enters == 0)
+    {
+      ++starts;
+      start = i;
+    }
+  }
+  if (n == 0 || starts > 1 || (starts == 0 && n < 3))
+  {
+    return n == 0;
+  }
+  size_t walked = 1, edge = start;
+  for (;;)
+  {
+    size_t j = 0;
+    while (j < n && from[j] != to[edge])
+    {
+      ++j;
+    }
+    if (j == n || j == start)
+    {
+      break;
+    }
+    edge = j;
+    if (++walked > n)
+    {
+      return false;
+    }
+  }
+  return walked == n;
 }
 
 // Moving points sorted by collapse: (rank, -1 last), then target, then id.
@@ -88,22 +173,51 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
 
   const std::vector<Id> moving = SortMovingPoints(numberOfPoints, target, rank, atTarget);
   this->Order.reserve(moving.size());
-  // Which collapse a moving point belongs to (its first index in `moving` + 1).
-  std::vector<Id> collapseOf(numberOfPoints, 0);
-  std::priority_queue<Id, std::vector<Id>, std::greater<Id>> frontier;
-  auto pushNeighbors = [&](Id p, Id collapse) {
-    for (Id i = adjacency.Begin(p); i < adjacency.End(p); ++i)
+
+  // The merges replayed with a union-find: the points settled on one target are one vertex.
+  std::vector<Id> parent(numberOfPoints);
+  for (Id p = 0; p < numberOfPoints; ++p)
+  {
+    parent[p] = p;
+  }
+  std::vector<Id> settledOn(numberOfTargets, Unassigned); // a settled point of each target
+  for (Id p = 0; p < numberOfPoints; ++p)
+  {
+    if (this->Step[p] == 0)
     {
-      const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[i]);
-      for (int k = 0; k < 3; ++k)
+      const Id t = target[p];
+      if (settledOn[t] == Unassigned)
       {
-        if (collapseOf[tri[k]] == collapse && this->Step[tri[k]] == Unassigned)
-        {
-          frontier.push(tri[k]);
-        }
+        settledOn[t] = p;
+      }
+      parent[Find(parent, p)] = Find(parent, settledOn[t]);
+    }
+  }
+  std::vector<Id> members, from, to, joined;
+  // Whether settling p now leaves a valid mesh (p's target keeps one fan).
+  auto validWith = [&](Id p) {
+    const Id t = target[p];
+    if (settledOn[t] == Unassigned)
+    {
+      return true; // the first point of its target only moves
+    }
+    const Id root = Find(parent, settledOn[t]);
+    const Id saved = parent[p];
+    parent[p] = root;
+    members.clear();
+    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
+    {
+      const Id q = targetPoints[i];
+      if (q == p || this->Step[q] != Unassigned)
+      {
+        members.push_back(q);
       }
     }
+    const bool valid = HasOneFan(triangles, adjacency, parent, members, root, from, to);
+    parent[p] = saved;
+    return valid;
   };
+  std::vector<std::uint8_t> valid(1, 1);
 
   size_t begin = 0;
   while (begin < moving.size())
@@ -117,46 +231,67 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     {
       ++end;
     }
-    const Id collapse = static_cast<Id>(begin) + 1;
-    for (size_t i = begin; i < end; ++i)
-    {
-      collapseOf[moving[i]] = collapse;
-    }
-    // Seeds: points already settled on this target.
+    // Settle its points one by one: the lowest-id point joined by an edge to the settled ones
+    // whose merge keeps a valid mesh; when none does, the lowest-id joined point anyway (the
+    // step is then passed through, not stopped at), or the lowest-id point left.
     const Id t = target[first];
-    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
-    {
-      if (this->Step[targetPoints[i]] != Unassigned)
-      {
-        pushNeighbors(targetPoints[i], collapse);
-      }
-    }
-    size_t lowestLeft = begin;
     for (size_t settled = begin; settled < end; ++settled)
     {
-      Id p = Unassigned;
-      while (!frontier.empty() && p == Unassigned)
+      joined.clear();
+      for (size_t i = begin; i < end; ++i)
       {
-        p = this->Step[frontier.top()] == Unassigned ? frontier.top() : Unassigned;
-        frontier.pop();
-      }
-      if (p == Unassigned)
-      {
-        while (this->Step[moving[lowestLeft]] != Unassigned)
+        const Id q = moving[i];
+        bool next = false;
+        for (Id j = adjacency.Begin(q); j < adjacency.End(q) && !next && this->Step[q] == Unassigned; ++j)
         {
-          ++lowestLeft;
+          const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
+          for (int k = 0; k < 3; ++k)
+          {
+            next = next || (tri[k] != q && target[tri[k]] == t && this->Step[tri[k]] != Unassigned);
+          }
         }
-        p = moving[lowestLeft];
+        if (next)
+        {
+          joined.push_back(q); // increasing id: a collapse's points are sorted by id
+        }
+      }
+      Id p = Unassigned;
+      for (const Id q : joined)
+      {
+        if (validWith(q))
+        {
+          p = q;
+          break;
+        }
+      }
+      bool ok = p != Unassigned;
+      if (!ok)
+      {
+        p = joined.empty() ? Unassigned : joined.front();
+        for (size_t i = begin; i < end && p == Unassigned; ++i)
+        {
+          p = this->Step[moving[i]] == Unassigned ? moving[i] : Unassigned;
+        }
+        ok = validWith(p);
       }
       this->Order.push_back(p);
       this->Step[p] = static_cast<Id>(this->Order.size());
-      pushNeighbors(p, collapse);
-    }
-    while (!frontier.empty())
-    {
-      frontier.pop();
+      valid.push_back(ok ? 1 : 0);
+      if (settledOn[t] == Unassigned)
+      {
+        settledOn[t] = p;
+      }
+      parent[Find(parent, p)] = Find(parent, settledOn[t]);
     }
     begin = end;
+  }
+  this->Stops.clear();
+  for (size_t step = 0; step < valid.size(); ++step)
+  {
+    if (valid[step])
+    {
+      this->Stops.push_back(static_cast<Id>(step));
+    }
   }
 
   // A triangle disappears when the second of two corners with the same target settles.
@@ -199,18 +334,19 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
 //------------------------------------------------------------------------------
 Id CollapseSchedule::StepsForCount(std::int64_t count) const
 {
-  const auto it = std::partition_point(
-    this->CountAfter.begin(), this->CountAfter.end(), [count](Id left) { return left > count; });
-  return it == this->CountAfter.end() ? -1 : static_cast<Id>(it - this->CountAfter.begin());
+  // Counts only decrease along the steps, so they do along the stops too.
+  const auto it = std::partition_point(this->Stops.begin(), this->Stops.end(),
+    [&](Id step) { return this->CountAfter[step] > count; });
+  return it == this->Stops.end() ? -1 : *it;
 }
 
 //------------------------------------------------------------------------------
 Id CollapseSchedule::NextRemovingStep(Id steps) const
 {
   const Id now = this->CountAfter[steps];
-  const auto it = std::partition_point(this->CountAfter.begin() + steps + 1, this->CountAfter.end(),
-    [now](Id left) { return left == now; });
-  return it == this->CountAfter.end() ? -1 : static_cast<Id>(it - this->CountAfter.begin());
+  const auto it = std::partition_point(this->Stops.begin(), this->Stops.end(),
+    [&](Id step) { return step <= steps || this->CountAfter[step] == now; });
+  return it == this->Stops.end() ? -1 : *it;
 }
 
 } // namespace meshlod

@@ -13,6 +13,11 @@
 //   that target, or the lowest-id point left when none is.
 //   Settling a point next to a settled one is an edge collapse, so the intermediate meshes of a
 //   valid triangle collapse stay manifold, and a closed manifold loses two triangles per step.
+//   A level transition composes several collapses, though, and joining its points one by one
+//   can pass through a mesh that is not manifold (a pinched vertex, a doubled triangle). Each
+//   step is therefore checked: the merged point must keep one fan of triangles (a disk or a
+//   half-disk) with no edge used twice. Steps that fail are passed through, never stopped at:
+//   their triangle counts are not reachable.
 #ifndef meshlod_CollapseSchedule_h
 #define meshlod_CollapseSchedule_h
 
@@ -32,6 +37,7 @@ struct VTKFILTERSMESHLOD_EXPORT CollapseSchedule
   std::vector<Id> Order;       // Order[s - 1] is the point that settles at step s
   std::vector<Id> RemovalStep; // per triangle: the step at which it disappears, or Never
   std::vector<Id> CountAfter;  // triangles left after k steps, k = 0 .. NumberOfSteps()
+  std::vector<Id> Stops;       // the steps whose mesh is valid to stop at, increasing (0 first)
 
   /// `target` and `rank` hold one entry per point; `atTarget[p]` is non-zero when point p is
   /// already at its target position.
@@ -40,11 +46,12 @@ struct VTKFILTERSMESHLOD_EXPORT CollapseSchedule
 
   Id NumberOfSteps() const { return static_cast<Id>(this->Order.size()); }
 
-  /// The fewest steps that leave at most `count` triangles, or -1 when even all steps leave
-  /// more.
+  /// The fewest steps, among those that can be stopped at, that leave at most `count`
+  /// triangles, or -1 when even all steps leave more.
   Id StepsForCount(std::int64_t count) const;
 
-  /// The first step after `steps` that removes a triangle, or -1 when none does.
+  /// The first step after `steps` that can be stopped at and leaves fewer triangles, or -1
+  /// when none does.
   Id NextRemovingStep(Id steps) const;
 };
 
