@@ -341,15 +341,15 @@ void HierarchyBuilder::AppendLevel(const LevelData& level)
 //------------------------------------------------------------------------------
 void HierarchyBuilder::MeasureLevelErrors()
 {
-  vtkPolyData* level0 = this->Impl->Levels.front();
+  // Level 0 is sampled and located once for all levels.
+  SurfaceDistanceOptions options;
+  options.SamplesPerSurface = LevelErrorSamples;
+  options.MaximumVertexSamples = LevelErrorSamples;
+  const SurfaceDistanceMeter meter(this->Impl->Levels.front(), options);
   for (size_t i = 0; i < this->Impl->Levels.size(); ++i)
   {
     vtkPolyData* level = this->Impl->Levels[i];
-    SurfaceDistance d;
-    if (i > 0)
-    {
-      d = MeasureSurfaceDistance(level0, level);
-    }
+    const SurfaceDistance d = i > 0 ? meter.Measure(level) : SurfaceDistance();
     SetDoubleField(level, names::MeasuredHausdorff, d.Hausdorff);
     SetDoubleField(level, names::MeasuredRMS, d.Rms);
   }

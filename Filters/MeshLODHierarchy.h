@@ -27,6 +27,7 @@
 #include "vtkFiltersMeshLODModule.h"
 #include "vtkSmartPointer.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -75,9 +76,11 @@ public:
   int GetNumberOfLevels() const;
   vtkPolyData* GetLevel(int level) const;
 
-  /// Measure every level against level 0 with MeshLODSurfaceDistance and store
-  /// MeasuredHausdorff / MeasuredRMS in the levels' field data.
+  /// Measure every level against level 0 with MeshLODSurfaceDistance (LevelErrorSamples area
+  /// samples per surface, as many vertices at most) and store MeasuredHausdorff / MeasuredRMS in
+  /// the levels' field data.
   void MeasureLevelErrors();
+  static constexpr std::int64_t LevelErrorSamples = 10000;
 
   /// Move the levels into `output` (cleared first), block i named "Level i".
   void Finish(vtkMultiBlockDataSet* output);

@@ -120,14 +120,24 @@ SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
   return samples;
 }
 
+// A locator over the triangles alone (polydata with only the polys).
+vtkSmartPointer<vtkStaticCellLocator> Locate(vtkPolyData* mesh)
+{
+  vtkNew<vtkPolyData> surface;
+  surface->SetPoints(mesh->GetPoints());
+  surface->SetPolys(mesh->GetPolys());
+  auto locator = vtkSmartPointer<vtkStaticCellLocator>::New();
+  locator->SetDataSet(surface);
+  locator->BuildLocator();
+  return locator;
+}
+
 // Distances from samples to a surface: the maximum over all samples and the sum of squares over
 // the area samples. Per-sample distances are stored first so the reduction order (and so the
 // result) does not depend on the thread count.
-void DistancesTo(vtkPolyData* surface, const SampleSet& samples, double& maximum, double& rms)
+void DistancesTo(vtkStaticCellLocator* locator, const SampleSet& samples, double& maximum,
+  double& sumOfSquares)
 {
-  vtkNew<vtkStaticCellLocator> locator;
-  locator->SetDataSet(surface);
-  locator->BuildLocator();
   const vtkIdType count = static_cast<vtkIdType>(samples.Positions.size() / 3);
   std::vector<double> distance(count, 0.0);
   vtkSMPThreadLocalObject<vtkGenericCell> cells;
@@ -149,39 +159,61 @@ void DistancesTo(vtkPolyData* surface, const SampleSet& samples, double& maximum
   {
     sum += distance[i] * distance[i];
   }
-  rms = sum;
+  sumOfSquares = sum;
 }
 } // namespace
 
 //------------------------------------------------------------------------------
-SurfaceDistance MeasureSurfaceDistance(
-  vtkPolyData* a, vtkPolyData* b, const SurfaceDistanceOptions& options)
+struct SurfaceDistanceMeter::Internals
+{
+  SurfaceDistanceOptions Options;
+  vtkSmartPointer<vtkPolyData> Reference;
+  double Diagonal = 0.0;
+  bool Empty = true;
+  SampleSet Samples;
+  vtkSmartPointer<vtkStaticCellLocator> Locator;
+};
+
+SurfaceDistanceMeter::SurfaceDistanceMeter(vtkPolyData* reference, const SurfaceDistanceOptions& options)
+  : Impl(new Internals)
+{
+  this->Impl->Options = options;
+  this->Impl->Reference = reference;
+  if (reference == nullptr)
+  {
+    return;
+  }
+  this->Impl->Diagonal = reference->GetNumberOfPoints() > 0 ? reference->GetLength() : 0.0;
+  const std::vector<vtkIdType> triangles = Triangles(reference);
+  this->Impl->Empty = triangles.empty();
+  if (!this->Impl->Empty)
+  {
+    this->Impl->Samples = Sample(reference, triangles, options, options.Seed);
+    this->Impl->Locator = Locate(reference);
+  }
+}
+
+SurfaceDistanceMeter::~SurfaceDistanceMeter() = default;
+
+SurfaceDistance SurfaceDistanceMeter::Measure(vtkPolyData* other) const
 {
   SurfaceDistance result;
-  if (a == nullptr || b == nullptr)
+  result.Diagonal = this->Impl->Diagonal;
+  if (other == nullptr || this->Impl->Empty)
   {
     return result;
   }
-  result.Diagonal = a->GetNumberOfPoints() > 0 ? a->GetLength() : 0.0;
-  const std::vector<vtkIdType> trisA = Triangles(a);
-  const std::vector<vtkIdType> trisB = Triangles(b);
-  if (trisA.empty() || trisB.empty())
+  const std::vector<vtkIdType> triangles = Triangles(other);
+  if (triangles.empty())
   {
     return result;
   }
-
-  // Locators need the triangles alone: give them polydata with only the polys.
-  vtkNew<vtkPolyData> surfaceA, surfaceB;
-  surfaceA->SetPoints(a->GetPoints());
-  surfaceA->SetPolys(a->GetPolys());
-  surfaceB->SetPoints(b->GetPoints());
-  surfaceB->SetPolys(b->GetPolys());
-
-  const SampleSet samplesA = Sample(a, trisA, options, options.Seed);
-  const SampleSet samplesB = Sample(b, trisB, options, SplitMix64(options.Seed));
+  const SurfaceDistanceOptions& options = this->Impl->Options;
+  const SampleSet& samplesA = this->Impl->Samples;
+  const SampleSet samplesB = Sample(other, triangles, options, SplitMix64(options.Seed));
   double sumAB = 0.0, sumBA = 0.0;
-  DistancesTo(surfaceB, samplesA, result.MaxAB, sumAB);
-  DistancesTo(surfaceA, samplesB, result.MaxBA, sumBA);
+  DistancesTo(Locate(other), samplesA, result.MaxAB, sumAB);
+  DistancesTo(this->Impl->Locator, samplesB, result.MaxBA, sumBA);
 
   const double nA = static_cast<double>(std::max<std::int64_t>(1, samplesA.AreaSamples));
   const double nB = static_cast<double>(std::max<std::int64_t>(1, samplesB.AreaSamples));
@@ -190,6 +222,13 @@ SurfaceDistance MeasureSurfaceDistance(
   result.Hausdorff = std::max(result.MaxAB, result.MaxBA);
   result.Rms = std::sqrt((sumAB + sumBA) / (nA + nB));
   return result;
+}
+
+//------------------------------------------------------------------------------
+SurfaceDistance MeasureSurfaceDistance(
+  vtkPolyData* a, vtkPolyData* b, const SurfaceDistanceOptions& options)
+{
+  return SurfaceDistanceMeter(a, options).Measure(b);
 }
 
 } // namespace meshlod

@@ -18,6 +18,7 @@
 #include "vtkFiltersMeshLODModule.h"
 
 #include <cstdint>
+#include <memory>
 
 class vtkPolyData;
 
@@ -49,6 +50,25 @@ struct VTKFILTERSMESHLOD_EXPORT SurfaceDistanceOptions
   /// (an evenly strided subset when the mesh has more).
   std::int64_t MaximumVertexSamples = 100000;
   std::uint64_t Seed = 12345;
+};
+
+/// Measures many meshes against one reference (mesh A): the reference's samples and locator
+/// are made once, e.g. for every level of a hierarchy against level 0.
+class VTKFILTERSMESHLOD_EXPORT SurfaceDistanceMeter
+{
+public:
+  explicit SurfaceDistanceMeter(
+    vtkPolyData* reference, const SurfaceDistanceOptions& options = SurfaceDistanceOptions());
+  ~SurfaceDistanceMeter();
+  SurfaceDistanceMeter(const SurfaceDistanceMeter&) = delete;
+  SurfaceDistanceMeter& operator=(const SurfaceDistanceMeter&) = delete;
+
+  /// The distance between the reference (A) and `other` (B).
+  SurfaceDistance Measure(vtkPolyData* other) const;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
 };
 
 /// Measure the distance between the triangles (polys) of a and b. Either mesh empty gives all
