@@ -133,8 +133,8 @@ void CollapseMesh::Initialize(
   });
 
   // The topology's vertex -> triangle rows are the first rows.
-  this->RowOffsets.swap(topology.VertexTriangles.Offsets);
-  this->RowTriangles.swap(topology.VertexTriangles.Triangles);
+  this->Rows.Offsets.swap(topology.VertexTriangles.Offsets);
+  this->Rows.Triangles.swap(topology.VertexTriangles.Triangles);
   topology = TriangleTopology();
   this->ChainNext.assign(nv, InvalidId);
   this->ChainTail.resize(nv);
@@ -144,10 +144,7 @@ void CollapseMesh::Initialize(
 //------------------------------------------------------------------------------
 void CollapseMesh::RebuildRows()
 {
-  VertexTriangleAdjacency adjacency;
-  adjacency.Build(this->Mesh);
-  this->RowOffsets.swap(adjacency.Offsets);
-  this->RowTriangles.swap(adjacency.Triangles);
+  this->Rows.Build(this->Mesh); // reuses the rows' memory
   const Id nv = this->Mesh.GetNumberOfPoints();
   this->ChainNext.assign(nv, InvalidId);
   this->ChainTail.resize(nv);

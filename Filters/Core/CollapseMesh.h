@@ -93,9 +93,9 @@ public:
   {
     for (Id u = v; u != InvalidId; u = this->ChainNext[u])
     {
-      for (Id i = this->RowOffsets[u]; i < this->RowOffsets[u + 1]; ++i)
+      for (Id i = this->Rows.Begin(u); i < this->Rows.End(u); ++i)
       {
-        const Id t = this->RowTriangles[i];
+        const Id t = this->Rows.Triangles[i];
         if (this->IsAlive(t) && CornerOf(this->Mesh.Triangle(t), v) >= 0)
         {
           f(t);
@@ -126,8 +126,7 @@ public:
   void RebuildRows();
 
 private:
-  std::vector<Id> RowOffsets;
-  std::vector<Id> RowTriangles;
+  VertexTriangleAdjacency Rows; // as of the last rebuild
   std::vector<Id> ChainNext;
   std::vector<Id> ChainTail;
 };

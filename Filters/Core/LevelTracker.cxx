@@ -64,7 +64,8 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   const Id nt = mesh.GetNumberOfTriangles();
 
   // Live vertices and triangles, numbered in increasing id order.
-  std::vector<Id> newIndex(nv, InvalidId);
+  std::vector<Id>& newIndex = this->NewIndex; // kept between snapshots: no fresh pages each time
+  newIndex.assign(nv, InvalidId);
   for (Id t = 0; t < nt; ++t)
   {
     if (state.IsAlive(t))

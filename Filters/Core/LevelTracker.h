@@ -57,6 +57,7 @@ private:
   std::vector<Id> AncestorNext;
   std::vector<Id> AncestorTail;
   std::vector<Id> AncestorTotal;
+  std::vector<Id> NewIndex; // Snapshot's scratch
 };
 
 } // namespace meshlod

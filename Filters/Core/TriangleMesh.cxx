@@ -10,6 +10,9 @@ namespace meshlod
 void VertexTriangleAdjacency::Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints)
 {
   // Counting sort: count, prefix sum, fill. Filling in triangle order keeps each row sorted.
+  // The offsets double as the fill cursors (row v is filled from Offsets[v] on, which ends at
+  // the old Offsets[v + 1]), and are shifted back afterwards: no other array is needed, and
+  // rebuilding reuses the rows' memory.
   this->Offsets.assign(static_cast<size_t>(numberOfPoints) + 1, 0);
   for (Id t = 0; t < numberOfTriangles; ++t)
   {
@@ -27,7 +30,6 @@ void VertexTriangleAdjacency::Build(const Id* triangles, Id numberOfTriangles, I
     this->Offsets[v + 1] += this->Offsets[v];
   }
   this->Triangles.resize(this->Offsets[numberOfPoints]);
-  std::vector<Id> cursor(this->Offsets.begin(), this->Offsets.end() - 1);
   for (Id t = 0; t < numberOfTriangles; ++t)
   {
     const Id* tri = triangles + 3 * static_cast<size_t>(t);
@@ -37,9 +39,14 @@ void VertexTriangleAdjacency::Build(const Id* triangles, Id numberOfTriangles, I
     }
     for (int k = 0; k < 3; ++k)
     {
-      this->Triangles[cursor[tri[k]]++] = t;
+      this->Triangles[this->Offsets[tri[k]]++] = t;
     }
   }
+  for (Id v = numberOfPoints; v > 0; --v)
+  {
+    this->Offsets[v] = this->Offsets[v - 1];
+  }
+  this->Offsets[0] = 0;
 }
 
 namespace
