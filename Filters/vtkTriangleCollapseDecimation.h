@@ -4,7 +4,8 @@
  *
  * vtkTriangleCollapseDecimation reduces a triangle mesh step by step by collapsing triangles:
  * a triangle and its (up to three) edge neighbours disappear and its three vertices merge into
- * one new vertex. The result is not one mesh but a hierarchy: output port 0 is a
+ * one new vertex. With the default operator (SetOperator) a triangle whose cheapest edge
+ * collapse is much cheaper collapses that edge instead (half a triangle collapse). The result is not one mesh but a hierarchy: output port 0 is a
  * vtkMultiBlockDataSet whose block i is level i as a vtkPolyData named "Level i". Block 0 is
  * the validated input; every next level has strictly fewer triangles. Use GetHierarchy() to
  * get it (the inherited GetOutput() is null for a composite output).
@@ -17,8 +18,9 @@
  *   length, so open boundaries stay in place). Collapsing a triangle costs the sum of its
  *   three quadrics at the point minimising it; quadrics add up when vertices merge, so the cost
  *   of later collapses carries every original plane merged into them (error propagation). The
- *   minimiser is solved in the well-determined directions only (a pseudo-inverse around the
- *   centroid), which needs none of the paper's fixed fallback candidates.
+ *   minimiser is solved in the well-determined directions only (a Tikhonov-regularised solve
+ *   around the centroid, close to a truncated pseudo-inverse), which needs none of the paper's
+ *   fixed fallback candidates and halves the error of using them.
  * - Curvature (Gieng, Hamann, Joy, Schussman, Trotts, "Smooth Hierarchical Surface
  *   Triangulations", IEEE Visualization 1997): a least-squares quadratic height field
  *   f(u, v) is fitted over the triangle's stencil and its ancestral points (the original
@@ -34,17 +36,23 @@
  * neighbourhood is one disk or half-disk (no pinch, no non-manifold edge, no duplicate triangle,
  * same genus), no neighbour apex drops to valence 3 (paper 000's "no new cycle" rule), the
  * stencil boundary polygon projected on the triangle's plane is star-shaped around the collapse
- * point, and no triangle's normal turns by more than MaximumNormalDeviation.
+ * point, and no triangle's normal turns by more than MaximumNormalDeviation. A triangle refused
+ * only because a neighbour apex has a low valence gets the edge swap of paper 000 (figure 3):
+ * the shared edge is swapped and one of the two new triangles collapses; swap and collapse are
+ * made as one merge of three vertices joined by two edges, which keeps every level's
+ * correspondence exact (GetNumberOfSwaps()).
  *
  * Two schedules order the collapses (SetSchedule):
  * - Greedy (the default): one collapse at a time from a priority queue, cheapest first, with the
  *   costs around each collapse updated (paper 002, section 2.4).
- * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, up to
- *   LevelFraction of the live triangles whose stencils share no vertex, collapses them all at
- *   once, and re-weights only the triangles around what changed.
+ * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
+ *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
+ *   checks and collapses them all at once (in parallel), and re-weights only the triangles
+ *   around what changed.
  * Either way, output levels are snapshots taken when the triangle count reaches each level's
- * target; the collapses between two levels are composed. Greedy gives the lower error per
- * triangle on the benchmark meshes (see Benchmarks/RESULTS.md), hence the default.
+ * target; the collapses between two levels are composed. On the benchmark meshes both reach
+ * about the same error per triangle (Benchmarks/RESULTS.md); Greedy is the default because it
+ * is the faster of the two on one thread.
  *
  * Levels: by default NumberOfLevels levels follow level 0 with triangle counts spaced
  * geometrically down to (1 - TargetReduction) times the input's (8 levels to 1% gives 56%, 32%,
