@@ -19,8 +19,9 @@
  *   three quadrics at the point minimising it; quadrics add up when vertices merge, so the cost
  *   of later collapses carries every original plane merged into them (error propagation). The
  *   minimiser is solved in the well-determined directions only (a Tikhonov-regularised solve
- *   around the centroid, close to a truncated pseudo-inverse), which needs none of the paper's
- *   fixed fallback candidates and halves the error of using them.
+ *   around the centroid, close to a truncated pseudo-inverse), so that a nearly singular system
+ *   (a flat or cylindrical patch) keeps the point near the centroid along its free directions
+ *   and needs none of the paper's fixed fallback candidates.
  * - Curvature (Gieng, Hamann, Joy, Schussman, Trotts, "Smooth Hierarchical Surface
  *   Triangulations", IEEE Visualization 1997): a least-squares quadratic height field
  *   f(u, v) is fitted over the triangle's stencil and its ancestral points (the original
