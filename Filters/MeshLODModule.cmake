@@ -2,7 +2,7 @@
 # vtk_module_build() (ours, or VTK's own for a remote module) re-enters it.
 
 set(meshlod_classes
-  )
+  vtkVertexClusterOctree)
 
 # Exported helpers that are not VTK classes: not wrapped, but usable from C++ (the tests and the
 # benchmark measure with the yardstick).
@@ -12,15 +12,25 @@ set(meshlod_nowrap_headers
 # Private headers (not installed): the VTK-free algorithm code under Core/ and the glue between
 # it and VTK. The tests in the build tree include them directly.
 set(meshlod_private_headers
+  Filters/Core/ClusterTree.h
+  Filters/Core/OctreeClustering.h
+  Filters/Core/Quadric.h
+  Filters/Core/TextureAtlas.h
   Filters/Core/TriangleMesh.h
   Filters/MeshLODHierarchy.h
-  Filters/MeshLODInputMesh.h)
+  Filters/MeshLODInputMesh.h
+  Filters/MeshLODTextureBaking.h)
 
 set(meshlod_sources
+  Filters/Core/ClusterTree.cxx
+  Filters/Core/OctreeClustering.cxx
+  Filters/Core/Quadric.cxx
+  Filters/Core/TextureAtlas.cxx
   Filters/Core/TriangleMesh.cxx
   Filters/MeshLODHierarchy.cxx
   Filters/MeshLODInputMesh.cxx
-  Filters/MeshLODSurfaceDistance.cxx)
+  Filters/MeshLODSurfaceDistance.cxx
+  Filters/MeshLODTextureBaking.cxx)
 
 list(TRANSFORM meshlod_classes PREPEND "Filters/")
 
