@@ -1375,6 +1375,11 @@ Id OctreeClustering::GetNumberOfEvaluatedNodes() const
   return this->Impl->Evaluated;
 }
 
+const ClusterTree& OctreeClustering::GetTree() const
+{
+  return this->Impl->Tree;
+}
+
 //------------------------------------------------------------------------------
 double OctreeClustering::CheckNodeQuadrics(Id count) const
 {
@@ -1397,8 +1402,7 @@ double OctreeClustering::CheckNodeQuadrics(Id count) const
     MinimizeQuadric(q, centre, impl.Options.PlacementTolerance, rep);
     const double weight = q.Weight();
     const double e1 = weight > 0.0 ? std::sqrt(q.Evaluate(rep) / weight) : 0.0;
-    worst = std::max(
-      worst, std::abs(e1 - n.E1) / std::max(1e-12 * tree.Size, std::max(e1, double(n.E1))));
+    worst = std::max(worst, std::abs(e1 - n.E1) / tree.Size);
   }
   return worst;
 }

@@ -130,8 +130,12 @@ public:
   /// Nodes whose exact representative was computed so far.
   Id GetNumberOfEvaluatedNodes() const;
   /// For tests: recompute e1 of up to `count` evenly spread nodes from their related triangle
-  /// sets directly and return the largest relative difference to the e1 the tree kept.
+  /// sets directly and return the largest difference to the e1 the tree kept, divided by the
+  /// edge of the bounding cube.
   double CheckNodeQuadrics(Id count) const;
+
+  /// The cluster tree (valid after BuildTree()).
+  const ClusterTree& GetTree() const;
 
 private:
   struct Internals;
