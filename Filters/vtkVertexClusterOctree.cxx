@@ -114,13 +114,26 @@ struct SplitMap
 
 // The level handed to the hierarchy builder, its points split as `split` says (the points of
 // the previous level as `previous` says).
-meshlod::LevelData ToLevelData(const meshlod::ClusterLevel& level,
+meshlod::LevelData ToLevelData(meshlod::ClusterLevel& level,
   const SplitMap& previous,
   Id previousPoints,
   const SplitMap& split,
   const meshlod::TextureAtlas* atlas)
 {
   meshlod::LevelData data;
+  data.EstimatedError = level.EstimatedError;
+  data.LevelZeroTriangle = std::move(level.LevelZeroTriangle);
+  if (!atlas && previous.SplitToPoint.empty())
+  {
+    // Nothing split: hand the arrays over as they are.
+    data.Mesh = std::move(level.Mesh);
+    data.Sources.Offsets = std::move(level.SourceOffsets);
+    data.Sources.Parents = std::move(level.SourceParents);
+    data.Sources.Weights = std::move(level.SourceWeights);
+    data.Target = std::move(level.Target);
+    data.Rank = std::move(level.Rank);
+    return data;
+  }
   const Id points = level.Mesh.GetNumberOfPoints();
   const Id splitPoints = split.Count(points);
   data.Mesh.Points.resize(3 * static_cast<size_t>(splitPoints));
@@ -129,8 +142,6 @@ meshlod::LevelData ToLevelData(const meshlod::ClusterLevel& level,
     std::copy_n(level.Mesh.Point(split.Point(q)), 3, data.Mesh.Point(q));
   }
   data.Mesh.Triangles = atlas ? atlas->CornerPoint : level.Mesh.Triangles;
-  data.LevelZeroTriangle = level.LevelZeroTriangle;
-  data.EstimatedError = level.EstimatedError;
   data.Sources.Clear();
   std::vector<Id> parents;
   for (Id q = 0; q < splitPoints; ++q)
@@ -462,13 +473,14 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
         split.FirstSplit[atlas.SplitPoints[q]] = q;
       }
     }
+    const std::vector<float> normals =
+      this->ComputeNormals ? PointNormals(level.Mesh) : std::vector<float>();
     builder.AppendLevel(
       ToLevelData(level, previous, previousPoints, split, this->BakeTexture ? &atlas : nullptr));
     vtkPolyData* poly = builder.GetLevel(builder.GetNumberOfLevels() - 1);
 
     if (this->ComputeNormals)
     {
-      const std::vector<float> normals = PointNormals(level.Mesh);
       vtkNew<vtkFloatArray> array;
       array->SetName(normalsName.c_str());
       array->SetNumberOfComponents(3);

@@ -61,11 +61,9 @@ void SortByDepth(std::vector<HalfEdge>& items, std::vector<HalfEdge>& scratch)
   items.swap(scratch);
 }
 
-void ComputeE1(ClusterNode& node, const Quadric& q, double tolerance)
+void ComputeE1(ClusterNode& node, const Quadric& q, const double sum[3], double tolerance)
 {
-  const double centre[3] = { double(node.Sum[0]) / node.Count,
-    double(node.Sum[1]) / node.Count,
-    double(node.Sum[2]) / node.Count };
+  const double centre[3] = { sum[0] / node.Count, sum[1] / node.Count, sum[2] / node.Count };
   double rep[3];
   MinimizeQuadric(q, centre, tolerance, rep);
   const double weight = q.Weight();
@@ -74,27 +72,34 @@ void ComputeE1(ClusterNode& node, const Quadric& q, double tolerance)
 
 // Nodes being created, with their quadrics. The node with id Base + i is Nodes[i]; lower ids
 // are nodes of the finished cells (only the serial top tier refers to them).
+// What a node needs only while it is built: its quadric and the sum of its vertex positions.
+struct Building
+{
+  Quadric Q;
+  double Sum[3] = { 0.0, 0.0, 0.0 };
+};
+
 struct NodeStore
 {
   Id Base = 0;
   std::vector<ClusterNode> Nodes;
-  std::vector<Quadric> Q;
+  std::vector<Building> Work;
   ClusterTree* Tree = nullptr;
-  const std::unordered_map<Id, Quadric>* FinishedQ = nullptr;
+  const std::unordered_map<Id, Building>* Finished = nullptr;
 
   ClusterNode& Record(Id id)
   {
     return id >= this->Base ? this->Nodes[id - this->Base] : this->Tree->Nodes[id - this->Tree->NV];
   }
-  const Quadric& QuadricOf(Id id) const
+  const Building& WorkOf(Id id) const
   {
-    return id >= this->Base ? this->Q[id - this->Base] : this->FinishedQ->at(id);
+    return id >= this->Base ? this->Work[id - this->Base] : this->Finished->at(id);
   }
   Id Create(int depth)
   {
     this->Nodes.emplace_back();
     this->Nodes.back().Depth = static_cast<std::uint8_t>(depth);
-    this->Q.emplace_back();
+    this->Work.emplace_back();
     return this->Base + static_cast<Id>(this->Nodes.size() - 1);
   }
 };
@@ -105,7 +110,13 @@ struct NodeStore
 struct ClusterTree::Builder
 {
   ClusterTree& Tree;
+  std::vector<std::uint64_t> Morton; // kept while building, recomputed on demand afterwards
   std::vector<Id> UF, UFSize, NodeOf, StampOld, StampNew, NewNode;
+
+  int CommonDepth(Id a, Id b) const
+  {
+    return ClusterTree::CommonDepth(this->Morton[a], this->Morton[b]);
+  }
 
   explicit Builder(ClusterTree& tree)
     : Tree(tree)
@@ -146,37 +157,32 @@ struct ClusterTree::Builder
 void ClusterTree::Builder::Attach(Id child, Id parent, NodeStore& store)
 {
   const ClusterTree& tree = this->Tree;
-  Quadric leafQ;
-  const Quadric* q = &leafQ;
-  float sum[3];
+  Building leaf;
+  const Building* from = &leaf;
   Id count = 1;
   std::uint8_t locked = 0;
   if (child < tree.NV)
   {
     this->Tree.LeafParent[child] = parent;
-    double normal[3], p[3];
-    tree.VertexQuadric(child, leafQ, normal);
-    tree.RelativePoint(child, p);
-    for (int c = 0; c < 3; ++c)
-    {
-      sum[c] = static_cast<float>(p[c]);
-    }
+    double normal[3];
+    tree.VertexQuadric(child, leaf.Q, normal);
+    tree.RelativePoint(child, leaf.Sum);
     locked = tree.Topology->VertexKinds[child] == VertexKind::NonManifold ? 1 : 0;
   }
   else
   {
-    ClusterNode& from = store.Record(child);
-    from.Parent = parent;
-    q = &store.QuadricOf(child);
-    std::copy_n(from.Sum, 3, sum);
-    count = from.Count;
-    locked = from.Locked;
+    ClusterNode& record = store.Record(child);
+    record.Parent = parent;
+    from = &store.WorkOf(child);
+    count = record.Count;
+    locked = record.Locked;
   }
   ClusterNode& node = store.Record(parent);
-  store.Q[parent - store.Base].Add(*q);
+  Building& work = store.Work[parent - store.Base];
+  work.Q.Add(from->Q);
   for (int c = 0; c < 3; ++c)
   {
-    node.Sum[c] += sum[c];
+    work.Sum[c] += from->Sum[c];
   }
   node.Count += count;
   node.Locked |= locked;
@@ -192,7 +198,7 @@ void ClusterTree::Builder::DesignatedEdges(const Id* tri, int& deep, int& shallo
   int depth[3];
   for (int k = 0; k < 3; ++k)
   {
-    depth[k] = this->Tree.CommonDepth(tri[k], tri[(k + 1) % 3]);
+    depth[k] = this->CommonDepth(tri[k], tri[(k + 1) % 3]);
   }
   deep = 0;
   shallow = 2;
@@ -282,7 +288,7 @@ void ClusterTree::Builder::MergeGroup(const HalfEdge* items,
       continue;
     }
     const Id node = this->NodeOf[this->Find(tri[k])];
-    Quadric& q = store.Q[node - store.Base];
+    Quadric& q = store.Work[node - store.Base].Q;
     double p[3][3];
     for (int c = 0; c < 3; ++c)
     {
@@ -379,25 +385,40 @@ void ClusterTree::ComputeFrame()
   {
     this->Corner[c] = this->Centre[c] - 0.5 * this->Size;
   }
+}
+
+//------------------------------------------------------------------------------
+std::uint64_t ClusterTree::Morton(Id v) const
+{
   const double scale = std::ldexp(1.0, AxisBits) / this->Size;
   const double top = std::ldexp(1.0, AxisBits) - 1.0;
-  this->Morton.resize(this->NV);
-  vtkSMPTools::For(0,
-    this->NV,
-    [&](Id begin, Id end)
+  const double* p = this->Mesh->Point(v);
+  std::uint64_t code = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double q = std::min(top, std::max(0.0, std::floor((p[c] - this->Corner[c]) * scale)));
+    code |= SpreadBits(static_cast<std::uint32_t>(q)) << (2 - c);
+  }
+  return code;
+}
+
+//------------------------------------------------------------------------------
+void ClusterTree::Centroid(Id node, double out[3]) const
+{
+  out[0] = out[1] = out[2] = 0.0;
+  const Id first = this->Position(node), count = this->Count(node);
+  for (Id pos = first; pos < first + count; ++pos)
+  {
+    const double* p = this->Mesh->Point(this->Order[pos]);
+    for (int c = 0; c < 3; ++c)
     {
-      for (Id v = begin; v < end; ++v)
-      {
-        std::uint64_t code = 0;
-        for (int c = 0; c < 3; ++c)
-        {
-          const double q =
-            std::min(top, std::max(0.0, std::floor((mesh.Point(v)[c] - this->Corner[c]) * scale)));
-          code |= SpreadBits(static_cast<std::uint32_t>(q)) << (2 - c);
-        }
-        this->Morton[v] = code;
-      }
-    });
+      out[c] += p[c];
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    out[c] = out[c] / count - this->Centre[c];
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -550,6 +571,16 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   this->ComputeFrame();
   const Id nv = this->NV;
   Builder builder(*this);
+  builder.Morton.resize(nv);
+  vtkSMPTools::For(0,
+    nv,
+    [&](Id begin, Id end)
+    {
+      for (Id v = begin; v < end; ++v)
+      {
+        builder.Morton[v] = this->Morton(v);
+      }
+    });
 
   // Vertices bucketed by their cell at TierDepth (stable: each cell lists its vertices by id).
   const int shift = MaxDepth - TierDepth;
@@ -557,7 +588,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   std::vector<Id> keyOffsets(static_cast<size_t>(numberOfKeys) + 1, 0);
   for (Id v = 0; v < nv; ++v)
   {
-    ++keyOffsets[(this->Morton[v] >> shift) + 1];
+    ++keyOffsets[(builder.Morton[v] >> shift) + 1];
   }
   std::vector<Id> cells;
   for (Id key = 0; key < numberOfKeys; ++key)
@@ -573,7 +604,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
     std::vector<Id> cursor(keyOffsets.begin(), keyOffsets.end() - 1);
     for (Id v = 0; v < nv; ++v)
     {
-      cellVertices[cursor[this->Morton[v] >> shift]++] = v;
+      cellVertices[cursor[builder.Morton[v] >> shift]++] = v;
     }
   }
 
@@ -583,7 +614,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   // those of its top components, which the top tier still needs.
   const Id numberOfCells = static_cast<Id>(cells.size());
   std::vector<std::vector<ClusterNode>> cellNodes(numberOfCells);
-  std::vector<std::vector<std::pair<Id, Quadric>>> cellRoots(numberOfCells);
+  std::vector<std::vector<std::pair<Id, Building>>> cellRoots(numberOfCells);
   std::vector<std::vector<HalfEdge>> cellTop(numberOfCells);
   const VertexTriangleAdjacency& adj = topology.VertexTriangles;
   vtkSMPTools::For(0,
@@ -603,7 +634,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
             const Id t = adj.Triangles[j];
             const Id* tri = mesh.Triangle(t);
             const int k = CornerOf(tri, v);
-            const int depth = this->CommonDepth(v, tri[(k + 1) % 3]);
+            const int depth = builder.CommonDepth(v, tri[(k + 1) % 3]);
             const HalfEdge h{ 3 * static_cast<std::int64_t>(t) + k, depth };
             (depth >= TierDepth ? items : cellTop[c]).push_back(h);
           }
@@ -614,14 +645,15 @@ void ClusterTree::Build(const TriangleMesh& mesh,
         builder.MergeSorted(items, c * (MaxDepth + 2), store);
         for (size_t i = 0; i < store.Nodes.size(); ++i)
         {
-          ComputeE1(store.Nodes[i], store.Q[i], options.PlacementTolerance);
+          ComputeE1(store.Nodes[i], store.Work[i].Q, store.Work[i].Sum, options.PlacementTolerance);
         }
         for (Id i = keyOffsets[key]; i < keyOffsets[key + 1]; ++i)
         {
           const Id v = cellVertices[i];
           if (builder.UF[v] == v && builder.NodeOf[v] >= nv)
           {
-            cellRoots[c].emplace_back(builder.NodeOf[v], store.Q[builder.NodeOf[v] - store.Base]);
+            cellRoots[c].emplace_back(
+              builder.NodeOf[v], store.Work[builder.NodeOf[v] - store.Base]);
           }
         }
         cellNodes[c].swap(store.Nodes);
@@ -674,7 +706,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
     });
 
   // Top tier, serially.
-  std::unordered_map<Id, Quadric> finished;
+  std::unordered_map<Id, Building> finished;
   std::vector<HalfEdge> top;
   for (Id c = 0; c < numberOfCells; ++c)
   {
@@ -692,11 +724,11 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   NodeStore store;
   store.Base = nv + static_cast<Id>(this->Nodes.size());
   store.Tree = this;
-  store.FinishedQ = &finished;
+  store.Finished = &finished;
   builder.MergeSorted(top, numberOfCells * (MaxDepth + 2), store);
   for (size_t i = 0; i < store.Nodes.size(); ++i)
   {
-    ComputeE1(store.Nodes[i], store.Q[i], options.PlacementTolerance);
+    ComputeE1(store.Nodes[i], store.Work[i].Q, store.Work[i].Sum, options.PlacementTolerance);
   }
   this->Nodes.insert(this->Nodes.end(), store.Nodes.begin(), store.Nodes.end());
   this->ComputeOrder();

@@ -43,8 +43,7 @@ struct VTKFILTERSMESHLOD_EXPORT ClusterTreeOptions
 /// An internal node of the tree.
 struct ClusterNode
 {
-  float Sum[3] = { 0.0f, 0.0f, 0.0f }; // sum of the vertex positions, relative to Centre
-  Id Count = 0;                        // number of vertices
+  Id Count = 0; // number of vertices
   Id Parent = InvalidId;
   Id Dies = 0;             // triangles that degenerate when this node (or an ancestor) is collapsed
   float E1 = 0.0f;         // e1 error: sqrt(min Q1 / weight of Q1)
@@ -76,8 +75,7 @@ public:
   std::vector<Id> Begin;          // internal node -> first position in Order
   std::vector<Id> Order;          // depth-first vertex order
   std::vector<Id> PosOf;          // vertex -> position in Order
-  std::vector<std::uint64_t> Morton;
-  int Depth = 0; // deepest node
+  int Depth = 0;                  // deepest node
 
   Id NumberOfInternalNodes() const { return static_cast<Id>(this->Nodes.size()); }
   bool IsLeaf(Id node) const { return node < this->NV; }
@@ -110,10 +108,13 @@ public:
   double CellSize(int depth) const;
   /// The cell of `depth` holding vertex v: lowest corner (relative to Centre) and edge lengths.
   void CellBox(Id v, int depth, double low[3], double extent[3]) const;
+  /// Morton code of vertex v's finest cell (x bits highest within each level).
+  std::uint64_t Morton(Id v) const;
   /// The deepest depth at which two vertices share a cell.
-  int CommonDepth(Id a, Id b) const
+  int CommonDepth(Id a, Id b) const { return CommonDepth(this->Morton(a), this->Morton(b)); }
+  static int CommonDepth(std::uint64_t a, std::uint64_t b)
   {
-    const std::uint64_t x = this->Morton[a] ^ this->Morton[b];
+    const std::uint64_t x = a ^ b;
 #if defined(__GNUC__) || defined(__clang__)
     return MaxDepth - (x == 0 ? 0 : 64 - __builtin_clzll(x));
 #else
@@ -125,6 +126,18 @@ public:
     return MaxDepth - bits;
 #endif
   }
+  /// The child of internal node `node` that holds the vertex at position `pos` of its range.
+  Id ChildAt(Id node, Id pos) const
+  {
+    Id child = this->Order[pos];
+    while (this->Parent(child) != node)
+    {
+      child = this->Parent(child);
+    }
+    return child;
+  }
+  /// The centroid of a node's vertices (relative to Centre).
+  void Centroid(Id node, double out[3]) const;
 
   /// The quadric of the related triangle set of `node`, recomputed from its vertices; with
   /// `crossing`, also the triangles with exactly one vertex inside (3 t + that corner), with

@@ -126,18 +126,20 @@ struct OctreeClustering::Internals
 
   // Per internal node: the full evaluation, and the epsilon from which the node or an ancestor
   // is a cluster (Activation).
-  std::vector<float> Error;
   std::vector<NodeState> State;
   std::vector<float> Thr; // the smallest epsilon at which the node may be a cluster
   std::vector<Id> RepSlot;
-  std::vector<double> Reps; // per evaluated node: representative and surface normal
+  // Per evaluated node (RepSlot): representative, surface normal and error.
+  static constexpr int SlotSize = 7;
+  std::vector<double> Reps;
   std::vector<float> Activation;
-  std::vector<Id> ChildOffsets; // internal node -> children (CSR)
-  std::vector<Id> Children;
+  double LogRatioSum = 0.0; // log(full error / e1) summed over the evaluated nodes
+  Id RatioCount = 0;
   Id Evaluated = 0;
 
   // The current level.
-  std::vector<double> CurrentPoints;
+  // Level 0 is the input itself: empty vectors stand for the input's triangles and identity
+  // maps, so that no copy of the input is kept.
   std::vector<Id> CurrentTriangles;
   std::vector<Id> CurrentLevelZero;
   std::vector<Id> PointNode;
@@ -157,6 +159,22 @@ struct OctreeClustering::Internals
   }
 
   Id FirstVertex(Id node) const { return this->Tree.Order[this->Tree.Position(node)]; }
+  bool AtInput() const { return this->PointNode.empty(); }
+  Id PreviousPoints() const
+  {
+    return this->AtInput() ? this->NV : static_cast<Id>(this->PointNode.size());
+  }
+  Id PreviousTriangles() const
+  {
+    return this->AtInput() ? this->NT : static_cast<Id>(this->CurrentTriangles.size() / 3);
+  }
+  const Id* PreviousTriangleData() const
+  {
+    return this->AtInput() ? this->Mesh.Triangles.data() : this->CurrentTriangles.data();
+  }
+  Id NodeOfPoint(Id p) const { return this->AtInput() ? p : this->PointNode[p]; }
+  Id VertexCountOfPoint(Id p) const { return this->AtInput() ? 1 : this->PointVertexCount[p]; }
+  Id LevelZeroOf(Id t) const { return this->AtInput() ? t : this->CurrentLevelZero[t]; }
 
   // --- nodes -----------------------------------------------------------------------------------
   bool CheapInadmissible(Id index) const;
@@ -170,7 +188,7 @@ struct OctreeClustering::Internals
   void SurfaceNormal(Id node, double normal[3]) const;
 
   // --- cuts ------------------------------------------------------------------------------------
-  void ComputeActivation();
+  void ComputeActivation(bool guess = false);
   void CollectCut(double epsilon, std::vector<Id>& cut) const;
   void CutAt(double epsilon, std::vector<Id>& cut);
   double EpsilonForCount(Id target) const;
@@ -210,8 +228,9 @@ void OctreeClustering::Internals::UpdateThreshold(Id index)
     return;
   }
   const float e1 = this->Tree.Nodes[index].E1;
-  thr = this->State[index] == NodeState::Admissible ? this->Error[index]
-                                                    : (e1 < 1e-6 * this->Tree.Size ? 0.0f : e1);
+  thr = this->State[index] == NodeState::Admissible
+    ? static_cast<float>(this->Reps[SlotSize * static_cast<size_t>(this->RepSlot[index]) + 6])
+    : (e1 < 1e-6 * this->Tree.Size ? 0.0f : e1);
 }
 
 //------------------------------------------------------------------------------
@@ -315,7 +334,7 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   const Id node = this->NV + index;
   const ClusterNode& n = this->Tree.Nodes[index];
   Quadric q1, boundary;
-  double* slot = this->Reps.data() + 6 * static_cast<size_t>(this->RepSlot[index]);
+  double* slot = this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[index]);
   this->Tree.RelatedQuadric(
     node, q1, &scratch.Crossing, slot + 3, &boundary, &scratch.BoundaryEdges);
   const size_t crossings = scratch.Crossing.size();
@@ -333,9 +352,8 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   }
   const EvaluationScratch& crossing = scratch;
 
-  const double centre[3] = {
-    double(n.Sum[0]) / n.Count, double(n.Sum[1]) / n.Count, double(n.Sum[2]) / n.Count
-  };
+  double centre[3];
+  this->Tree.Centroid(node, centre);
   const double tolerance = this->Options.PlacementTolerance;
   const double cell = this->Tree.CellSize(n.Depth);
   double v0[3];
@@ -412,7 +430,7 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
     error = std::max(error, std::sqrt(boundary.Evaluate(v0) / boundary.Weight()));
   }
   std::copy_n(v0, 3, slot);
-  this->Error[index] = static_cast<float>(error);
+  slot[6] = static_cast<float>(error); // as a threshold, in single precision
   this->State[index] =
     this->HasFlip(v0, crossing, n.Depth) ? NodeState::Inadmissible : NodeState::Admissible;
   this->UpdateThreshold(index);
@@ -426,7 +444,8 @@ void OctreeClustering::Internals::RepresentativeOf(Id node, double out[3]) const
     std::copy_n(this->Mesh.Point(node), 3, out);
     return;
   }
-  const double* r = this->Reps.data() + 6 * static_cast<size_t>(this->RepSlot[node - this->NV]);
+  const double* r =
+    this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[node - this->NV]);
   for (int c = 0; c < 3; ++c)
   {
     out[c] = r[c] + this->Tree.Centre[c];
@@ -435,7 +454,9 @@ void OctreeClustering::Internals::RepresentativeOf(Id node, double out[3]) const
 
 double OctreeClustering::Internals::NodeError(Id node) const
 {
-  return this->Tree.IsLeaf(node) ? 0.0 : static_cast<double>(this->Error[node - this->NV]);
+  return this->Tree.IsLeaf(node)
+    ? 0.0
+    : this->Reps[SlotSize * static_cast<size_t>(this->RepSlot[node - this->NV]) + 6];
 }
 
 // The area-weighted normal of the input surface at a node's vertices (not normalised); kept
@@ -445,7 +466,9 @@ void OctreeClustering::Internals::SurfaceNormal(Id node, double normal[3]) const
   if (!this->Tree.IsLeaf(node))
   {
     std::copy_n(
-      this->Reps.data() + 6 * static_cast<size_t>(this->RepSlot[node - this->NV]) + 3, 3, normal);
+      this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[node - this->NV]) + 3,
+      3,
+      normal);
     return;
   }
   normal[0] = normal[1] = normal[2] = 0.0;
@@ -470,14 +493,19 @@ void OctreeClustering::Internals::SurfaceNormal(Id node, double normal[3]) const
 //------------------------------------------------------------------------------
 // Activation[i]: the smallest threshold on the path from node i to its root. A node is collapsed
 // (it or an ancestor is a cluster) exactly when epsilon reaches it.
-void OctreeClustering::Internals::ComputeActivation()
+void OctreeClustering::Internals::ComputeActivation(bool guess)
 {
+  // To guess an epsilon (not to cut), unevaluated nodes count with e1 raised by the ratio the
+  // evaluations showed so far (e2 typically adds some 10%).
+  const float inflation = static_cast<float>(
+    guess && this->RatioCount > 0 ? std::exp(this->LogRatioSum / this->RatioCount) : 1.0);
   const Id ni = this->Tree.NumberOfInternalNodes();
   this->Activation.resize(ni);
   for (Id i = ni - 1; i >= 0; --i)
   {
     const Id parent = this->Tree.Nodes[i].Parent;
-    const float own = this->Thr[i];
+    const float own =
+      this->State[i] == NodeState::NotEvaluated ? this->Thr[i] * inflation : this->Thr[i];
     this->Activation[i] =
       parent == InvalidId ? own : std::min(own, this->Activation[parent - this->NV]);
   }
@@ -525,8 +553,8 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut)
     {
       const Id i = node - this->NV;
       pending.push_back(node);
-      this->RepSlot[i] = static_cast<Id>(this->Reps.size() / 6);
-      this->Reps.resize(this->Reps.size() + 6);
+      this->RepSlot[i] = static_cast<Id>(this->Reps.size() / SlotSize);
+      this->Reps.resize(this->Reps.size() + SlotSize);
     }
     else
     {
@@ -557,6 +585,17 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut)
         }
       });
     this->Evaluated += static_cast<Id>(pending.size());
+    for (const Id node : pending)
+    {
+      const Id i = node - this->NV;
+      const float e1 = this->Tree.Nodes[i].E1;
+      const double error = this->NodeError(node);
+      if (this->State[i] == NodeState::Admissible && e1 > 0.0f && error > 0.0)
+      {
+        this->LogRatioSum += std::log(error / e1);
+        ++this->RatioCount;
+      }
+    }
     candidates.clear();
     for (const Id node : pending)
     {
@@ -569,11 +608,14 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut)
       stack.assign(1, node);
       while (!stack.empty())
       {
-        const Id i = stack.back() - this->NV;
+        const Id parent = stack.back();
         stack.pop_back();
-        for (Id j = this->ChildOffsets[i]; j < this->ChildOffsets[i + 1]; ++j)
+        // The children tile the parent's range of the depth-first order.
+        const Id end = this->Tree.Position(parent) + this->Tree.Count(parent);
+        for (Id pos = this->Tree.Position(parent); pos < end;)
         {
-          const Id child = this->Children[j];
+          const Id child = this->Tree.ChildAt(parent, pos);
+          pos += this->Tree.Count(child);
           if (child < this->NV || this->Thr[child - this->NV] <= epsilon)
           {
             candidates.push_back(child);
@@ -708,9 +750,10 @@ double OctreeClustering::Internals::SearchEpsilon(Id target, Id tolerance)
   };
   const double floor = this->CurrentEpsilon;
   double low = floor, high = 0.0;
-  for (int guess = 0; guess < 4; ++guess)
+  std::int64_t lowCount = this->NT, highCount = 0;
+  for (int guess = 0; guess < 3; ++guess)
   {
-    this->ComputeActivation();
+    this->ComputeActivation(true);
     const double epsilon = std::max(floor, this->EpsilonForCount(target));
     if (!std::isfinite(epsilon))
     {
@@ -724,9 +767,11 @@ double OctreeClustering::Internals::SearchEpsilon(Id target, Id tolerance)
     if (count < target)
     {
       high = epsilon;
+      highCount = count;
       break;
     }
     low = epsilon;
+    lowCount = count;
   }
   if (!(high > 0.0))
   {
@@ -735,22 +780,50 @@ double OctreeClustering::Internals::SearchEpsilon(Id target, Id tolerance)
     for (int it = 0; it < 60; ++it)
     {
       high *= 1.25;
-      if (estimate(high) <= target)
+      highCount = estimate(high);
+      if (highCount <= target)
       {
         break;
       }
       low = high;
+      lowCount = highCount;
     }
   }
-  for (int it = 0; it < 24 && high > low * (1.0 + 1e-7); ++it)
+  // The count falls about like a power of epsilon: interpolate in log-log (regula falsi), with a
+  // bisection whenever the same end moved twice.
+  int lastMoved = 0;
+  for (int it = 0; it < 20 && high > low * (1.0 + 1e-7); ++it)
   {
-    const double middle = low > 0.0 ? std::sqrt(low * high) : 0.5 * high;
-    const std::int64_t count = estimate(middle);
+    double next = low > 0.0 ? std::sqrt(low * high) : 0.5 * high;
+    if (low > 0.0 && lastMoved != 2 && lastMoved != -2)
+    {
+      const double a = std::log(static_cast<double>(std::max<std::int64_t>(1, lowCount)));
+      const double b = std::log(static_cast<double>(std::max<std::int64_t>(1, highCount)));
+      const double t = a > b ? (a - std::log(static_cast<double>(target))) / (a - b) : 0.5;
+      next = std::exp(
+        std::log(low) + std::min(0.95, std::max(0.05, t)) * (std::log(high) - std::log(low)));
+    }
+    const std::int64_t count = estimate(next);
     if (std::abs(count - target) <= tolerance)
     {
-      return middle;
+      return next;
     }
-    (count > target ? low : high) = middle;
+    if (count > target)
+    {
+      low = next;
+      lowCount = count;
+      lastMoved = lastMoved < 0 ? lastMoved - 1 : -1;
+    }
+    else
+    {
+      high = next;
+      highCount = count;
+      lastMoved = lastMoved > 0 ? lastMoved + 1 : 1;
+    }
+    if (lastMoved == 3 || lastMoved == -3)
+    {
+      lastMoved = 0;
+    }
   }
   return high;
 }
@@ -774,7 +847,7 @@ void OctreeClustering::Internals::AssignClusters(Synthesis& s)
         }
       }
     });
-  const Id previousPoints = static_cast<Id>(this->PointNode.size());
+  const Id previousPoints = this->PreviousPoints();
   s.PointCluster.resize(previousPoints);
   vtkSMPTools::For(0,
     previousPoints,
@@ -782,7 +855,7 @@ void OctreeClustering::Internals::AssignClusters(Synthesis& s)
     {
       for (Id p = begin; p < end; ++p)
       {
-        s.PointCluster[p] = this->ClusterOfVertex[this->FirstVertex(this->PointNode[p])];
+        s.PointCluster[p] = this->ClusterOfVertex[this->FirstVertex(this->NodeOfPoint(p))];
       }
     });
   s.Reps.resize(3 * static_cast<size_t>(clusters));
@@ -805,7 +878,7 @@ void OctreeClustering::Internals::AssignClusters(Synthesis& s)
   s.Changed.resize(clusters);
   for (Id k = 0; k < clusters; ++k)
   {
-    s.Changed[k] = (count[k] == 1 && this->PointNode[some[k]] == s.Cut[k]) ? 0 : 1;
+    s.Changed[k] = (count[k] == 1 && this->NodeOfPoint(some[k]) == s.Cut[k]) ? 0 : 1;
   }
 }
 
@@ -813,8 +886,8 @@ void OctreeClustering::Internals::AssignClusters(Synthesis& s)
 // The previous triangles re-indexed to clusters, without those that degenerate.
 Id OctreeClustering::Internals::ReindexTriangles(Synthesis& s) const
 {
-  const Id previousTriangles = static_cast<Id>(this->CurrentTriangles.size() / 3);
-  const Id* prev = this->CurrentTriangles.data();
+  const Id previousTriangles = this->PreviousTriangles();
+  const Id* prev = this->PreviousTriangleData();
   const std::vector<Id>& pc = s.PointCluster;
   auto nonDegenerate = [&](Id t)
   {
@@ -984,9 +1057,9 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
 void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) const
 {
   const Id clusters = static_cast<Id>(s.Cut.size());
-  const Id previousPoints = static_cast<Id>(this->PointNode.size());
-  const Id previousTriangles = static_cast<Id>(this->CurrentTriangles.size() / 3);
-  const Id* prev = this->CurrentTriangles.data();
+  const Id previousPoints = this->PreviousPoints();
+  const Id previousTriangles = this->PreviousTriangles();
+  const Id* prev = this->PreviousTriangleData();
   std::vector<Id> final;
   final.resize(s.From.size());
   const Id count = ParallelCompact(
@@ -1030,7 +1103,6 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
   level.EstimatedError = worst;
   level.Mesh.Triangles.resize(3 * static_cast<size_t>(count));
   level.LevelZeroTriangle.resize(count);
-  level.PreviousTriangle.resize(count);
   vtkSMPTools::For(0,
     count,
     [&](Id begin, Id end)
@@ -1042,8 +1114,7 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
         {
           level.Mesh.Triangles[3 * i + c] = newId[s.Triangles[3 * j + c]];
         }
-        level.PreviousTriangle[i] = s.From[j];
-        level.LevelZeroTriangle[i] = this->CurrentLevelZero[s.From[j]];
+        level.LevelZeroTriangle[i] = this->LevelZeroOf(s.From[j]);
       }
     });
 
@@ -1174,7 +1245,7 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
     {
       level.SourceParents[cursor[j]] = p;
       level.SourceWeights[cursor[j]++] = static_cast<float>(
-        static_cast<double>(this->PointVertexCount[p]) / level.PointVertexCount[j]);
+        static_cast<double>(this->VertexCountOfPoint(p)) / level.PointVertexCount[j]);
     }
   }
 }
@@ -1207,7 +1278,6 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
 //------------------------------------------------------------------------------
 void OctreeClustering::Internals::Commit(const ClusterLevel& level)
 {
-  this->CurrentPoints = level.Mesh.Points;
   this->CurrentTriangles = level.Mesh.Triangles;
   this->CurrentLevelZero = level.LevelZeroTriangle;
   this->PointNode = level.PointNode;
@@ -1236,7 +1306,6 @@ void OctreeClustering::BuildTree()
   options.PlacementTolerance = impl.Options.PlacementTolerance;
   impl.Tree.Build(impl.Mesh, impl.Topology, options);
   const Id ni = impl.Tree.NumberOfInternalNodes();
-  impl.Error.assign(ni, 0.0f);
   impl.State.assign(ni, NodeState::NotEvaluated);
   impl.RepSlot.assign(ni, InvalidId);
   impl.Reps.clear();
@@ -1250,42 +1319,12 @@ void OctreeClustering::BuildTree()
         impl.UpdateThreshold(i);
       }
     });
-  // Children lists (vertices first, then internal nodes, each by id).
-  const Id nv = impl.NV;
-  impl.ChildOffsets.assign(static_cast<size_t>(ni) + 1, 0);
-  for (Id node = 0; node < nv + ni; ++node)
-  {
-    const Id parent = impl.Tree.Parent(node);
-    if (parent != InvalidId)
-    {
-      ++impl.ChildOffsets[parent - nv + 1];
-    }
-  }
-  for (Id i = 0; i < ni; ++i)
-  {
-    impl.ChildOffsets[i + 1] += impl.ChildOffsets[i];
-  }
-  impl.Children.resize(impl.ChildOffsets[ni]);
-  {
-    std::vector<Id> cursor(impl.ChildOffsets.begin(), impl.ChildOffsets.end() - 1);
-    for (Id node = 0; node < nv + ni; ++node)
-    {
-      const Id parent = impl.Tree.Parent(node);
-      if (parent != InvalidId)
-      {
-        impl.Children[cursor[parent - nv]++] = node;
-      }
-    }
-  }
 
   // Level 0 is the input itself.
-  impl.CurrentPoints = impl.Mesh.Points;
-  impl.CurrentTriangles = impl.Mesh.Triangles;
-  impl.CurrentLevelZero.resize(impl.NT);
-  std::iota(impl.CurrentLevelZero.begin(), impl.CurrentLevelZero.end(), 0);
-  impl.PointNode.resize(impl.NV);
-  std::iota(impl.PointNode.begin(), impl.PointNode.end(), 0);
-  impl.PointVertexCount.assign(impl.NV, 1);
+  impl.CurrentTriangles.clear();
+  impl.CurrentLevelZero.clear();
+  impl.PointNode.clear();
+  impl.PointVertexCount.clear();
   impl.ClusterOfVertex.assign(impl.NV, InvalidId);
   impl.CurrentEpsilon = 0.0;
 }
@@ -1346,7 +1385,7 @@ bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLeve
 
 Id OctreeClustering::GetCurrentTriangleCount() const
 {
-  return static_cast<Id>(this->Impl->CurrentTriangles.size() / 3);
+  return this->Impl->PreviousTriangles();
 }
 
 Id OctreeClustering::GetNumberOfInternalNodes() const
@@ -1395,9 +1434,8 @@ double OctreeClustering::CheckNodeQuadrics(Id count) const
     const ClusterNode& n = tree.Nodes[i];
     Quadric q;
     tree.RelatedQuadric(tree.NV + i, q, nullptr, nullptr);
-    const double centre[3] = {
-      double(n.Sum[0]) / n.Count, double(n.Sum[1]) / n.Count, double(n.Sum[2]) / n.Count
-    };
+    double centre[3];
+    tree.Centroid(tree.NV + i, centre);
     double rep[3];
     MinimizeQuadric(q, centre, impl.Options.PlacementTolerance, rep);
     const double weight = q.Weight();

@@ -84,7 +84,6 @@ struct VTKFILTERSMESHLOD_EXPORT ClusterLevel
   std::vector<Id> PointNode;         // point -> tree node (vertex id for a single vertex)
   std::vector<Id> PointVertexCount;  // point -> number of input vertices it represents
   std::vector<Id> LevelZeroTriangle; // triangle -> input triangle it descends from
-  std::vector<Id> PreviousTriangle;  // triangle -> triangle of the previous level
   std::vector<Id> Target;            // previous point -> point (every previous point)
   std::vector<Id> Rank;              // previous point -> collapse rank, -1: unchanged
   // Point -> previous points merged into it (CSR), with weights summing to one (vertex counts).
