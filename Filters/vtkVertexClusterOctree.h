@@ -13,7 +13,10 @@
  * - and the cluster error is at most epsilon;
  * otherwise the cell is subdivided and its children are tried (§2.4, §2.5). A cell holding
  * several unconnected parts clusters each part on its own, so separate sheets that pass through
- * one cell never fuse.
+ * one cell never fuse. Each octree split is made as three binary splits (x, then y, then z), so
+ * a cell slightly too coarse is tried in halves and quarters before its eighths. In the flip
+ * test, a triangle whose two outside vertices share a cell of the cluster's size does not count:
+ * it falls into one neighbouring cluster and vanishes.
  *
  * The representative minimises the quadric e = e1 + e2 of §3: e1 sums the squared distances to
  * the planes of every triangle touching the cluster, plus planes through the boundary edges
@@ -22,16 +25,21 @@
  * fixed-point iteration (RepresentativeIterations passes from e2 = 0, stopping early on
  * convergence). Planes are weighted by triangle area and the placement is a pseudo-inverse
  * solve that stays at the vertex centroid along directions the planes do not determine (a flat
- * or cylindrical cluster). The cluster error is the root of the area-weighted mean squared
- * distance, in world units; it is what epsilon bounds.
+ * or cylindrical cluster); a cluster holding open-boundary vertices then moves to the closest
+ * point of its boundary edges, so every boundary point of a level lies on the input's
+ * boundary. The cluster error is the largest of the root of the area-weighted mean squared
+ * distance to all the planes, the same to the boundary planes alone, and half the distance to
+ * the farthest plane (a mean alone lets elongated or bent clusters stray at their ends), in
+ * world units; it is what epsilon bounds (the surface typically stays within 2-3 epsilon of the
+ * input).
  *
  * Levels. The output has NumberOfLevels simplified levels after level 0 (the input), chosen by
  * LevelMode:
  * - GeometricEpsilon (default): level i (1-based) uses epsilon Epsilon * EpsilonFactor^(i - 1);
  * - EpsilonList: one level per AddEpsilonValue() value (increasing);
  * - TargetTriangleCounts: one level per AddTargetTriangleCount() value (decreasing), epsilon
- *   found by a search; the count is met exactly or approached from below where the cluster
- *   tree allows.
+ *   found by a search; the count is met within 0.2% (or 2 triangles) where the cluster tree
+ *   allows (a count below what collapsing every mergeable cluster gives is not reachable).
  * With RelativeUnits on (default) epsilon values and MaximumCellSize are fractions of the
  * input's bounding-box diagonal, otherwise world units. Levels nest: every cluster of a coarser
  * level is a union of clusters of the finer one (a coarser level cuts the same cluster tree
@@ -39,10 +47,12 @@
  * that would keep no triangle ends the hierarchy (with a warning).
  *
  * Synthesis. Triangles are re-indexed to the representatives, degenerate and duplicate
- * triangles removed, orientation kept. A triangle that would flip against its version in the
- * previous level marks the clusters that changed as not mergeable and the level is cut again.
- * Vertex clustering may change topology (a thin part can shrink to an edge); a cluster whose
- * triangles all vanish sends its points to the nearest neighbouring cluster.
+ * triangles removed (of two with the same three points, the first is kept), orientation kept.
+ * A kept triangle whose normal opposes the input surface around its three clusters marks the
+ * clusters that changed as not mergeable and the level is cut again. Vertex clustering may
+ * change topology: a part thinner than a cluster can shrink to an edge or a single flap (whose
+ * edges are then boundary edges); a cluster whose triangles all vanish sends its points to the
+ * nearest neighbouring cluster.
  *
  * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input
  * gives an empty output without error; polygons and strips are triangulated; vertex and line

@@ -463,9 +463,14 @@ void ClusterTree::RelatedQuadric(Id node,
   std::vector<Id>* crossing,
   double normal[3],
   Quadric* boundaryQ,
-  std::vector<Id>* boundaryEdges) const
+  std::vector<Id>* boundaryEdges,
+  std::vector<double>* planes) const
 {
   q.Clear();
+  if (planes)
+  {
+    planes->clear();
+  }
   if (boundaryQ)
   {
     boundaryQ->Clear();
@@ -533,6 +538,13 @@ void ClusterTree::RelatedQuadric(Id node,
         for (int k = 0; k < 3; ++k)
         {
           normal[k] += n[k];
+        }
+        const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (planes && length > 0.0)
+        {
+          const double u[3] = { n[0] / length, n[1] / length, n[2] / length };
+          planes->insert(planes->end(),
+            { u[0], u[1], u[2], -(u[0] * p[0][0] + u[1] * p[0][1] + u[2] * p[0][2]) });
         }
       }
       for (int j = 0; j < 2; ++j)

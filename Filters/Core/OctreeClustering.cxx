@@ -99,6 +99,7 @@ struct EvaluationScratch
   std::vector<Quadric> Planes;   // area-weighted plane quadric of each
   std::vector<double> Normals;   // 3 per crossing triangle (twice the area in length)
   std::vector<Id> BoundaryEdges; // boundary edges with an end inside (3 t + k)
+  std::vector<double> Related;   // planes of the related triangle set (unit normal, offset)
 };
 
 // A level being built: clusters (cut nodes) and the previous level's triangles re-indexed.
@@ -336,7 +337,7 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   Quadric q1, boundary;
   double* slot = this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[index]);
   this->Tree.RelatedQuadric(
-    node, q1, &scratch.Crossing, slot + 3, &boundary, &scratch.BoundaryEdges);
+    node, q1, &scratch.Crossing, slot + 3, &boundary, &scratch.BoundaryEdges, &scratch.Related);
   const size_t crossings = scratch.Crossing.size();
   scratch.Planes.resize(crossings);
   scratch.Normals.resize(3 * crossings);
@@ -422,13 +423,21 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   }
   // The error: the root mean squared distance to the planes of the related triangle set, and
   // separately to the boundary-edge planes (few, so they would hardly count in the mean: an
-  // open boundary is kept within epsilon too).
+  // open boundary is kept within epsilon too). No single plane may be farther than twice that:
+  // a mean lets elongated or bent clusters stray far at their ends.
   const double weight = q1.Weight();
   double error = weight > 0.0 ? std::sqrt(value / weight) : 0.0;
   if (boundary.Weight() > 0.0)
   {
     error = std::max(error, std::sqrt(boundary.Evaluate(v0) / boundary.Weight()));
   }
+  double farthest = 0.0;
+  for (size_t i = 0; i < scratch.Related.size(); i += 4)
+  {
+    const double* plane = scratch.Related.data() + i;
+    farthest = std::max(farthest, std::abs(Dot(plane, v0) + plane[3]));
+  }
+  error = std::max(error, 0.5 * farthest);
   std::copy_n(v0, 3, slot);
   slot[6] = static_cast<float>(error); // as a threshold, in single precision
   this->State[index] =
