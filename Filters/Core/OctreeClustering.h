@@ -33,8 +33,9 @@
 // at the vertex centroid along directions the planes leave free; a cluster on an open boundary
 // then moves to the closest point of its boundary edges, so boundaries stay in place. The error
 // is the largest of the root mean squared distance to all planes, the same to the boundary
-// planes alone, and half the distance to the farthest plane, in world units. Every node's e1 is known from the tree (a lower bound); a node is
-// evaluated in full only when a cut reaches it.
+// planes alone, and half the distance to the farthest plane, in world units. Every node's e1
+// is known from the tree (a lower bound); a node is evaluated in full only when a cut reaches
+// it.
 //
 // Levels nest
 // -----------
