@@ -18,10 +18,8 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
 
 #include <cmath>
-#include <sstream>
 #include <string>
 
 vtkStandardNewMacro(vtkVertexClusterOctree);
