@@ -3,7 +3,8 @@
 
 set(meshlod_classes
   vtkLODGeomorph
-  vtkTriangleCollapseDecimation)
+  vtkTriangleCollapseDecimation
+  vtkVertexClusterOctree)
 
 # Exported helpers that are not VTK classes: not wrapped, but usable from C++ (the tests and the
 # benchmark measure with the yardstick).
@@ -13,6 +14,7 @@ set(meshlod_nowrap_headers
 # Private headers (not installed): the VTK-free algorithm code under Core/ and the glue between
 # it and VTK. The tests in the build tree include them directly.
 set(meshlod_private_headers
+  Filters/Core/ClusterTree.h
   Filters/Core/CollapseCosts.h
   Filters/Core/CollapseMesh.h
   Filters/Core/CollapseSchedule.h
@@ -21,29 +23,38 @@ set(meshlod_private_headers
   Filters/Core/LevelData.h
   Filters/Core/LevelTracker.h
   Filters/Core/LocalSurfaceFit.h
+  Filters/Core/OctreeClustering.h
+  Filters/Core/Quadric.h
   Filters/Core/QuadricMetric.h
+  Filters/Core/TextureAtlas.h
   Filters/Core/TriangleCollapse.h
   Filters/Core/TriangleMesh.h
   Filters/MeshLODBlend.h
   Filters/MeshLODHierarchy.h
   Filters/MeshLODInputMesh.h
-  Filters/MeshLODNearestCorrespondence.h)
+  Filters/MeshLODNearestCorrespondence.h
+  Filters/MeshLODTextureBaking.h)
 
 set(meshlod_sources
+  Filters/Core/ClusterTree.cxx
   Filters/Core/CollapseCosts.cxx
   Filters/Core/CollapseMesh.cxx
   Filters/Core/CollapseSchedule.cxx
   Filters/Core/EdgeMerge.cxx
   Filters/Core/LevelTracker.cxx
   Filters/Core/LocalSurfaceFit.cxx
+  Filters/Core/OctreeClustering.cxx
+  Filters/Core/Quadric.cxx
   Filters/Core/QuadricMetric.cxx
+  Filters/Core/TextureAtlas.cxx
   Filters/Core/TriangleCollapse.cxx
   Filters/Core/TriangleMesh.cxx
   Filters/MeshLODBlend.cxx
   Filters/MeshLODHierarchy.cxx
   Filters/MeshLODInputMesh.cxx
   Filters/MeshLODNearestCorrespondence.cxx
-  Filters/MeshLODSurfaceDistance.cxx)
+  Filters/MeshLODSurfaceDistance.cxx
+  Filters/MeshLODTextureBaking.cxx)
 
 list(TRANSFORM meshlod_classes PREPEND "Filters/")
 

@@ -1,0 +1,798 @@
+#include "ClusterTree.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+
+namespace meshlod
+{
+namespace
+{
+// The tree below this depth (octree depth 4, at most 4096 cells) is built cell by cell in
+// parallel, the merges above it serially.
+constexpr int TierDepth = 12;
+
+std::uint64_t SpreadBits(std::uint32_t x)
+{
+  std::uint64_t v = x & 0x1fffffu;
+  v = (v | v << 32) & 0x1f00000000ffffULL;
+  v = (v | v << 16) & 0x1f0000ff0000ffULL;
+  v = (v | v << 8) & 0x100f00f00f00f00fULL;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
+
+// Number of splits of axis c (0 = x, split first) among the first `depth` binary splits.
+int AxisSplits(int depth, int c)
+{
+  return (depth + 2 - c) / 3;
+}
+
+// A half-edge (triangle t, edge k from corner k to corner k + 1) at the depth its ends part.
+struct HalfEdge
+{
+  std::int64_t Item; // 3 t + k
+  int Depth;
+};
+
+// Stable counting sort of half-edges by decreasing depth.
+void SortByDepth(std::vector<HalfEdge>& items, std::vector<HalfEdge>& scratch)
+{
+  constexpr int buckets = ClusterTree::MaxDepth + 1;
+  Id counts[buckets + 1] = {};
+  for (const HalfEdge& h : items)
+  {
+    ++counts[ClusterTree::MaxDepth - h.Depth + 1];
+  }
+  for (int d = 1; d <= buckets; ++d)
+  {
+    counts[d] += counts[d - 1];
+  }
+  scratch.resize(items.size());
+  for (const HalfEdge& h : items)
+  {
+    scratch[counts[ClusterTree::MaxDepth - h.Depth]++] = h;
+  }
+  items.swap(scratch);
+}
+
+void ComputeE1(ClusterNode& node, const Quadric& q, const double sum[3], double tolerance)
+{
+  const double centre[3] = { sum[0] / node.Count, sum[1] / node.Count, sum[2] / node.Count };
+  double rep[3];
+  MinimizeQuadric(q, centre, tolerance, rep);
+  const double weight = q.Weight();
+  node.E1 = weight > 0.0 ? static_cast<float>(std::sqrt(q.Evaluate(rep) / weight)) : 0.0f;
+}
+
+// Nodes being created, with their quadrics. The node with id Base + i is Nodes[i]; lower ids
+// are nodes of the finished cells (only the serial top tier refers to them).
+// What a node needs only while it is built: its quadric and the sum of its vertex positions.
+struct Building
+{
+  Quadric Q;
+  double Sum[3] = { 0.0, 0.0, 0.0 };
+};
+
+struct NodeStore
+{
+  Id Base = 0;
+  std::vector<ClusterNode> Nodes;
+  std::vector<Building> Work;
+  ClusterTree* Tree = nullptr;
+  const std::unordered_map<Id, Building>* Finished = nullptr;
+
+  ClusterNode& Record(Id id)
+  {
+    return id >= this->Base ? this->Nodes[id - this->Base] : this->Tree->Nodes[id - this->Tree->NV];
+  }
+  const Building& WorkOf(Id id) const
+  {
+    return id >= this->Base ? this->Work[id - this->Base] : this->Finished->at(id);
+  }
+  Id Create(int depth)
+  {
+    this->Nodes.emplace_back();
+    this->Nodes.back().Depth = static_cast<std::uint8_t>(depth);
+    this->Work.emplace_back();
+    return this->Base + static_cast<Id>(this->Nodes.size() - 1);
+  }
+};
+} // namespace
+
+//------------------------------------------------------------------------------
+// Union-find over the vertices, with the node each component currently is.
+struct ClusterTree::Builder
+{
+  ClusterTree& Tree;
+  std::vector<std::uint64_t> Morton; // kept while building, recomputed on demand afterwards
+  std::vector<Id> UF, UFSize, NodeOf, StampOld, StampNew, NewNode;
+
+  int CommonDepth(Id a, Id b) const
+  {
+    return ClusterTree::CommonDepth(this->Morton[a], this->Morton[b]);
+  }
+
+  explicit Builder(ClusterTree& tree)
+    : Tree(tree)
+  {
+    const Id nv = tree.NV;
+    this->UF.resize(nv);
+    std::iota(this->UF.begin(), this->UF.end(), 0);
+    this->UFSize.assign(nv, 1);
+    this->NodeOf.resize(nv);
+    std::iota(this->NodeOf.begin(), this->NodeOf.end(), 0);
+    this->StampOld.assign(nv, -1);
+    this->StampNew.assign(nv, -1);
+    this->NewNode.assign(nv, InvalidId);
+  }
+
+  Id Find(Id v)
+  {
+    while (this->UF[v] != v)
+    {
+      this->UF[v] = this->UF[this->UF[v]];
+      v = this->UF[v];
+    }
+    return v;
+  }
+
+  void Attach(Id child, Id parent, NodeStore& store);
+  void DesignatedEdges(const Id* tri, int& deep, int& shallow) const;
+  void MergeGroup(const HalfEdge* items,
+    size_t count,
+    int depth,
+    Id stamp,
+    NodeStore& store,
+    std::vector<Id>& touched);
+  void MergeSorted(const std::vector<HalfEdge>& items, Id stampBase, NodeStore& store);
+};
+
+//------------------------------------------------------------------------------
+void ClusterTree::Builder::Attach(Id child, Id parent, NodeStore& store)
+{
+  const ClusterTree& tree = this->Tree;
+  Building leaf;
+  const Building* from = &leaf;
+  Id count = 1;
+  std::uint8_t locked = 0;
+  if (child < tree.NV)
+  {
+    this->Tree.LeafParent[child] = parent;
+    double normal[3];
+    tree.VertexQuadric(child, leaf.Q, normal);
+    tree.RelativePoint(child, leaf.Sum);
+    locked = tree.Topology->VertexKinds[child] == VertexKind::NonManifold ? 1 : 0;
+  }
+  else
+  {
+    ClusterNode& record = store.Record(child);
+    record.Parent = parent;
+    from = &store.WorkOf(child);
+    count = record.Count;
+    locked = record.Locked;
+  }
+  ClusterNode& node = store.Record(parent);
+  Building& work = store.Work[parent - store.Base];
+  work.Q.Add(from->Q);
+  for (int c = 0; c < 3; ++c)
+  {
+    work.Sum[c] += from->Sum[c];
+  }
+  node.Count += count;
+  node.Locked |= locked;
+}
+
+//------------------------------------------------------------------------------
+// A triangle's vertex pairs first meet, going up the tree, at two nodes: the closest pair at
+// the "deep" node, the other two pairs together at the "shallow" node (the node of all three).
+// The triangle's plane is counted once per vertex at the leaves, so inclusion-exclusion removes
+// it once at each of these nodes; `deep` and `shallow` name the edges whose half-edges do it.
+void ClusterTree::Builder::DesignatedEdges(const Id* tri, int& deep, int& shallow) const
+{
+  int depth[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    depth[k] = this->CommonDepth(tri[k], tri[(k + 1) % 3]);
+  }
+  deep = 0;
+  shallow = 2;
+  for (int k = 1; k < 3; ++k)
+  {
+    deep = depth[k] > depth[deep] ? k : deep;
+  }
+  for (int k = 1; k >= 0; --k)
+  {
+    shallow = depth[k] < depth[shallow] ? k : shallow;
+  }
+  if (shallow == deep)
+  {
+    shallow = (deep + 1) % 3; // all three pairs meet at one node
+  }
+}
+
+//------------------------------------------------------------------------------
+// All half-edges whose ends first share a cell at `depth`: the components they join become the
+// new nodes of that depth, one per connected part of each cell.
+void ClusterTree::Builder::MergeGroup(const HalfEdge* items,
+  size_t count,
+  int depth,
+  Id stamp,
+  NodeStore& store,
+  std::vector<Id>& touched)
+{
+  const TriangleMesh& mesh = *this->Tree.Mesh;
+  touched.clear();
+  for (size_t i = 0; i < count; ++i)
+  {
+    const Id* tri = mesh.Triangle(static_cast<Id>(items[i].Item / 3));
+    const int k = static_cast<int>(items[i].Item % 3);
+    Id ra = this->Find(tri[k]);
+    Id rb = this->Find(tri[(k + 1) % 3]);
+    if (ra == rb)
+    {
+      continue;
+    }
+    touched.push_back(ra);
+    touched.push_back(rb);
+    if (this->UFSize[ra] < this->UFSize[rb])
+    {
+      std::swap(ra, rb);
+    }
+    this->UF[rb] = ra;
+    this->UFSize[ra] += this->UFSize[rb];
+  }
+  // One new node per merged component, in order of first appearance; its children are the
+  // components that merged into it.
+  size_t unique = 0;
+  for (size_t i = 0; i < touched.size(); ++i)
+  {
+    const Id r = touched[i];
+    if (this->StampOld[r] == stamp)
+    {
+      continue;
+    }
+    this->StampOld[r] = stamp;
+    touched[unique++] = r;
+    const Id root = this->Find(r);
+    if (this->StampNew[root] != stamp)
+    {
+      this->StampNew[root] = stamp;
+      this->NewNode[root] = store.Create(depth);
+    }
+    this->Attach(this->NodeOf[r], this->NewNode[root], store);
+  }
+  touched.resize(unique);
+  for (const Id r : touched)
+  {
+    const Id root = this->Find(r);
+    this->NodeOf[root] = this->NewNode[root];
+  }
+  // Inclusion-exclusion, and the triangles that degenerate in each node.
+  const TriangleTopology& topology = *this->Tree.Topology;
+  for (size_t i = 0; i < count; ++i)
+  {
+    const Id t = static_cast<Id>(items[i].Item / 3);
+    const int k = static_cast<int>(items[i].Item % 3);
+    const Id* tri = mesh.Triangle(t);
+    const bool boundary = topology.EdgeNeighbors[3 * static_cast<size_t>(t) + k] == BoundaryEdge;
+    int deep, shallow;
+    this->DesignatedEdges(tri, deep, shallow);
+    if (k != deep && k != shallow && !boundary)
+    {
+      continue;
+    }
+    const Id node = this->NodeOf[this->Find(tri[k])];
+    Quadric& q = store.Work[node - store.Base].Q;
+    double p[3][3];
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Tree.RelativePoint(tri[c], p[c]);
+    }
+    Quadric face;
+    double n[3];
+    TriangleQuadric(p[0], p[1], p[2], face, n);
+    if (k == deep || k == shallow)
+    {
+      q.Add(face, -1.0);
+    }
+    if (k == deep)
+    {
+      ++store.Record(node).Dies;
+    }
+    if (boundary)
+    {
+      Quadric edge;
+      BoundaryEdgeQuadric(p[k], p[(k + 1) % 3], n, this->Tree.Options.BoundaryWeight, edge);
+      q.Add(edge, -1.0);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void ClusterTree::Builder::MergeSorted(const std::vector<HalfEdge>& items,
+  Id stampBase,
+  NodeStore& store)
+{
+  std::vector<Id> touched;
+  size_t first = 0;
+  while (first < items.size())
+  {
+    size_t last = first;
+    const int depth = items[first].Depth;
+    while (last < items.size() && items[last].Depth == depth)
+    {
+      ++last;
+    }
+    this->MergeGroup(
+      items.data() + first, last - first, depth, stampBase + depth + 1, store, touched);
+    first = last;
+  }
+}
+
+//------------------------------------------------------------------------------
+double ClusterTree::CellSize(int depth) const
+{
+  return std::ldexp(this->Size, -(depth / 3));
+}
+
+void ClusterTree::CellBox(Id v, int depth, double low[3], double extent[3]) const
+{
+  const double scale = std::ldexp(1.0, AxisBits) / this->Size;
+  const double top = std::ldexp(1.0, AxisBits) - 1.0;
+  const double* p = this->Mesh->Point(v);
+  for (int c = 0; c < 3; ++c)
+  {
+    const auto q = static_cast<std::uint32_t>(
+      std::min(top, std::max(0.0, std::floor((p[c] - this->Corner[c]) * scale))));
+    const int splits = AxisSplits(depth, c);
+    extent[c] = std::ldexp(this->Size, -splits);
+    const std::uint32_t cell = splits > 0 ? q >> (AxisBits - splits) : 0u;
+    low[c] = this->Corner[c] - this->Centre[c] + cell * extent[c];
+  }
+}
+
+//------------------------------------------------------------------------------
+void ClusterTree::ComputeFrame()
+{
+  const TriangleMesh& mesh = *this->Mesh;
+  double lo[3] = { std::numeric_limits<double>::max(),
+    std::numeric_limits<double>::max(),
+    std::numeric_limits<double>::max() };
+  double hi[3] = { -lo[0], -lo[1], -lo[2] };
+  for (Id v = 0; v < this->NV; ++v)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = std::min(lo[c], mesh.Point(v)[c]);
+      hi[c] = std::max(hi[c], mesh.Point(v)[c]);
+    }
+  }
+  double size = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    this->Centre[c] = 0.5 * (lo[c] + hi[c]);
+    size = std::max(size, hi[c] - lo[c]);
+  }
+  // A hair larger than the extent, so that the highest coordinate falls inside the last cell.
+  this->Size = size > 0.0 ? size * (1.0 + 1e-9) : 1.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    this->Corner[c] = this->Centre[c] - 0.5 * this->Size;
+  }
+}
+
+//------------------------------------------------------------------------------
+std::uint64_t ClusterTree::Morton(Id v) const
+{
+  const double scale = std::ldexp(1.0, AxisBits) / this->Size;
+  const double top = std::ldexp(1.0, AxisBits) - 1.0;
+  const double* p = this->Mesh->Point(v);
+  std::uint64_t code = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double q = std::min(top, std::max(0.0, std::floor((p[c] - this->Corner[c]) * scale)));
+    code |= SpreadBits(static_cast<std::uint32_t>(q)) << (2 - c);
+  }
+  return code;
+}
+
+//------------------------------------------------------------------------------
+void ClusterTree::Centroid(Id node, double out[3]) const
+{
+  out[0] = out[1] = out[2] = 0.0;
+  const Id first = this->Position(node), count = this->Count(node);
+  for (Id pos = first; pos < first + count; ++pos)
+  {
+    const double* p = this->Mesh->Point(this->Order[pos]);
+    for (int c = 0; c < 3; ++c)
+    {
+      out[c] += p[c];
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    out[c] = out[c] / count - this->Centre[c];
+  }
+}
+
+//------------------------------------------------------------------------------
+void ClusterTree::VertexQuadric(Id v, Quadric& q, double normal[3]) const
+{
+  q.Clear();
+  normal[0] = normal[1] = normal[2] = 0.0;
+  const VertexTriangleAdjacency& adj = this->Topology->VertexTriangles;
+  for (Id i = adj.Begin(v); i < adj.End(v); ++i)
+  {
+    const Id t = adj.Triangles[i];
+    const Id* tri = this->Mesh->Triangle(t);
+    double p[3][3];
+    for (int k = 0; k < 3; ++k)
+    {
+      this->RelativePoint(tri[k], p[k]);
+    }
+    Quadric face;
+    double n[3];
+    TriangleQuadric(p[0], p[1], p[2], face, n);
+    q.Add(face);
+    for (int c = 0; c < 3; ++c)
+    {
+      normal[c] += n[c];
+    }
+    const int c = CornerOf(tri, v);
+    for (const int e : { c, (c + 2) % 3 })
+    {
+      if (this->Topology->EdgeNeighbors[3 * static_cast<size_t>(t) + e] == BoundaryEdge)
+      {
+        Quadric edge;
+        BoundaryEdgeQuadric(p[e], p[(e + 1) % 3], n, this->Options.BoundaryWeight, edge);
+        q.Add(edge);
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void ClusterTree::RelatedQuadric(Id node,
+  Quadric& q,
+  std::vector<Id>* crossing,
+  double normal[3],
+  Quadric* boundaryQ,
+  std::vector<Id>* boundaryEdges,
+  std::vector<double>* planes) const
+{
+  q.Clear();
+  if (planes)
+  {
+    planes->clear();
+  }
+  if (boundaryQ)
+  {
+    boundaryQ->Clear();
+  }
+  if (boundaryEdges)
+  {
+    boundaryEdges->clear();
+  }
+  double unused[3];
+  normal = normal ? normal : unused;
+  normal[0] = normal[1] = normal[2] = 0.0;
+  if (crossing)
+  {
+    crossing->clear();
+  }
+  const Id first = this->Position(node);
+  const Id last = first + this->Count(node);
+  const VertexTriangleAdjacency& adj = this->Topology->VertexTriangles;
+  for (Id pos = first; pos < last; ++pos)
+  {
+    const Id v = this->Order[pos];
+    for (Id i = adj.Begin(v); i < adj.End(v); ++i)
+    {
+      const Id t = adj.Triangles[i];
+      const Id* tri = this->Mesh->Triangle(t);
+      bool inside[3];
+      int insideCount = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        const Id p = this->PosOf[tri[k]];
+        inside[k] = p >= first && p < last;
+        insideCount += inside[k] ? 1 : 0;
+      }
+      const int c = CornerOf(tri, v);
+      if (crossing && insideCount == 1)
+      {
+        crossing->push_back(3 * t + c);
+      }
+      // Each triangle once, from its first vertex inside; each boundary edge once, from its
+      // first end inside.
+      const int firstInside = inside[0] ? 0 : (inside[1] ? 1 : 2);
+      bool boundary[2] = { false, false };
+      for (int j = 0; j < 2; ++j)
+      {
+        const int e = j == 0 ? c : (c + 2) % 3;
+        const int from = inside[e] ? e : (e + 1) % 3;
+        boundary[j] = from == c &&
+          this->Topology->EdgeNeighbors[3 * static_cast<size_t>(t) + e] == BoundaryEdge;
+      }
+      if (firstInside != c && !boundary[0] && !boundary[1])
+      {
+        continue;
+      }
+      double p[3][3];
+      for (int k = 0; k < 3; ++k)
+      {
+        this->RelativePoint(tri[k], p[k]);
+      }
+      Quadric face;
+      double n[3];
+      TriangleQuadric(p[0], p[1], p[2], face, n);
+      if (firstInside == c)
+      {
+        q.Add(face);
+        for (int k = 0; k < 3; ++k)
+        {
+          normal[k] += n[k];
+        }
+        const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (planes && length > 0.0)
+        {
+          const double u[3] = { n[0] / length, n[1] / length, n[2] / length };
+          planes->insert(planes->end(),
+            { u[0], u[1], u[2], -(u[0] * p[0][0] + u[1] * p[0][1] + u[2] * p[0][2]) });
+        }
+      }
+      for (int j = 0; j < 2; ++j)
+      {
+        if (boundary[j])
+        {
+          const int e = j == 0 ? c : (c + 2) % 3;
+          Quadric edge;
+          BoundaryEdgeQuadric(p[e], p[(e + 1) % 3], n, this->Options.BoundaryWeight, edge);
+          q.Add(edge);
+          if (boundaryQ)
+          {
+            boundaryQ->Add(edge);
+          }
+          if (boundaryEdges)
+          {
+            boundaryEdges->push_back(3 * t + e);
+          }
+        }
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void ClusterTree::Build(const TriangleMesh& mesh,
+  const TriangleTopology& topology,
+  const ClusterTreeOptions& options)
+{
+  this->Mesh = &mesh;
+  this->Topology = &topology;
+  this->Options = options;
+  this->NV = mesh.GetNumberOfPoints();
+  this->Nodes.clear();
+  this->LeafParent.assign(this->NV, InvalidId);
+  this->ComputeFrame();
+  const Id nv = this->NV;
+  Builder builder(*this);
+  builder.Morton.resize(nv);
+  vtkSMPTools::For(0,
+    nv,
+    [&](Id begin, Id end)
+    {
+      for (Id v = begin; v < end; ++v)
+      {
+        builder.Morton[v] = this->Morton(v);
+      }
+    });
+
+  // Vertices bucketed by their cell at TierDepth (stable: each cell lists its vertices by id).
+  const int shift = MaxDepth - TierDepth;
+  const Id numberOfKeys = Id(1) << TierDepth;
+  std::vector<Id> keyOffsets(static_cast<size_t>(numberOfKeys) + 1, 0);
+  for (Id v = 0; v < nv; ++v)
+  {
+    ++keyOffsets[(builder.Morton[v] >> shift) + 1];
+  }
+  std::vector<Id> cells;
+  for (Id key = 0; key < numberOfKeys; ++key)
+  {
+    if (keyOffsets[key + 1] > 0)
+    {
+      cells.push_back(key);
+    }
+    keyOffsets[key + 1] += keyOffsets[key];
+  }
+  std::vector<Id> cellVertices(nv);
+  {
+    std::vector<Id> cursor(keyOffsets.begin(), keyOffsets.end() - 1);
+    for (Id v = 0; v < nv; ++v)
+    {
+      cellVertices[cursor[builder.Morton[v] >> shift]++] = v;
+    }
+  }
+
+  // Bottom tier, cell by cell. Node ids are provisional, NV + (first slot of the cell in
+  // cellVertices) + local index: a cell of n vertices makes at most n - 1 nodes, so the ranges
+  // never overlap. The quadrics of a cell's nodes live only while the cell is built, except
+  // those of its top components, which the top tier still needs.
+  const Id numberOfCells = static_cast<Id>(cells.size());
+  std::vector<std::vector<ClusterNode>> cellNodes(numberOfCells);
+  std::vector<std::vector<std::pair<Id, Building>>> cellRoots(numberOfCells);
+  std::vector<std::vector<HalfEdge>> cellTop(numberOfCells);
+  const VertexTriangleAdjacency& adj = topology.VertexTriangles;
+  vtkSMPTools::For(0,
+    numberOfCells,
+    [&](Id begin, Id end)
+    {
+      std::vector<HalfEdge> items, scratch;
+      for (Id c = begin; c < end; ++c)
+      {
+        const Id key = cells[c];
+        items.clear();
+        for (Id i = keyOffsets[key]; i < keyOffsets[key + 1]; ++i)
+        {
+          const Id v = cellVertices[i];
+          for (Id j = adj.Begin(v); j < adj.End(v); ++j)
+          {
+            const Id t = adj.Triangles[j];
+            const Id* tri = mesh.Triangle(t);
+            const int k = CornerOf(tri, v);
+            const int depth = builder.CommonDepth(v, tri[(k + 1) % 3]);
+            const HalfEdge h{ 3 * static_cast<std::int64_t>(t) + k, depth };
+            (depth >= TierDepth ? items : cellTop[c]).push_back(h);
+          }
+        }
+        SortByDepth(items, scratch);
+        NodeStore store;
+        store.Base = nv + keyOffsets[key];
+        builder.MergeSorted(items, c * (MaxDepth + 2), store);
+        for (size_t i = 0; i < store.Nodes.size(); ++i)
+        {
+          ComputeE1(store.Nodes[i], store.Work[i].Q, store.Work[i].Sum, options.PlacementTolerance);
+        }
+        for (Id i = keyOffsets[key]; i < keyOffsets[key + 1]; ++i)
+        {
+          const Id v = cellVertices[i];
+          if (builder.UF[v] == v && builder.NodeOf[v] >= nv)
+          {
+            cellRoots[c].emplace_back(
+              builder.NodeOf[v], store.Work[builder.NodeOf[v] - store.Base]);
+          }
+        }
+        cellNodes[c].swap(store.Nodes);
+      }
+    });
+
+  // Final ids: the cells' nodes in cell order, then the top tier's.
+  std::vector<Id> nodeOffsets(static_cast<size_t>(numberOfCells) + 1, 0);
+  for (Id c = 0; c < numberOfCells; ++c)
+  {
+    nodeOffsets[c + 1] = nodeOffsets[c] + static_cast<Id>(cellNodes[c].size());
+  }
+  this->Nodes.resize(nodeOffsets[numberOfCells]);
+  vtkSMPTools::For(0,
+    numberOfCells,
+    [&](Id begin, Id end)
+    {
+      for (Id c = begin; c < end; ++c)
+      {
+        const Id key = cells[c];
+        const Id provisional = nv + keyOffsets[key];
+        const Id shiftBy = nodeOffsets[c] - keyOffsets[key];
+        auto fix = [&](Id& id)
+        {
+          if (id != InvalidId && id >= provisional)
+          {
+            id += shiftBy;
+          }
+        };
+        for (ClusterNode& n : cellNodes[c])
+        {
+          fix(n.Parent);
+        }
+        for (Id i = keyOffsets[key]; i < keyOffsets[key + 1]; ++i)
+        {
+          const Id v = cellVertices[i];
+          fix(this->LeafParent[v]);
+          if (builder.UF[v] == v)
+          {
+            fix(builder.NodeOf[v]);
+          }
+        }
+        for (auto& root : cellRoots[c])
+        {
+          fix(root.first);
+        }
+        std::copy(cellNodes[c].begin(), cellNodes[c].end(), this->Nodes.begin() + nodeOffsets[c]);
+        std::vector<ClusterNode>().swap(cellNodes[c]);
+      }
+    });
+
+  // Top tier, serially.
+  std::unordered_map<Id, Building> finished;
+  std::vector<HalfEdge> top;
+  for (Id c = 0; c < numberOfCells; ++c)
+  {
+    for (const auto& root : cellRoots[c])
+    {
+      finished.emplace(root.first, root.second);
+    }
+    top.insert(top.end(), cellTop[c].begin(), cellTop[c].end());
+    std::vector<HalfEdge>().swap(cellTop[c]);
+  }
+  {
+    std::vector<HalfEdge> scratch;
+    SortByDepth(top, scratch);
+  }
+  NodeStore store;
+  store.Base = nv + static_cast<Id>(this->Nodes.size());
+  store.Tree = this;
+  store.Finished = &finished;
+  builder.MergeSorted(top, numberOfCells * (MaxDepth + 2), store);
+  for (size_t i = 0; i < store.Nodes.size(); ++i)
+  {
+    ComputeE1(store.Nodes[i], store.Work[i].Q, store.Work[i].Sum, options.PlacementTolerance);
+  }
+  this->Nodes.insert(this->Nodes.end(), store.Nodes.begin(), store.Nodes.end());
+  this->ComputeOrder();
+}
+
+//------------------------------------------------------------------------------
+// Depth-first ranges. A parent has a larger id than its children, so walking the internal
+// nodes downwards reaches every parent before its children.
+void ClusterTree::ComputeOrder()
+{
+  const Id nv = this->NV;
+  const Id ni = static_cast<Id>(this->Nodes.size());
+  this->Begin.assign(ni, 0);
+  this->Order.resize(nv);
+  this->PosOf.resize(nv);
+  std::vector<Id> cursor(ni, 0);
+  Id next = 0;
+  for (Id v = 0; v < nv; ++v)
+  {
+    if (this->LeafParent[v] == InvalidId)
+    {
+      this->PosOf[v] = next;
+      this->Order[next++] = v;
+    }
+  }
+  this->Depth = 0;
+  for (Id i = ni - 1; i >= 0; --i)
+  {
+    const ClusterNode& n = this->Nodes[i];
+    if (n.Parent == InvalidId)
+    {
+      this->Begin[i] = next;
+      next += n.Count;
+    }
+    else
+    {
+      Id& parentCursor = cursor[n.Parent - nv];
+      this->Begin[i] = parentCursor;
+      parentCursor += n.Count;
+    }
+    cursor[i] = this->Begin[i];
+    this->Depth = std::max(this->Depth, int(n.Depth));
+  }
+  for (Id v = 0; v < nv; ++v)
+  {
+    if (this->LeafParent[v] != InvalidId)
+    {
+      const Id pos = cursor[this->LeafParent[v] - nv]++;
+      this->PosOf[v] = pos;
+      this->Order[pos] = v;
+    }
+  }
+}
+
+} // namespace meshlod

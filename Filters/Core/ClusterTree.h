@@ -1,0 +1,167 @@
+// MeshLOD core: the cluster tree of adaptive octree vertex clustering (see OctreeClustering.h).
+//
+// A node is a set of vertices that lie in one cell of a subdivision of the bounding cube and are
+// connected by mesh edges inside that cell. The subdivision is an octree whose every split is
+// made as three binary splits (x, then y, then z): octree depth k is depth 3 k here, and the
+// depths in between are halves and quarters of octree cells. Going up, the parts of the child
+// cells merge where edges join them inside the parent cell; each merge is a node, so the tree
+// has the vertices as leaves (ids [0, NV)) and the internal nodes above them (ids NV + i, a
+// parent always after its children). The vertices of a node occupy one contiguous range of a
+// depth-first vertex order (Order / PosOf).
+//
+// Built bottom-up like Kruskal's algorithm: every half-edge is sorted by the depth at which its
+// two ends part (the common prefix of their Morton codes), and a union-find merges the parts of
+// each cell depth by depth. Cells of octree depth 4 are built in parallel, the few merges above
+// them serially, so the tree does not depend on the thread count.
+//
+// While a node is built it carries the quadric of its related triangle set (every triangle with
+// a vertex in it, counted once, plus the perpendicular planes of the boundary edges at its
+// vertices): summed from its children, minus the triangles counted twice, which are those whose
+// closest pair of vertices first meets in the node and those whose three vertices first meet in
+// it (inclusion-exclusion). From it the node's e1 error is kept; the quadric itself is dropped,
+// and RelatedQuadric() recomputes it when a node is evaluated in full.
+#ifndef meshlod_ClusterTree_h
+#define meshlod_ClusterTree_h
+
+#include "Quadric.h"
+#include "TriangleMesh.h"
+#include "vtkFiltersMeshLODModule.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace meshlod
+{
+struct VTKFILTERSMESHLOD_EXPORT ClusterTreeOptions
+{
+  /// Weight of the boundary-edge planes: BoundaryWeight * squared edge length.
+  double BoundaryWeight = 1.0;
+  /// Eigenvalues below this fraction of the largest are treated as zero when placing.
+  double PlacementTolerance = 1e-3;
+};
+
+/// An internal node of the tree.
+struct ClusterNode
+{
+  Id Count = 0; // number of vertices
+  Id Parent = InvalidId;
+  Id Dies = 0;             // triangles that degenerate when this node (or an ancestor) is collapsed
+  float E1 = 0.0f;         // e1 error: sqrt(min Q1 / weight of Q1)
+  std::uint8_t Depth = 0;  // binary splits of the cell the node forms in
+  std::uint8_t Locked = 0; // holds a locked (non-manifold) vertex
+};
+
+class VTKFILTERSMESHLOD_EXPORT ClusterTree
+{
+public:
+  static constexpr int AxisBits = 20;
+  static constexpr int MaxDepth = 3 * AxisBits;
+
+  /// `mesh` and `topology` must outlive the tree.
+  void Build(const TriangleMesh& mesh,
+    const TriangleTopology& topology,
+    const ClusterTreeOptions& options);
+
+  const TriangleMesh* Mesh = nullptr;
+  const TriangleTopology* Topology = nullptr;
+  ClusterTreeOptions Options;
+  Id NV = 0;
+  double Centre[3] = { 0.0, 0.0, 0.0 }; // positions in the tree are relative to this point
+  double Corner[3] = { 0.0, 0.0, 0.0 }; // lowest corner of the bounding cube
+  double Size = 1.0;                    // edge of the bounding cube
+
+  std::vector<ClusterNode> Nodes; // internal node NV + i is Nodes[i]
+  std::vector<Id> LeafParent;     // vertex -> parent node, InvalidId for a lone vertex
+  std::vector<Id> Begin;          // internal node -> first position in Order
+  std::vector<Id> Order;          // depth-first vertex order
+  std::vector<Id> PosOf;          // vertex -> position in Order
+  int Depth = 0;                  // deepest node
+
+  Id NumberOfInternalNodes() const { return static_cast<Id>(this->Nodes.size()); }
+  bool IsLeaf(Id node) const { return node < this->NV; }
+  const ClusterNode& Internal(Id node) const { return this->Nodes[node - this->NV]; }
+  Id Parent(Id node) const
+  {
+    return node < this->NV ? this->LeafParent[node] : this->Nodes[node - this->NV].Parent;
+  }
+  Id Count(Id node) const { return node < this->NV ? 1 : this->Nodes[node - this->NV].Count; }
+  Id Position(Id node) const
+  {
+    return node < this->NV ? this->PosOf[node] : this->Begin[node - this->NV];
+  }
+  /// Whether vertex v belongs to `node`.
+  bool Contains(Id node, Id v) const
+  {
+    const Id p = this->PosOf[v];
+    return p >= this->Position(node) && p < this->Position(node) + this->Count(node);
+  }
+
+  /// Point of vertex v relative to Centre.
+  void RelativePoint(Id v, double out[3]) const
+  {
+    const double* p = this->Mesh->Point(v);
+    out[0] = p[0] - this->Centre[0];
+    out[1] = p[1] - this->Centre[1];
+    out[2] = p[2] - this->Centre[2];
+  }
+  /// The longest edge of the cell of a node formed at `depth`.
+  double CellSize(int depth) const;
+  /// The cell of `depth` holding vertex v: lowest corner (relative to Centre) and edge lengths.
+  void CellBox(Id v, int depth, double low[3], double extent[3]) const;
+  /// Morton code of vertex v's finest cell (x bits highest within each level).
+  std::uint64_t Morton(Id v) const;
+  /// The deepest depth at which two vertices share a cell.
+  int CommonDepth(Id a, Id b) const { return CommonDepth(this->Morton(a), this->Morton(b)); }
+  static int CommonDepth(std::uint64_t a, std::uint64_t b)
+  {
+    const std::uint64_t x = a ^ b;
+#if defined(__GNUC__) || defined(__clang__)
+    return MaxDepth - (x == 0 ? 0 : 64 - __builtin_clzll(x));
+#else
+    int bits = 0;
+    for (std::uint64_t y = x; y != 0; y >>= 1)
+    {
+      ++bits;
+    }
+    return MaxDepth - bits;
+#endif
+  }
+  /// The child of internal node `node` that holds the vertex at position `pos` of its range.
+  Id ChildAt(Id node, Id pos) const
+  {
+    Id child = this->Order[pos];
+    while (this->Parent(child) != node)
+    {
+      child = this->Parent(child);
+    }
+    return child;
+  }
+  /// The centroid of a node's vertices (relative to Centre).
+  void Centroid(Id node, double out[3]) const;
+
+  /// The quadric of the related triangle set of `node`, recomputed from its vertices; with
+  /// `crossing`, also the triangles with exactly one vertex inside (3 t + that corner), with
+  /// `normal` the sum of the area-weighted normals of its triangles, with `boundary` the
+  /// boundary-edge planes alone (they are also in q), with `boundaryEdges` the boundary edges
+  /// with an end inside (3 t + k for edge k of triangle t) and with `planes` the triangles'
+  /// planes (unit normal and offset, 4 numbers each).
+  void RelatedQuadric(Id node,
+    Quadric& q,
+    std::vector<Id>* crossing,
+    double normal[3],
+    Quadric* boundary = nullptr,
+    std::vector<Id>* boundaryEdges = nullptr,
+    std::vector<double>* planes = nullptr) const;
+
+  /// The quadric of the related triangle set of a single vertex.
+  void VertexQuadric(Id v, Quadric& q, double normal[3]) const;
+
+private:
+  struct Builder;
+  void ComputeFrame();
+  void ComputeOrder();
+};
+
+} // namespace meshlod
+
+#endif

@@ -1,0 +1,147 @@
+// MeshLOD core: adaptive octree vertex clustering (Zhou, Zhang, Shi, Pan, "A New Simplification
+// Algorithm for Colored or Textured Polygonal Models") as a nested hierarchy of levels.
+//
+// Candidates
+// ----------
+// The candidates are the nodes of a ClusterTree: the sets of vertices that lie in one cell of
+// the octree over the bounding cube and are connected by edges inside that cell (the paper's
+// "related" vertices, §3). A cell holding several connected parts yields one candidate per
+// part, and each part is clustered on its own. Every octree split is made as three binary
+// splits, so between an octree cell and its eight children lie its halves and quarters: a
+// candidate slightly too coarse halves instead of falling apart in eight.
+//
+// Refinement (§2.4, §2.5)
+// -----------------------
+// A node may become one cluster (all its vertices replaced by one representative) when
+//   - its cell is no larger than MaximumCellSize and it has at most MaximumPointsPerCell
+//     vertices (both optional),
+//   - it holds no locked vertex (non-manifold vertices never merge),
+//   - no triangle joining it to the outside flips when its inside vertex moves to the
+//     representative (triangles whose two outside vertices share a cell of the node's size are
+//     not counted: they fall into one neighbouring cluster and vanish),
+//   - and its error is at most epsilon.
+// For a given epsilon the clusters are the topmost such nodes (a single vertex always qualifies,
+// with error 0): the octree is refined exactly where the error requires it.
+//
+// Representative and error (§2.3, §3)
+// -----------------------------------
+// The representative minimises e = e1 + e2: e1 sums the squared distances to the planes of the
+// related triangle set (area-weighted, plus BoundaryWeight-weighted planes through the boundary
+// edges perpendicular to their triangle); e2 sums the squared distances of the vertices of
+// crossing triangles (one vertex inside) to the new triangles around the representative, by the
+// paper's fixed-point iteration from e2 = 0. The placement is a pseudo-inverse solve that stays
+// at the vertex centroid along directions the planes leave free; a cluster on an open boundary
+// then moves to the closest point of its boundary edges, so boundaries stay in place. The error
+// is the largest of the root mean squared distance to all planes, the same to the boundary
+// planes alone, and half the distance to the farthest plane, in world units. Every node's e1
+// is known from the tree (a lower bound); a node is evaluated in full only when a cut reaches
+// it.
+//
+// Levels nest
+// -----------
+// Nothing but the error depends on epsilon and a node's error is computed once, so a larger
+// epsilon selects nodes at or above those of a smaller one: every cluster of a coarser level is
+// a union of clusters of the finer one. Each level is built from the one before it (triangles
+// re-indexed to clusters, degenerate and duplicate triangles removed, orientation kept). A kept
+// triangle whose normal opposes the input surface around its clusters marks the clusters that
+// changed as not mergeable, and the level is cut again (such nodes lie above the previous cut,
+// so nesting holds). A target triangle count is met by a search over epsilon on the count
+// estimate (input triangles minus those that degenerate in collapsed nodes), corrected by what
+// a trial level actually keeps.
+#ifndef meshlod_OctreeClustering_h
+#define meshlod_OctreeClustering_h
+
+#include "ClusterTree.h"
+#include "Quadric.h"
+#include "TriangleMesh.h"
+#include "vtkFiltersMeshLODModule.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace meshlod
+{
+struct VTKFILTERSMESHLOD_EXPORT OctreeClusteringOptions
+{
+  /// Largest cell edge a cluster may span, world units; 0: no limit.
+  double MaximumCellSize = 0.0;
+  /// Most vertices a cluster may hold; 0: no limit.
+  Id MaximumPointsPerCell = 0;
+  /// Fixed-point iterations for the e2 term of the representative; 0: e1 only.
+  int RepresentativeIterations = 3;
+  /// Weight of the perpendicular boundary-edge planes relative to the face planes.
+  double BoundaryWeight = 1.0;
+  /// Eigenvalues below this fraction of the largest are treated as zero when placing.
+  double PlacementTolerance = 1e-3;
+  /// How many times a level is cut again to remove flipped triangles.
+  int FlipPasses = 4;
+};
+
+/// One level as produced by OctreeClustering; point ids refer to this level, "previous" ids to
+/// the level it was built from.
+struct VTKFILTERSMESHLOD_EXPORT ClusterLevel
+{
+  TriangleMesh Mesh;                 // compact; points at the cluster representatives
+  std::vector<Id> PointNode;         // point -> tree node (vertex id for a single vertex)
+  std::vector<Id> PointVertexCount;  // point -> number of input vertices it represents
+  std::vector<Id> LevelZeroTriangle; // triangle -> input triangle it descends from
+  std::vector<Id> Target;            // previous point -> point (every previous point)
+  std::vector<Id> Rank;              // previous point -> collapse rank, -1: unchanged
+  // Point -> previous points merged into it (CSR), with weights summing to one (vertex counts).
+  std::vector<Id> SourceOffsets;
+  std::vector<Id> SourceParents;
+  std::vector<float> SourceWeights;
+  double Epsilon = 0.0;        // the epsilon the level was cut at (world units)
+  double EstimatedError = 0.0; // largest cluster error of the level (world units)
+  Id ChangedClusters = 0;      // clusters that merged or moved
+  Id FlippedTrianglesFixed = 0;
+};
+
+class VTKFILTERSMESHLOD_EXPORT OctreeClustering
+{
+public:
+  /// `mesh` and `topology` must outlive this object. Locked vertices (non-manifold ones by
+  /// default) never merge.
+  OctreeClustering(const TriangleMesh& mesh,
+    const TriangleTopology& topology,
+    const OctreeClusteringOptions& options);
+  ~OctreeClustering();
+  OctreeClustering(const OctreeClustering&) = delete;
+  OctreeClustering& operator=(const OctreeClustering&) = delete;
+
+  /// Build the cluster tree (data-parallel over the octree cells of a coarse depth).
+  void BuildTree();
+
+  /// The next level at error bound `epsilon` (world units, at least the previous level's).
+  /// Returns false when the level would have no triangle left.
+  bool MakeLevel(double epsilon, ClusterLevel& level);
+
+  /// The next level with about `targetTriangles` triangles (at most that many when reachable),
+  /// found by a search over epsilon. Returns false when no triangle would be left.
+  bool MakeLevelForTriangleCount(Id targetTriangles, ClusterLevel& level);
+
+  /// Number of triangles of the current (last made) level.
+  Id GetCurrentTriangleCount() const;
+
+  // Statistics, valid after BuildTree().
+  Id GetNumberOfInternalNodes() const;
+  Id GetNumberOfRoots() const;
+  int GetTreeDepth() const;
+  /// Nodes whose exact representative was computed so far.
+  Id GetNumberOfEvaluatedNodes() const;
+  /// For tests: recompute e1 of up to `count` evenly spread nodes from their related triangle
+  /// sets directly and return the largest difference to the e1 the tree kept, divided by the
+  /// edge of the bounding cube.
+  double CheckNodeQuadrics(Id count) const;
+
+  /// The cluster tree (valid after BuildTree()).
+  const ClusterTree& GetTree() const;
+
+private:
+  struct Internals;
+  Internals* Impl;
+};
+
+} // namespace meshlod
+
+#endif

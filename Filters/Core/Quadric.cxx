@@ -1,0 +1,127 @@
+#include "Quadric.h"
+
+#include "vtk_eigen.h"
+#include VTK_EIGEN(Eigenvalues)
+
+#include <algorithm>
+#include <cmath>
+
+namespace meshlod
+{
+//------------------------------------------------------------------------------
+void Quadric::AddPlane(const double n[3], const double point[3], double weight)
+{
+  const double d = -(n[0] * point[0] + n[1] * point[1] + n[2] * point[2]);
+  double* q = this->Q;
+  q[0] += weight * n[0] * n[0];
+  q[1] += weight * n[0] * n[1];
+  q[2] += weight * n[0] * n[2];
+  q[3] += weight * n[1] * n[1];
+  q[4] += weight * n[1] * n[2];
+  q[5] += weight * n[2] * n[2];
+  q[6] += weight * d * n[0];
+  q[7] += weight * d * n[1];
+  q[8] += weight * d * n[2];
+  q[9] += weight * d * d;
+}
+
+//------------------------------------------------------------------------------
+double Quadric::Evaluate(const double v[3]) const
+{
+  const double* q = this->Q;
+  const double x = v[0], y = v[1], z = v[2];
+  const double value = q[0] * x * x + 2.0 * q[1] * x * y + 2.0 * q[2] * x * z + q[3] * y * y +
+    2.0 * q[4] * y * z + q[5] * z * z + 2.0 * (q[6] * x + q[7] * y + q[8] * z) + q[9];
+  return std::max(0.0, value);
+}
+
+//------------------------------------------------------------------------------
+void MinimizeQuadric(const Quadric& quadric,
+  const double centre[3],
+  double relativeTolerance,
+  double result[3])
+{
+  const double* q = quadric.Q;
+  result[0] = centre[0];
+  result[1] = centre[1];
+  result[2] = centre[2];
+  if (!(quadric.Weight() > 0.0))
+  {
+    return;
+  }
+  Eigen::Matrix3d a;
+  a << q[0], q[1], q[2], q[1], q[3], q[4], q[2], q[4], q[5];
+  // The gradient at the centre is 2 (A c + b); the step solves A s = -(A c + b).
+  const Eigen::Vector3d c(centre[0], centre[1], centre[2]);
+  const Eigen::Vector3d residual = -(a * c + Eigen::Vector3d(q[6], q[7], q[8]));
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(a);
+  const Eigen::Vector3d& values = eigen.eigenvalues(); // increasing
+  const double largest = values[2];
+  if (!(largest > 0.0))
+  {
+    return;
+  }
+  Eigen::Vector3d step = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i)
+  {
+    if (values[i] > relativeTolerance * largest)
+    {
+      const Eigen::Vector3d u = eigen.eigenvectors().col(i);
+      step += u * (u.dot(residual) / values[i]);
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    result[i] = centre[i] + step[i];
+  }
+}
+
+//------------------------------------------------------------------------------
+void TriangleQuadric(const double a[3],
+  const double b[3],
+  const double c[3],
+  Quadric& q,
+  double normal[3])
+{
+  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  normal[0] = u[1] * v[2] - u[2] * v[1];
+  normal[1] = u[2] * v[0] - u[0] * v[2];
+  normal[2] = u[0] * v[1] - u[1] * v[0];
+  q.Clear();
+  const double length =
+    std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  if (!(length > 0.0))
+  {
+    return;
+  }
+  const double n[3] = { normal[0] / length, normal[1] / length, normal[2] / length };
+  q.AddPlane(n, a, 0.5 * length);
+}
+
+//------------------------------------------------------------------------------
+void BoundaryEdgeQuadric(const double a[3],
+  const double b[3],
+  const double faceNormal[3],
+  double weight,
+  Quadric& q)
+{
+  q.Clear();
+  const double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  double m[3] = { e[1] * faceNormal[2] - e[2] * faceNormal[1],
+    e[2] * faceNormal[0] - e[0] * faceNormal[2],
+    e[0] * faceNormal[1] - e[1] * faceNormal[0] };
+  const double length = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+  if (!(length > 0.0) || !(weight > 0.0))
+  {
+    return;
+  }
+  for (double& x : m)
+  {
+    x /= length;
+  }
+  q.AddPlane(m, a, weight * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]));
+}
+
+} // namespace meshlod

@@ -1,0 +1,70 @@
+// MeshLOD core: quadric error of a point against a set of weighted planes (Garland-Heckbert).
+//
+// A quadric is the symmetric 4x4 matrix Q = sum of w p p^T over planes p = (n, d) with |n| = 1,
+// stored as ten numbers. For a point v, v^T Q v (v extended with 1) is the weighted sum of
+// squared distances from v to the planes. The 3x3 block A = sum of w n n^T has trace = sum of
+// weights, which gives the normalisation of a mean squared distance for free.
+#ifndef meshlod_Quadric_h
+#define meshlod_Quadric_h
+
+#include "vtkFiltersMeshLODModule.h"
+
+namespace meshlod
+{
+struct VTKFILTERSMESHLOD_EXPORT Quadric
+{
+  // A00 A01 A02 A11 A12 A22, then b = (B0 B1 B2) = sum of w d n, then C = sum of w d^2.
+  double Q[10] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+
+  void Clear()
+  {
+    for (double& q : this->Q)
+    {
+      q = 0.0;
+    }
+  }
+  void Add(const Quadric& other, double scale = 1.0)
+  {
+    for (int i = 0; i < 10; ++i)
+    {
+      this->Q[i] += scale * other.Q[i];
+    }
+  }
+  /// Add the plane through `point` with unit normal `n`, weighted by `weight`.
+  void AddPlane(const double n[3], const double point[3], double weight);
+
+  /// The sum of the plane weights (trace of the 3x3 block).
+  double Weight() const { return this->Q[0] + this->Q[3] + this->Q[5]; }
+
+  /// v^T Q v: the weighted sum of squared distances (never negative after rounding).
+  double Evaluate(const double v[3]) const;
+};
+
+/// The point minimising the quadric in its well-determined directions: starting from `centre`,
+/// it moves only along eigenvectors of A whose eigenvalue exceeds `relativeTolerance` times the
+/// largest one, and stays at `centre` along the others (a pseudo-inverse solve). A quadric of
+/// zero weight gives `centre`.
+VTKFILTERSMESHLOD_EXPORT void MinimizeQuadric(const Quadric& q,
+  const double centre[3],
+  double relativeTolerance,
+  double result[3]);
+
+/// Plane quadric of triangle (a, b, c), weighted by its area; zero for a degenerate triangle.
+/// Also returns the triangle's (unnormalised) normal, twice its area in length.
+VTKFILTERSMESHLOD_EXPORT void TriangleQuadric(const double a[3],
+  const double b[3],
+  const double c[3],
+  Quadric& q,
+  double normal[3]);
+
+/// Quadric of the plane through the boundary edge (a, b) perpendicular to its triangle (whose
+/// normal is `faceNormal`, any length), weighted by `weight` times the squared edge length.
+VTKFILTERSMESHLOD_EXPORT void BoundaryEdgeQuadric(const double a[3],
+  const double b[3],
+  const double faceNormal[3],
+  double weight,
+  Quadric& q);
+
+} // namespace meshlod
+
+#endif

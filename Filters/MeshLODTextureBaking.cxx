@@ -1,0 +1,472 @@
+#include "MeshLODTextureBaking.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkDataArray.h"
+#include "vtkGenericCell.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPThreadLocalObject.h"
+#include "vtkSMPTools.h"
+#include "vtkStaticCellLocator.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace meshlod
+{
+struct TextureBaker::Internals
+{
+  vtkSmartPointer<vtkPolyData> Surface; // the input's points and triangles only
+  vtkSmartPointer<vtkStaticCellLocator> Locator;
+  std::vector<vtkIdType> Triangles; // 3 point ids per cell of Surface
+  std::vector<double> Points;
+  // Colour mode: 4 floats (0-255) per point.
+  std::vector<float> Colors;
+  // Texture mode.
+  std::vector<float> TCoords; // 2 per point
+  std::vector<float> Texture; // 4 floats (0-255) per texel
+  int TextureWidth = 0;
+  int TextureHeight = 0;
+  mutable vtkSMPThreadLocalObject<vtkGenericCell> Cells;
+
+  void TextureLookup(double u, double v, float rgba[4]) const;
+};
+
+namespace
+{
+// Barycentric coordinates of p (in the plane of the triangle) with respect to a, b, c.
+void Barycentric(const double* a, const double* b, const double* c, const double p[3], double w[3])
+{
+  const double e0[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double e1[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const double d[3] = { p[0] - a[0], p[1] - a[1], p[2] - a[2] };
+  const double d00 = e0[0] * e0[0] + e0[1] * e0[1] + e0[2] * e0[2];
+  const double d01 = e0[0] * e1[0] + e0[1] * e1[1] + e0[2] * e1[2];
+  const double d11 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
+  const double d20 = d[0] * e0[0] + d[1] * e0[1] + d[2] * e0[2];
+  const double d21 = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2];
+  const double denominator = d00 * d11 - d01 * d01;
+  if (!(std::abs(denominator) > 0.0))
+  {
+    w[0] = 1.0;
+    w[1] = w[2] = 0.0;
+    return;
+  }
+  w[1] = (d11 * d20 - d01 * d21) / denominator;
+  w[2] = (d00 * d21 - d01 * d20) / denominator;
+  w[0] = 1.0 - w[1] - w[2];
+}
+
+// A unique id per edge of the mesh (sorted by end points), and the edge of each corner.
+struct MeshEdges
+{
+  std::vector<Id> Lo, Hi;   // per edge: lower and higher point id
+  std::vector<Id> OfCorner; // 3 t + k (edge from corner k to k + 1) -> edge
+};
+
+MeshEdges FindEdges(const TriangleMesh& mesh)
+{
+  MeshEdges edges;
+  const Id nt = mesh.GetNumberOfTriangles();
+  std::vector<std::int64_t> order(3 * static_cast<size_t>(nt));
+  std::iota(order.begin(), order.end(), 0);
+  auto key = [&](std::int64_t c)
+  {
+    const Id a = mesh.Triangles[c];
+    const Id b = mesh.Triangles[(c / 3) * 3 + (c % 3 + 1) % 3];
+    return std::make_pair(std::min(a, b), std::max(a, b));
+  };
+  std::sort(order.begin(),
+    order.end(),
+    [&](std::int64_t x, std::int64_t y) { return key(x) < key(y) || (key(x) == key(y) && x < y); });
+  edges.OfCorner.resize(order.size());
+  for (size_t i = 0; i < order.size(); ++i)
+  {
+    const auto k = key(order[i]);
+    if (i == 0 || k != key(order[i - 1]))
+    {
+      edges.Lo.push_back(k.first);
+      edges.Hi.push_back(k.second);
+    }
+    edges.OfCorner[order[i]] = static_cast<Id>(edges.Lo.size() - 1);
+  }
+  return edges;
+}
+
+void Lerp(const double* a, const double* b, double t, double out[3])
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    out[c] = a[c] + t * (b[c] - a[c]);
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+TextureBaker::TextureBaker()
+  : Impl(new Internals)
+{
+}
+
+TextureBaker::~TextureBaker()
+{
+  delete this->Impl;
+}
+
+//------------------------------------------------------------------------------
+bool TextureBaker::SetSurface(vtkPolyData* surface, std::string& error)
+{
+  Internals& impl = *this->Impl;
+  impl.Surface = vtkSmartPointer<vtkPolyData>::New();
+  impl.Surface->SetPoints(surface->GetPoints());
+  impl.Surface->SetPolys(surface->GetPolys());
+  impl.Triangles.clear();
+  auto it = vtk::TakeSmartPointer(surface->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    if (n != 3)
+    {
+      error = "the surface to bake from must be made of triangles";
+      return false;
+    }
+    impl.Triangles.insert(impl.Triangles.end(), ids, ids + 3);
+  }
+  const vtkIdType np = surface->GetNumberOfPoints();
+  impl.Points.resize(3 * static_cast<size_t>(np));
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    surface->GetPoint(p, impl.Points.data() + 3 * p);
+  }
+  impl.Locator = vtkSmartPointer<vtkStaticCellLocator>::New();
+  impl.Locator->SetDataSet(impl.Surface);
+  impl.Locator->BuildLocator();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool TextureBaker::InitializeFromColors(vtkPolyData* surface,
+  vtkDataArray* colors,
+  std::string& error)
+{
+  const int nc = colors ? colors->GetNumberOfComponents() : 0;
+  if (colors == nullptr || (nc != 3 && nc != 4) ||
+    colors->GetNumberOfTuples() != surface->GetNumberOfPoints())
+  {
+    error = "the colour array must be a point array with 3 (RGB) or 4 (RGBA) components";
+    return false;
+  }
+  const bool bytes = colors->GetDataType() == VTK_UNSIGNED_CHAR;
+  const double scale = bytes ? 1.0 : 255.0;
+  const vtkIdType np = colors->GetNumberOfTuples();
+  Internals& impl = *this->Impl;
+  impl.Colors.resize(4 * static_cast<size_t>(np));
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      const double value = c < nc ? colors->GetComponent(p, c) * scale : 255.0;
+      impl.Colors[4 * p + c] = static_cast<float>(std::min(255.0, std::max(0.0, value)));
+    }
+  }
+  this->Components = nc;
+  return this->SetSurface(surface, error);
+}
+
+//------------------------------------------------------------------------------
+bool TextureBaker::InitializeFromTexture(vtkPolyData* surface,
+  vtkDataArray* tcoords,
+  vtkImageData* texture,
+  std::string& error)
+{
+  vtkDataArray* scalars = texture ? texture->GetPointData()->GetScalars() : nullptr;
+  int dims[3] = { 0, 0, 0 };
+  if (texture)
+  {
+    texture->GetDimensions(dims);
+  }
+  if (scalars == nullptr || scalars->GetNumberOfComponents() > 4 || dims[0] < 1 || dims[1] < 1 ||
+    dims[2] != 1)
+  {
+    error = "the texture must be a 2D vtkImageData with 1 to 4 component scalars";
+    return false;
+  }
+  if (tcoords == nullptr || tcoords->GetNumberOfComponents() < 2 ||
+    tcoords->GetNumberOfTuples() != surface->GetNumberOfPoints())
+  {
+    error = "the input needs point texture coordinates (2 components) to bake from a texture";
+    return false;
+  }
+  Internals& impl = *this->Impl;
+  impl.TextureWidth = dims[0];
+  impl.TextureHeight = dims[1];
+  const int nc = scalars->GetNumberOfComponents();
+  const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
+  const double scale = bytes ? 1.0 : 255.0;
+  const vtkIdType texels = static_cast<vtkIdType>(dims[0]) * dims[1];
+  impl.Texture.resize(4 * static_cast<size_t>(texels));
+  for (vtkIdType i = 0; i < texels; ++i)
+  {
+    double v[4];
+    for (int c = 0; c < nc; ++c)
+    {
+      v[c] = std::min(255.0, std::max(0.0, scalars->GetComponent(i, c) * scale));
+    }
+    // Grey and grey-alpha images spread to RGB.
+    const double rgba[4] = {
+      v[0], nc >= 3 ? v[1] : v[0], nc >= 3 ? v[2] : v[0], nc == 4 ? v[3] : (nc == 2 ? v[1] : 255.0)
+    };
+    for (int c = 0; c < 4; ++c)
+    {
+      impl.Texture[4 * i + c] = static_cast<float>(rgba[c]);
+    }
+  }
+  const vtkIdType np = tcoords->GetNumberOfTuples();
+  impl.TCoords.resize(2 * static_cast<size_t>(np));
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    impl.TCoords[2 * p] = static_cast<float>(tcoords->GetComponent(p, 0));
+    impl.TCoords[2 * p + 1] = static_cast<float>(tcoords->GetComponent(p, 1));
+  }
+  this->Components = (nc == 2 || nc == 4) ? 4 : 3;
+  return this->SetSurface(surface, error);
+}
+
+//------------------------------------------------------------------------------
+void TextureBaker::Internals::TextureLookup(double u, double v, float rgba[4]) const
+{
+  // Texel centres sit at (i + 0.5) / width; coordinates repeat outside [0, 1].
+  const double x = u * this->TextureWidth - 0.5;
+  const double y = v * this->TextureHeight - 0.5;
+  const double fx = std::floor(x), fy = std::floor(y);
+  const double tx = x - fx, ty = y - fy;
+  auto wrap = [](long long i, int n) { return static_cast<int>(((i % n) + n) % n); };
+  const int x0 = wrap(static_cast<long long>(fx), this->TextureWidth);
+  const int x1 = wrap(static_cast<long long>(fx) + 1, this->TextureWidth);
+  const int y0 = wrap(static_cast<long long>(fy), this->TextureHeight);
+  const int y1 = wrap(static_cast<long long>(fy) + 1, this->TextureHeight);
+  const float* t00 = this->Texture.data() + 4 * (static_cast<size_t>(y0) * this->TextureWidth + x0);
+  const float* t10 = this->Texture.data() + 4 * (static_cast<size_t>(y0) * this->TextureWidth + x1);
+  const float* t01 = this->Texture.data() + 4 * (static_cast<size_t>(y1) * this->TextureWidth + x0);
+  const float* t11 = this->Texture.data() + 4 * (static_cast<size_t>(y1) * this->TextureWidth + x1);
+  for (int c = 0; c < 4; ++c)
+  {
+    rgba[c] = static_cast<float>(
+      (1 - ty) * ((1 - tx) * t00[c] + tx * t10[c]) + ty * ((1 - tx) * t01[c] + tx * t11[c]));
+  }
+}
+
+//------------------------------------------------------------------------------
+void TextureBaker::ColorAt(const double point[3], float rgba[4]) const
+{
+  const Internals& impl = *this->Impl;
+  double closest[3];
+  vtkIdType cellId = -1;
+  int subId = 0;
+  double dist2 = 0.0;
+  impl.Locator->FindClosestPoint(point, closest, impl.Cells.Local(), cellId, subId, dist2);
+  if (cellId < 0)
+  {
+    rgba[0] = rgba[1] = rgba[2] = 0.0f;
+    rgba[3] = 255.0f;
+    return;
+  }
+  const vtkIdType* ids = impl.Triangles.data() + 3 * cellId;
+  double w[3];
+  Barycentric(impl.Points.data() + 3 * ids[0],
+    impl.Points.data() + 3 * ids[1],
+    impl.Points.data() + 3 * ids[2],
+    closest,
+    w);
+  for (double& x : w)
+  {
+    x = std::min(1.0, std::max(0.0, x));
+  }
+  const double sum = w[0] + w[1] + w[2];
+  for (double& x : w)
+  {
+    x /= sum;
+  }
+  if (!impl.Colors.empty())
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      rgba[c] = static_cast<float>(w[0] * impl.Colors[4 * ids[0] + c] +
+        w[1] * impl.Colors[4 * ids[1] + c] + w[2] * impl.Colors[4 * ids[2] + c]);
+    }
+    return;
+  }
+  double uv[2] = { 0.0, 0.0 };
+  for (int k = 0; k < 3; ++k)
+  {
+    uv[0] += w[k] * impl.TCoords[2 * ids[k]];
+    uv[1] += w[k] * impl.TCoords[2 * ids[k] + 1];
+  }
+  impl.TextureLookup(uv[0], uv[1], rgba);
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkImageData> TextureBaker::Bake(const TriangleMesh& mesh,
+  const TextureAtlas& atlas) const
+{
+  const Id nt = mesh.GetNumberOfTriangles();
+  const Id side = atlas.Resolution;
+  const int components = this->Components;
+  std::vector<float> image(4 * static_cast<size_t>(side) * side, 0.0f);
+
+  // Edge samples, spaced from the lower point id, at the finest spacing both sides share.
+  const MeshEdges edges = FindEdges(mesh);
+  const Id ne = static_cast<Id>(edges.Lo.size());
+  std::vector<Id> steps(ne, std::numeric_limits<Id>::max());
+  for (Id t = 0; t < nt; ++t)
+  {
+    const Id s = atlas.Blocks[atlas.TriangleBlock[t]].Size - 1;
+    for (int k = 0; k < 3; ++k)
+    {
+      Id& e = steps[edges.OfCorner[3 * t + k]];
+      e = std::min(e, s);
+    }
+  }
+  std::vector<Id> sampleOffsets(static_cast<size_t>(ne) + 1, 0);
+  for (Id e = 0; e < ne; ++e)
+  {
+    sampleOffsets[e + 1] = sampleOffsets[e] + steps[e] + 1;
+  }
+  std::vector<float> samples(4 * static_cast<size_t>(sampleOffsets[ne]));
+  vtkSMPTools::For(0,
+    ne,
+    [&](Id begin, Id end)
+    {
+      for (Id e = begin; e < end; ++e)
+      {
+        for (Id j = 0; j <= steps[e]; ++j)
+        {
+          double p[3];
+          Lerp(
+            mesh.Point(edges.Lo[e]), mesh.Point(edges.Hi[e]), static_cast<double>(j) / steps[e], p);
+          if (j == steps[e])
+          {
+            std::copy_n(mesh.Point(edges.Hi[e]), 3, p); // exactly the end point
+          }
+          this->ColorAt(p, samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j));
+        }
+      }
+    });
+
+  // Texels, block by block. Integer barycentrics (twice the signed areas) tell inside, edge and
+  // outside exactly.
+  const Id numberOfBlocks = static_cast<Id>(atlas.Blocks.size());
+  vtkSMPTools::For(0,
+    numberOfBlocks,
+    [&](Id begin, Id end)
+    {
+      for (Id b = begin; b < end; ++b)
+      {
+        const TextureAtlas::Block& block = atlas.Blocks[b];
+        const Id s = block.Size - 1;
+        for (Id y = block.Y; y < block.Y + block.Size; ++y)
+        {
+          for (Id x = block.X; x < block.X + block.Size; ++x)
+          {
+            const bool upperHalf = (x - block.X) + (y - block.Y) > s;
+            const Id t = (upperHalf && block.Upper != InvalidId) ? block.Upper : block.Lower;
+            const Id* tc = atlas.CornerTexel.data() + 6 * static_cast<size_t>(t);
+            const Id* tri = mesh.Triangle(t);
+            std::int64_t n[3];
+            for (int k = 0; k < 3; ++k)
+            {
+              const Id* p = tc + 2 * ((k + 1) % 3);
+              const Id* q = tc + 2 * ((k + 2) % 3);
+              n[k] = static_cast<std::int64_t>(p[0] - x) * (q[1] - y) -
+                static_cast<std::int64_t>(p[1] - y) * (q[0] - x);
+            }
+            const std::int64_t area = n[0] + n[1] + n[2];
+            float* out = image.data() + 4 * (static_cast<size_t>(y) * side + x);
+            int onEdge = -1;
+            if (!upperHalf || block.Upper != InvalidId)
+            {
+              for (int k = 0; k < 3; ++k)
+              {
+                onEdge = (n[k] == 0) ? k : onEdge;
+              }
+            }
+            if (onEdge >= 0)
+            {
+              // On the edge opposite corner `onEdge`: the fraction towards its end corner.
+              const int from = (onEdge + 1) % 3, to = (onEdge + 2) % 3;
+              const Id e = edges.OfCorner[3 * t + from];
+              // Exact rational position along the edge's samples, from its lower point id.
+              std::int64_t numerator = n[to], denominator = area;
+              if (denominator < 0)
+              {
+                numerator = -numerator;
+                denominator = -denominator;
+              }
+              if (tri[to] != edges.Hi[e])
+              {
+                numerator = denominator - numerator;
+              }
+              const std::int64_t scaled = numerator * steps[e];
+              const Id j0 = static_cast<Id>(std::min<std::int64_t>(steps[e], scaled / denominator));
+              const Id j1 = std::min<Id>(steps[e], j0 + 1);
+              const double w = static_cast<double>(scaled % denominator) / denominator;
+              const float* s0 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j0);
+              const float* s1 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j1);
+              for (int c = 0; c < 4; ++c)
+              {
+                out[c] = static_cast<float>((1.0 - w) * s0[c] + w * s1[c]);
+              }
+              continue;
+            }
+            // Inside the triangle, or in the padding half extending the lower triangle.
+            double p[3] = { 0.0, 0.0, 0.0 };
+            for (int k = 0; k < 3; ++k)
+            {
+              const double w = static_cast<double>(n[k]) / area;
+              const double* corner = mesh.Point(tri[k]);
+              for (int c = 0; c < 3; ++c)
+              {
+                p[c] += w * corner[c];
+              }
+            }
+            this->ColorAt(p, out);
+          }
+        }
+      }
+    });
+
+  auto scalars = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  scalars->SetName("Texture");
+  scalars->SetNumberOfComponents(components);
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(side) * side);
+  unsigned char* dst = scalars->GetPointer(0);
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(side) * side,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        for (int c = 0; c < components; ++c)
+        {
+          dst[components * i + c] = static_cast<unsigned char>(
+            std::lround(std::min(255.0f, std::max(0.0f, image[4 * i + c]))));
+        }
+      }
+    });
+  auto result = vtkSmartPointer<vtkImageData>::New();
+  result->SetDimensions(static_cast<int>(side), static_cast<int>(side), 1);
+  result->GetPointData()->SetScalars(scalars);
+  return result;
+}
+
+} // namespace meshlod

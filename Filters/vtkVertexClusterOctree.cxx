@@ -1,0 +1,572 @@
+#include "vtkVertexClusterOctree.h"
+
+#include "Core/OctreeClustering.h"
+#include "Core/TextureAtlas.h"
+#include "MeshLODHierarchy.h"
+#include "MeshLODInputMesh.h"
+#include "MeshLODTextureBaking.h"
+
+#include "vtkAlgorithmOutput.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <cmath>
+#include <string>
+
+vtkStandardNewMacro(vtkVertexClusterOctree);
+
+namespace
+{
+using meshlod::Id;
+using meshlod::InvalidId;
+
+// One level to make: by epsilon (world units) or by triangle count.
+struct LevelRequest
+{
+  bool ByCount = false;
+  double Epsilon = 0.0;
+  vtkIdType Count = 0;
+};
+
+double BoundingDiagonal(const meshlod::TriangleMesh& mesh)
+{
+  double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (Id v = 0; v < mesh.GetNumberOfPoints(); ++v)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = std::min(lo[c], mesh.Point(v)[c]);
+      hi[c] = std::max(hi[c], mesh.Point(v)[c]);
+    }
+  }
+  double d2 = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
+  }
+  return std::sqrt(d2);
+}
+
+// Area-weighted point normals of a mesh (unit length; zero where every triangle is degenerate).
+std::vector<float> PointNormals(const meshlod::TriangleMesh& mesh)
+{
+  std::vector<double> sum(3 * static_cast<size_t>(mesh.GetNumberOfPoints()), 0.0);
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    const Id* tri = mesh.Triangle(t);
+    const double* a = mesh.Point(tri[0]);
+    const double* b = mesh.Point(tri[1]);
+    const double* c = mesh.Point(tri[2]);
+    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    const double n[3] = {
+      u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
+    };
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        sum[3 * static_cast<size_t>(tri[k]) + i] += n[i];
+      }
+    }
+  }
+  std::vector<float> normals(sum.size(), 0.0f);
+  for (size_t p = 0; p < sum.size() / 3; ++p)
+  {
+    const double length = std::sqrt(
+      sum[3 * p] * sum[3 * p] + sum[3 * p + 1] * sum[3 * p + 1] + sum[3 * p + 2] * sum[3 * p + 2]);
+    for (int i = 0; i < 3 && length > 0.0; ++i)
+    {
+      normals[3 * p + i] = static_cast<float>(sum[3 * p + i] / length);
+    }
+  }
+  return normals;
+}
+
+// Points of a level that were split for the texture atlas: split point -> level point, and the
+// first split point of each level point. Both empty when the level was not split.
+struct SplitMap
+{
+  std::vector<Id> SplitToPoint;
+  std::vector<Id> FirstSplit;
+  Id Point(Id split) const
+  {
+    return this->SplitToPoint.empty() ? split : this->SplitToPoint[split];
+  }
+  Id First(Id point) const { return this->FirstSplit.empty() ? point : this->FirstSplit[point]; }
+  Id Count(Id points) const
+  {
+    return this->SplitToPoint.empty() ? points : static_cast<Id>(this->SplitToPoint.size());
+  }
+};
+
+// The level handed to the hierarchy builder, its points split as `split` says (the points of
+// the previous level as `previous` says).
+meshlod::LevelData ToLevelData(meshlod::ClusterLevel& level,
+  const SplitMap& previous,
+  Id previousPoints,
+  const SplitMap& split,
+  const meshlod::TextureAtlas* atlas)
+{
+  meshlod::LevelData data;
+  data.EstimatedError = level.EstimatedError;
+  data.LevelZeroTriangle = std::move(level.LevelZeroTriangle);
+  if (!atlas && previous.SplitToPoint.empty())
+  {
+    // Nothing split: hand the arrays over as they are.
+    data.Mesh = std::move(level.Mesh);
+    data.Sources.Offsets = std::move(level.SourceOffsets);
+    data.Sources.Parents = std::move(level.SourceParents);
+    data.Sources.Weights = std::move(level.SourceWeights);
+    data.Target = std::move(level.Target);
+    data.Rank = std::move(level.Rank);
+    return data;
+  }
+  const Id points = level.Mesh.GetNumberOfPoints();
+  const Id splitPoints = split.Count(points);
+  data.Mesh.Points.resize(3 * static_cast<size_t>(splitPoints));
+  for (Id q = 0; q < splitPoints; ++q)
+  {
+    std::copy_n(level.Mesh.Point(split.Point(q)), 3, data.Mesh.Point(q));
+  }
+  data.Mesh.Triangles = atlas ? atlas->CornerPoint : level.Mesh.Triangles;
+  data.Sources.Clear();
+  std::vector<Id> parents;
+  for (Id q = 0; q < splitPoints; ++q)
+  {
+    const Id j = split.Point(q);
+    parents.clear();
+    for (Id i = level.SourceOffsets[j]; i < level.SourceOffsets[j + 1]; ++i)
+    {
+      parents.push_back(previous.First(level.SourceParents[i]));
+    }
+    data.Sources.Add(parents.data(),
+      level.SourceWeights.data() + level.SourceOffsets[j],
+      static_cast<int>(parents.size()));
+  }
+  data.Target.resize(previousPoints);
+  data.Rank.resize(previousPoints);
+  for (Id r = 0; r < previousPoints; ++r)
+  {
+    const Id p = previous.Point(r);
+    data.Target[r] = split.First(level.Target[p]);
+    data.Rank[r] = level.Rank[p];
+  }
+  return data;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkVertexClusterOctree::vtkVertexClusterOctree()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(2);
+}
+
+vtkVertexClusterOctree::~vtkVertexClusterOctree()
+{
+  this->SetColorArrayName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkVertexClusterOctree::AddEpsilonValue(double epsilon)
+{
+  this->EpsilonValues.push_back(epsilon);
+  this->Modified();
+}
+
+void vtkVertexClusterOctree::RemoveAllEpsilonValues()
+{
+  this->EpsilonValues.clear();
+  this->Modified();
+}
+
+int vtkVertexClusterOctree::GetNumberOfEpsilonValues() const
+{
+  return static_cast<int>(this->EpsilonValues.size());
+}
+
+double vtkVertexClusterOctree::GetEpsilonValue(int i) const
+{
+  return (i >= 0 && i < this->GetNumberOfEpsilonValues()) ? this->EpsilonValues[i] : 0.0;
+}
+
+void vtkVertexClusterOctree::AddTargetTriangleCount(vtkIdType count)
+{
+  this->TargetTriangleCounts.push_back(count);
+  this->Modified();
+}
+
+void vtkVertexClusterOctree::RemoveAllTargetTriangleCounts()
+{
+  this->TargetTriangleCounts.clear();
+  this->Modified();
+}
+
+int vtkVertexClusterOctree::GetNumberOfTargetTriangleCounts() const
+{
+  return static_cast<int>(this->TargetTriangleCounts.size());
+}
+
+vtkIdType vtkVertexClusterOctree::GetTargetTriangleCount(int i) const
+{
+  return (i >= 0 && i < this->GetNumberOfTargetTriangleCounts()) ? this->TargetTriangleCounts[i]
+                                                                 : 0;
+}
+
+double vtkVertexClusterOctree::GetLevelEpsilon(int level) const
+{
+  return (level >= 1 && level <= static_cast<int>(this->LevelEpsilons.size()))
+    ? this->LevelEpsilons[level - 1]
+    : 0.0;
+}
+
+//------------------------------------------------------------------------------
+void vtkVertexClusterOctree::SetTextureConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+void vtkVertexClusterOctree::SetTextureData(vtkImageData* texture)
+{
+  this->SetInputData(1, texture);
+}
+
+vtkMultiBlockDataSet* vtkVertexClusterOctree::GetHierarchy()
+{
+  return vtkMultiBlockDataSet::SafeDownCast(this->GetOutputDataObject(0));
+}
+
+vtkMultiBlockDataSet* vtkVertexClusterOctree::GetTextures()
+{
+  return vtkMultiBlockDataSet::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+//------------------------------------------------------------------------------
+int vtkVertexClusterOctree::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    return 1;
+  }
+  return this->Superclass::FillInputPortInformation(port, info);
+}
+
+int vtkVertexClusterOctree::FillOutputPortInformation(int, vtkInformation* info)
+{
+  return meshlod::FillHierarchyOutputPortInformation(info);
+}
+
+//------------------------------------------------------------------------------
+bool vtkVertexClusterOctree::CheckSettings()
+{
+  if (this->LevelMode == EPSILON_LIST)
+  {
+    if (this->EpsilonValues.empty())
+    {
+      vtkErrorMacro("LevelMode is EPSILON_LIST but no epsilon value was added "
+                    "(AddEpsilonValue).");
+      return false;
+    }
+    for (size_t i = 0; i < this->EpsilonValues.size(); ++i)
+    {
+      const double e = this->EpsilonValues[i];
+      if (!std::isfinite(e) || e < 0.0 || (i > 0 && e < this->EpsilonValues[i - 1]))
+      {
+        vtkErrorMacro("Epsilon value " << i << " (" << e
+                                       << ") is invalid: the values must be finite, not "
+                                          "negative and increasing, one per level.");
+        return false;
+      }
+    }
+  }
+  if (this->LevelMode == TARGET_TRIANGLE_COUNTS)
+  {
+    if (this->TargetTriangleCounts.empty())
+    {
+      vtkErrorMacro("LevelMode is TARGET_TRIANGLE_COUNTS but no count was added "
+                    "(AddTargetTriangleCount).");
+      return false;
+    }
+    for (size_t i = 0; i < this->TargetTriangleCounts.size(); ++i)
+    {
+      const vtkIdType n = this->TargetTriangleCounts[i];
+      if (n < 1 || (i > 0 && n > this->TargetTriangleCounts[i - 1]))
+      {
+        vtkErrorMacro("Target triangle count " << i << " (" << n
+                                               << ") is invalid: the counts must be at least 1 "
+                                                  "and decreasing, one per level.");
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkVertexClusterOctree::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkImageData* texture = inputVector[1]->GetNumberOfInformationObjects() > 0
+    ? vtkImageData::GetData(inputVector[1])
+    : nullptr;
+  vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
+  vtkMultiBlockDataSet* textures = vtkMultiBlockDataSet::GetData(outputVector, 1);
+  output->Initialize();
+  textures->Initialize();
+  this->LevelEpsilons.clear();
+  if (!this->CheckSettings())
+  {
+    return 0;
+  }
+
+  meshlod::InputMesh in;
+  const meshlod::InputStatus status = meshlod::ReadInputMesh(input, this, in);
+  if (status == meshlod::InputStatus::Invalid)
+  {
+    return 0;
+  }
+  if (status == meshlod::InputStatus::Empty)
+  {
+    return 1;
+  }
+
+  // The colour source for baking: the input texture at its texture coordinates, else a colour
+  // array.
+  meshlod::TextureBaker baker;
+  vtkDataArray* inputTCoords = in.Source->GetPointData()->GetTCoords();
+  if (this->BakeTexture)
+  {
+    std::string problem;
+    bool ready = false;
+    if (texture && inputTCoords)
+    {
+      ready = baker.InitializeFromTexture(in.Source, inputTCoords, texture, problem);
+    }
+    else
+    {
+      vtkDataArray* colors = this->ColorArrayName
+        ? in.Source->GetPointData()->GetArray(this->ColorArrayName)
+        : in.Source->GetPointData()->GetScalars();
+      if (colors == nullptr)
+      {
+        problem = this->ColorArrayName
+          ? std::string("the input has no point array named ") + this->ColorArrayName
+          : std::string("the input has neither texture coordinates with a texture on port 1 "
+                        "nor colour scalars");
+      }
+      else
+      {
+        ready = baker.InitializeFromColors(in.Source, colors, problem);
+      }
+    }
+    if (!ready)
+    {
+      vtkErrorMacro("BakeTexture is on but "
+        << problem
+        << ". Connect a texture, name a colour "
+           "array (SetColorArrayName) or turn BakeTexture off.");
+      return 0;
+    }
+  }
+
+  const double unit = this->RelativeUnits ? BoundingDiagonal(in.Mesh) : 1.0;
+  std::vector<LevelRequest> requests;
+  switch (this->LevelMode)
+  {
+    case EPSILON_LIST:
+      for (const double e : this->EpsilonValues)
+      {
+        requests.push_back({ false, e * unit, 0 });
+      }
+      break;
+    case TARGET_TRIANGLE_COUNTS:
+      for (const vtkIdType n : this->TargetTriangleCounts)
+      {
+        requests.push_back({ true, 0.0, n });
+      }
+      break;
+    default:
+      for (int i = 0; i < this->NumberOfLevels; ++i)
+      {
+        requests.push_back({ false, this->Epsilon * std::pow(this->EpsilonFactor, i) * unit, 0 });
+      }
+  }
+
+  meshlod::HierarchyBuilder builder;
+  builder.SetLevelZero(in);
+  // The source ids were only needed for level 0.
+  std::vector<vtkIdType>().swap(in.SourcePointIds);
+  std::vector<vtkIdType>().swap(in.SourceCellIds);
+  if (this->BakeTexture)
+  {
+    textures->SetBlock(0, texture && inputTCoords ? texture : nullptr);
+  }
+  this->UpdateProgress(0.1);
+
+  meshlod::OctreeClusteringOptions options;
+  options.MaximumCellSize = this->MaximumCellSize * unit;
+  options.MaximumPointsPerCell = this->MaximumPointsPerCell;
+  options.RepresentativeIterations = this->RepresentativeIterations;
+  options.BoundaryWeight = this->BoundaryWeight;
+  meshlod::OctreeClustering clustering(in.Mesh, in.Topology, options);
+  clustering.BuildTree();
+  this->UpdateProgress(0.4);
+  if (this->GetAbortExecute())
+  {
+    return 1;
+  }
+
+  vtkDataArray* inputNormals = in.Source->GetPointData()->GetNormals();
+  const std::string normalsName =
+    inputNormals && inputNormals->GetName() ? inputNormals->GetName() : "Normals";
+  const std::string tcoordsName =
+    inputTCoords && inputTCoords->GetName() ? inputTCoords->GetName() : "TCoords";
+  SplitMap previous;
+  Id previousPoints = in.Mesh.GetNumberOfPoints();
+  for (size_t i = 0; i < requests.size(); ++i)
+  {
+    meshlod::ClusterLevel level;
+    const bool made = requests[i].ByCount
+      ? clustering.MakeLevelForTriangleCount(static_cast<Id>(requests[i].Count), level)
+      : clustering.MakeLevel(requests[i].Epsilon, level);
+    if (!made)
+    {
+      vtkWarningMacro(
+        "Level " << i + 1 << " would keep no triangle; the hierarchy stops at level " << i << ".");
+      break;
+    }
+    this->LevelEpsilons.push_back(level.Epsilon);
+
+    meshlod::TextureAtlas atlas;
+    SplitMap split;
+    if (this->BakeTexture)
+    {
+      meshlod::BuildTextureAtlas(level.Mesh, this->TextureResolution, atlas);
+      if (atlas.Resolution > this->TextureResolution)
+      {
+        vtkWarningMacro("Level " << i + 1 << " has " << level.Mesh.GetNumberOfTriangles()
+                                 << " triangles, too many for a " << this->TextureResolution
+                                 << "^2 texture; its texture has " << atlas.Resolution
+                                 << "^2 texels.");
+      }
+      split.SplitToPoint = atlas.SplitPoints;
+      split.FirstSplit.assign(level.Mesh.GetNumberOfPoints(), InvalidId);
+      for (Id q = static_cast<Id>(atlas.SplitPoints.size()) - 1; q >= 0; --q)
+      {
+        split.FirstSplit[atlas.SplitPoints[q]] = q;
+      }
+    }
+    const std::vector<float> normals =
+      this->ComputeNormals ? PointNormals(level.Mesh) : std::vector<float>();
+    builder.AppendLevel(
+      ToLevelData(level, previous, previousPoints, split, this->BakeTexture ? &atlas : nullptr));
+    vtkPolyData* poly = builder.GetLevel(builder.GetNumberOfLevels() - 1);
+
+    if (this->ComputeNormals)
+    {
+      vtkNew<vtkFloatArray> array;
+      array->SetName(normalsName.c_str());
+      array->SetNumberOfComponents(3);
+      array->SetNumberOfTuples(poly->GetNumberOfPoints());
+      for (vtkIdType q = 0; q < poly->GetNumberOfPoints(); ++q)
+      {
+        array->SetTypedTuple(
+          q, normals.data() + 3 * static_cast<size_t>(split.Point(static_cast<Id>(q))));
+      }
+      poly->GetPointData()->SetNormals(array);
+    }
+    if (this->BakeTexture)
+    {
+      vtkNew<vtkFloatArray> tcoords;
+      tcoords->SetName(tcoordsName.c_str());
+      tcoords->SetNumberOfComponents(2);
+      tcoords->SetNumberOfTuples(poly->GetNumberOfPoints());
+      for (Id t = 0; t < level.Mesh.GetNumberOfTriangles(); ++t)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          const Id q = atlas.CornerPoint[3 * static_cast<size_t>(t) + k];
+          const Id* texel = atlas.CornerTexel.data() + 6 * static_cast<size_t>(t) + 2 * k;
+          tcoords->SetTypedComponent(q, 0, static_cast<float>(atlas.U(texel[0])));
+          tcoords->SetTypedComponent(q, 1, static_cast<float>(atlas.U(texel[1])));
+        }
+      }
+      poly->GetPointData()->SetTCoords(tcoords);
+      textures->SetBlock(static_cast<unsigned int>(i + 1), baker.Bake(level.Mesh, atlas));
+    }
+
+    previousPoints = static_cast<Id>(poly->GetNumberOfPoints());
+    previous = std::move(split);
+    this->UpdateProgress(0.4 + 0.5 * (i + 1) / requests.size());
+    if (this->GetAbortExecute())
+    {
+      output->Initialize();
+      textures->Initialize();
+      return 1;
+    }
+  }
+
+  if (this->MeasureLevelErrors)
+  {
+    builder.MeasureLevelErrors();
+  }
+  builder.Finish(output);
+  if (this->BakeTexture)
+  {
+    for (unsigned int b = 0; b < textures->GetNumberOfBlocks(); ++b)
+    {
+      textures->GetMetaData(b)->Set(
+        vtkCompositeDataSet::NAME(), meshlod::LevelBlockName(static_cast<int>(b)).c_str());
+    }
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkVertexClusterOctree::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  static const char* const modes[] = { "GeometricEpsilon", "EpsilonList", "TargetTriangleCounts" };
+  os << indent << "LevelMode: " << modes[this->LevelMode] << "\n";
+  os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
+  os << indent << "Epsilon: " << this->Epsilon << "\n";
+  os << indent << "EpsilonFactor: " << this->EpsilonFactor << "\n";
+  os << indent << "EpsilonValues:";
+  for (const double e : this->EpsilonValues)
+  {
+    os << " " << e;
+  }
+  os << "\n" << indent << "TargetTriangleCounts:";
+  for (const vtkIdType n : this->TargetTriangleCounts)
+  {
+    os << " " << n;
+  }
+  os << "\n";
+  os << indent << "RelativeUnits: " << (this->RelativeUnits ? "On" : "Off") << "\n";
+  os << indent << "MaximumCellSize: " << this->MaximumCellSize << "\n";
+  os << indent << "MaximumPointsPerCell: " << this->MaximumPointsPerCell << "\n";
+  os << indent << "RepresentativeIterations: " << this->RepresentativeIterations << "\n";
+  os << indent << "BoundaryWeight: " << this->BoundaryWeight << "\n";
+  os << indent << "ComputeNormals: " << (this->ComputeNormals ? "On" : "Off") << "\n";
+  os << indent << "MeasureLevelErrors: " << (this->MeasureLevelErrors ? "On" : "Off") << "\n";
+  os << indent << "BakeTexture: " << (this->BakeTexture ? "On" : "Off") << "\n";
+  os << indent << "TextureResolution: " << this->TextureResolution << "\n";
+  os << indent << "ColorArrayName: " << (this->ColorArrayName ? this->ColorArrayName : "(none)")
+     << "\n";
+}

@@ -1,0 +1,333 @@
+/**
+ * @class   vtkVertexClusterOctree
+ * @brief   levels of detail by adaptive octree vertex clustering with quadric error control,
+ *          nested levels and colour/texture preservation
+ *
+ * Implements Zhou, Zhang, Shi and Pan, "A New Simplification Algorithm for Colored or Textured
+ * Polygonal Models". The bounding cube of the input is subdivided as an octree; the vertices of
+ * a cell that are connected to each other inside the cell (the paper's "related" vertices) are
+ * clustered into one representative when
+ * - the cell is no larger than MaximumCellSize and holds at most MaximumPointsPerCell vertices,
+ * - no triangle joining the cluster to the rest of the mesh flips when its vertex moves to the
+ *   representative,
+ * - and the cluster error is at most epsilon;
+ * otherwise the cell is subdivided and its children are tried (§2.4, §2.5). A cell holding
+ * several unconnected parts clusters each part on its own, so separate sheets that pass through
+ * one cell never fuse. Each octree split is made as three binary splits (x, then y, then z), so
+ * a cell slightly too coarse is tried in halves and quarters before its eighths. In the flip
+ * test, a triangle whose two outside vertices share a cell of the cluster's size does not count:
+ * it falls into one neighbouring cluster and vanishes.
+ *
+ * The representative minimises the quadric e = e1 + e2 of §3: e1 sums the squared distances to
+ * the planes of every triangle touching the cluster, plus planes through the boundary edges
+ * perpendicular to their triangle (weighted by BoundaryWeight); e2 sums the squared distances of
+ * the cluster's vertices to the new triangles around the representative, found by the paper's
+ * fixed-point iteration (RepresentativeIterations passes from e2 = 0, stopping early on
+ * convergence). Planes are weighted by triangle area and the placement is a pseudo-inverse
+ * solve that stays at the vertex centroid along directions the planes do not determine (a flat
+ * or cylindrical cluster); a cluster holding open-boundary vertices then moves to the closest
+ * point of its boundary edges, so every boundary point of a level lies on the input's
+ * boundary. The cluster error is the largest of the root of the area-weighted mean squared
+ * distance to all the planes, the same to the boundary planes alone, and half the distance to
+ * the farthest plane (a mean alone lets elongated or bent clusters stray at their ends), in
+ * world units; it is what epsilon bounds (the surface typically stays within 2-3 epsilon of the
+ * input).
+ *
+ * Levels. The output has NumberOfLevels simplified levels after level 0 (the input), chosen by
+ * LevelMode:
+ * - GeometricEpsilon (default): level i (1-based) uses epsilon Epsilon * EpsilonFactor^(i - 1);
+ * - EpsilonList: one level per AddEpsilonValue() value (increasing);
+ * - TargetTriangleCounts: one level per AddTargetTriangleCount() value (decreasing), epsilon
+ *   found by a search; the count is met within 0.2% (or 2 triangles) where the cluster tree
+ *   allows (a count below what collapsing every mergeable cluster gives is not reachable).
+ * With RelativeUnits on (default) epsilon values and MaximumCellSize are fractions of the
+ * input's bounding-box diagonal, otherwise world units. Levels nest: every cluster of a coarser
+ * level is a union of clusters of the finer one (a coarser level cuts the same cluster tree
+ * higher up), so MorphTargetId is exact and a geomorph between levels does not pop. A level
+ * that would keep no triangle ends the hierarchy (with a warning).
+ *
+ * Synthesis. Triangles are re-indexed to the representatives, degenerate and duplicate
+ * triangles removed (of two with the same three points, the first is kept), orientation kept.
+ * A kept triangle whose normal opposes the input surface around its three clusters marks the
+ * clusters that changed as not mergeable and the level is cut again. Vertex clustering may
+ * change topology: a part thinner than a cluster can shrink to an edge or a single flap (whose
+ * edges are then boundary edges); a cluster whose triangles all vanish sends its points to the
+ * nearest neighbouring cluster.
+ *
+ * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input
+ * gives an empty output without error; polygons and strips are triangulated; vertex and line
+ * cells are ignored with a warning; NaN or infinite points are an error (no output);
+ * coincident points on boundaries are stitched. Non-manifold vertices (several fans, or on an
+ * edge with more than two triangles) are locked: they never move or merge, so clustering does
+ * not make the non-manifold configuration worse.
+ * Optional input (port 1): a vtkImageData texture (unsigned char RGB or RGBA scalars) for an
+ * input with texture coordinates.
+ *
+ * Output port 0: the shared MeshLOD hierarchy (see MeshLODHierarchy.h): a vtkMultiBlockDataSet
+ * with block i = level i named "Level i"; every point-data array of the input is carried to
+ * every level (floating-point arrays averaged over the cluster's input vertices, integer arrays
+ * from the dominant one), cell data from the input triangle each triangle descends from, field
+ * data LevelIndex, NumberOfTriangles, EstimatedError (the largest cluster error of the level)
+ * and, with MeasureLevelErrors, MeasuredHausdorff and MeasuredRMS; every level but the last
+ * carries MorphTarget, MorphTargetId and CollapseRank (clusters ordered by error: the points of
+ * one cluster share a rank; -1 for points whose cluster did not change).
+ *
+ * Output port 1 (with BakeTexture): a vtkMultiBlockDataSet of vtkImageData textures, block i
+ * for level i. Block 0 is the input texture (or empty when the colours come from a point
+ * array). For each simplified level a texture atlas is built as in §4: every triangle gets a
+ * half-square triangle in a TextureResolution^2 texture, sized by its area in power-of-two
+ * steps; adjacent triangles are paired into squares that share their diagonal, and edge texels
+ * are sampled at the same points from both sides wherever the two triangles got the same size.
+ * Each texel takes the colour of the nearest point of the input surface: the colour array
+ * interpolated there, or the input texture looked up at the interpolated texture coordinates.
+ * The level's points are then split per texture square (so MorphTargetId refers to the first
+ * copy of each point) and get texture coordinates as their TCoords attribute. Without
+ * BakeTexture, colours and texture coordinates are averaged per vertex like any point array.
+ *
+ * The passes run with vtkSMPTools; the output is the same for every thread count.
+ *
+ * @sa vtkQuadricClustering vtkTriangleCollapseDecimation vtkLODGeomorph
+ */
+#ifndef vtkVertexClusterOctree_h
+#define vtkVertexClusterOctree_h
+
+#include "vtkFiltersMeshLODModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <vector> // For the level lists
+
+class vtkAlgorithmOutput;
+class vtkImageData;
+class vtkMultiBlockDataSet;
+
+class VTKFILTERSMESHLOD_EXPORT vtkVertexClusterOctree : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkVertexClusterOctree* New();
+  vtkTypeMacro(vtkVertexClusterOctree, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum LevelModes
+  {
+    GEOMETRIC_EPSILON = 0,
+    EPSILON_LIST = 1,
+    TARGET_TRIANGLE_COUNTS = 2
+  };
+
+  ///@{
+  /**
+   * How the levels are chosen (see the class comment). Default GEOMETRIC_EPSILON.
+   */
+  vtkSetClampMacro(LevelMode, int, GEOMETRIC_EPSILON, TARGET_TRIANGLE_COUNTS);
+  vtkGetMacro(LevelMode, int);
+  void SetLevelModeToGeometricEpsilon() { this->SetLevelMode(GEOMETRIC_EPSILON); }
+  void SetLevelModeToEpsilonList() { this->SetLevelMode(EPSILON_LIST); }
+  void SetLevelModeToTargetTriangleCounts() { this->SetLevelMode(TARGET_TRIANGLE_COUNTS); }
+  ///@}
+
+  ///@{
+  /**
+   * Number of simplified levels in GEOMETRIC_EPSILON mode (the output has one more block, level
+   * 0). Range [1, 32], default 3. The list modes make one level per list entry.
+   */
+  vtkSetClampMacro(NumberOfLevels, int, 1, 32);
+  vtkGetMacro(NumberOfLevels, int);
+  ///@}
+
+  ///@{
+  /**
+   * Error bound of the first simplified level in GEOMETRIC_EPSILON mode, as a fraction of the
+   * bounding-box diagonal (RelativeUnits on) or in world units. Range [0, VTK_DOUBLE_MAX],
+   * default 0.002.
+   */
+  vtkSetClampMacro(Epsilon, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Epsilon, double);
+  ///@}
+
+  ///@{
+  /**
+   * Ratio between the epsilons of consecutive levels in GEOMETRIC_EPSILON mode. Range
+   * [1, 1000], default 3 (each level has roughly a third of the triangles of the one before on
+   * smooth surfaces).
+   */
+  vtkSetClampMacro(EpsilonFactor, double, 1.0, 1000.0);
+  vtkGetMacro(EpsilonFactor, double);
+  ///@}
+
+  ///@{
+  /**
+   * The epsilon of each level in EPSILON_LIST mode, increasing (same units as Epsilon). Values
+   * must be finite and not negative. Empty by default.
+   */
+  void AddEpsilonValue(double epsilon);
+  void RemoveAllEpsilonValues();
+  int GetNumberOfEpsilonValues() const;
+  double GetEpsilonValue(int i) const;
+  ///@}
+
+  ///@{
+  /**
+   * The triangle count of each level in TARGET_TRIANGLE_COUNTS mode, decreasing, each at least
+   * 1. Empty by default.
+   */
+  void AddTargetTriangleCount(vtkIdType count);
+  void RemoveAllTargetTriangleCounts();
+  int GetNumberOfTargetTriangleCounts() const;
+  vtkIdType GetTargetTriangleCount(int i) const;
+  ///@}
+
+  ///@{
+  /**
+   * Whether epsilon values and MaximumCellSize are fractions of the input's bounding-box
+   * diagonal (on) or world units (off). Default on.
+   */
+  vtkSetMacro(RelativeUnits, bool);
+  vtkGetMacro(RelativeUnits, bool);
+  vtkBooleanMacro(RelativeUnits, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Largest octree cell a cluster may span (§2.4 case a), same units as Epsilon; 0 means no
+   * limit. Range [0, VTK_DOUBLE_MAX], default 0.
+   */
+  vtkSetClampMacro(MaximumCellSize, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaximumCellSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * Most vertices one cluster may hold (§2.4 case b); 0 means no limit. Range [0, VTK_INT_MAX],
+   * default 0.
+   */
+  vtkSetClampMacro(MaximumPointsPerCell, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MaximumPointsPerCell, int);
+  ///@}
+
+  ///@{
+  /**
+   * Fixed-point iterations for the e2 term of the representative (§3); 0 uses e1 alone. Range
+   * [0, 20], default 3 (the paper's choice; it stops earlier when the point stops moving).
+   */
+  vtkSetClampMacro(RepresentativeIterations, int, 0, 20);
+  vtkGetMacro(RepresentativeIterations, int);
+  ///@}
+
+  ///@{
+  /**
+   * Weight of the planes through boundary edges (perpendicular to their triangle) relative to
+   * the area-weighted face planes: an edge plane weighs BoundaryWeight * length^2. Higher keeps
+   * open boundaries straighter at the cost of the surface. Range [0, 1e6], default 1.
+   */
+  vtkSetClampMacro(BoundaryWeight, double, 0.0, 1e6);
+  vtkGetMacro(BoundaryWeight, double);
+  ///@}
+
+  ///@{
+  /**
+   * Recompute point normals (named "Normals", the Normals attribute) on every simplified level
+   * from its triangles, replacing interpolated input normals. Default off.
+   */
+  vtkSetMacro(ComputeNormals, bool);
+  vtkGetMacro(ComputeNormals, bool);
+  vtkBooleanMacro(ComputeNormals, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Measure every level's surface distance to level 0 (MeasuredHausdorff, MeasuredRMS field
+   * data). Costs about as much as the simplification itself. Default off.
+   */
+  vtkSetMacro(MeasureLevelErrors, bool);
+  vtkGetMacro(MeasureLevelErrors, bool);
+  vtkBooleanMacro(MeasureLevelErrors, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Bake a texture atlas per simplified level (output port 1) from the colour array or from the
+   * texture on input port 1. Default off: colours and texture coordinates are averaged per
+   * vertex.
+   */
+  vtkSetMacro(BakeTexture, bool);
+  vtkGetMacro(BakeTexture, bool);
+  vtkBooleanMacro(BakeTexture, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Edge of each baked texture in texels, rounded up to a power of two (raised, with a warning,
+   * when a level has too many triangles to fit). Range [16, 16384], default 1024.
+   */
+  vtkSetClampMacro(TextureResolution, int, 16, 16384);
+  vtkGetMacro(TextureResolution, int);
+  ///@}
+
+  ///@{
+  /**
+   * Point array holding the colours to bake: 3 or 4 components, unsigned char (0-255) or
+   * floating point (0-1). Default none: the active scalars when they are such an array. Ignored
+   * when a texture is connected to port 1 and the input has texture coordinates.
+   */
+  vtkSetStringMacro(ColorArrayName);
+  vtkGetStringMacro(ColorArrayName);
+  ///@}
+
+  /**
+   * Connect the optional texture (port 1).
+   */
+  void SetTextureConnection(vtkAlgorithmOutput* output);
+  void SetTextureData(vtkImageData* texture);
+
+  /**
+   * The hierarchy (output port 0); the inherited GetOutput() is null for a composite output.
+   */
+  vtkMultiBlockDataSet* GetHierarchy();
+
+  /**
+   * The baked textures (output port 1), one block per level.
+   */
+  vtkMultiBlockDataSet* GetTextures();
+
+  /**
+   * Epsilon actually used for simplified level `level` (1-based) in world units, valid after
+   * execution (0 for level 0 or out of range).
+   */
+  double GetLevelEpsilon(int level) const;
+
+protected:
+  vtkVertexClusterOctree();
+  ~vtkVertexClusterOctree() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  int LevelMode = GEOMETRIC_EPSILON;
+  int NumberOfLevels = 3;
+  double Epsilon = 0.002;
+  double EpsilonFactor = 3.0;
+  std::vector<double> EpsilonValues;
+  std::vector<vtkIdType> TargetTriangleCounts;
+  bool RelativeUnits = true;
+  double MaximumCellSize = 0.0;
+  int MaximumPointsPerCell = 0;
+  int RepresentativeIterations = 3;
+  double BoundaryWeight = 1.0;
+  bool ComputeNormals = false;
+  bool MeasureLevelErrors = false;
+  bool BakeTexture = false;
+  int TextureResolution = 1024;
+  char* ColorArrayName = nullptr;
+  std::vector<double> LevelEpsilons;
+
+private:
+  vtkVertexClusterOctree(const vtkVertexClusterOctree&) = delete;
+  void operator=(const vtkVertexClusterOctree&) = delete;
+
+  bool CheckSettings();
+};
+
+#endif

@@ -1,0 +1,719 @@
+// vtkVertexClusterOctree: exact results on hand-made meshes, the hierarchy's properties on
+// generated ones, settings and input errors.
+#include "MeshLODHierarchy.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestMeshes.h"
+#include "vtkVertexClusterOctree.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIntArray.h"
+#include "vtkLine.h"
+#include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkTestErrorObserver.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace
+{
+using namespace meshlod;
+using Triangle = std::array<vtkIdType, 3>;
+
+std::vector<Triangle> Triangles(vtkPolyData* poly)
+{
+  std::vector<Triangle> result;
+  auto it = vtk::TakeSmartPointer(poly->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    result.push_back({ ids[0], ids[1], ids[2] });
+  }
+  return result;
+}
+
+vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, unsigned int i)
+{
+  return vtkPolyData::SafeDownCast(hierarchy->GetBlock(i));
+}
+
+double Field(vtkPolyData* level, const char* name)
+{
+  vtkDataArray* array = level->GetFieldData()->GetArray(name);
+  return array ? array->GetTuple1(0) : std::numeric_limits<double>::quiet_NaN();
+}
+
+double Distance(const double a[3], const double b[3])
+{
+  return std::sqrt(vtkMath::Distance2BetweenPoints(a, b));
+}
+
+// A closed cube [0, 1]^3 with n x n squares per face, outward triangles.
+vtkSmartPointer<vtkPolyData> MakeCube(int n)
+{
+  std::vector<double> points;
+  std::vector<long long> triangles;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (int side = 0; side < 2; ++side)
+    {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const long long base = static_cast<long long>(points.size() / 3);
+      for (int j = 0; j <= n; ++j)
+      {
+        for (int i = 0; i <= n; ++i)
+        {
+          double p[3];
+          p[axis] = side;
+          p[u] = double(i) / n;
+          p[v] = double(j) / n;
+          points.insert(points.end(), p, p + 3);
+        }
+      }
+      for (int j = 0; j < n; ++j)
+      {
+        for (int i = 0; i < n; ++i)
+        {
+          const long long a = base + j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+          if (side == 1)
+          {
+            triangles.insert(triangles.end(), { a, b, c, a, c, d });
+          }
+          else
+          {
+            triangles.insert(triangles.end(), { a, c, b, a, d, c });
+          }
+        }
+      }
+    }
+  }
+  return testing::MakePolyData(points, triangles);
+}
+
+// Triangles of every level: no repeated point, no two with the same three points.
+void CheckTriangles(vtkMultiBlockDataSet* hierarchy)
+{
+  for (unsigned int i = 0; i < hierarchy->GetNumberOfBlocks(); ++i)
+  {
+    std::set<Triangle> seen;
+    vtkIdType degenerate = 0, duplicate = 0;
+    for (Triangle t : Triangles(Level(hierarchy, i)))
+    {
+      degenerate += (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) ? 1 : 0;
+      std::sort(t.begin(), t.end());
+      duplicate += seen.insert(t).second ? 0 : 1;
+    }
+    MESHLOD_CHECK_EQ(degenerate, 0);
+    MESHLOD_CHECK_EQ(duplicate, 0);
+  }
+}
+
+//------------------------------------------------------------------------------
+// A flat square grid: four quadrants, each holding one corner, cluster to the corners exactly.
+void TestFlatGrid()
+{
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->SetInputData(testing::MakeGrid(8, 8));
+  filter->SetLevelModeToEpsilonList();
+  filter->AddEpsilonValue(0.05); // 0.57 world units: too small to merge two corners
+  filter->MeasureLevelErrorsOn();
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 2u);
+  MESHLOD_CHECK(CheckHierarchyLayout(h, true).empty());
+  vtkPolyData* level = Level(h, 1);
+  MESHLOD_CHECK_EQ(level->GetNumberOfPolys(), 2);
+  MESHLOD_CHECK_EQ(level->GetNumberOfPoints(), 4);
+  const double corners[4][3] = { { 0, 0, 0 }, { 8, 0, 0 }, { 0, 8, 0 }, { 8, 8, 0 } };
+  for (const auto& corner : corners)
+  {
+    double nearest = VTK_DOUBLE_MAX;
+    for (vtkIdType p = 0; p < level->GetNumberOfPoints(); ++p)
+    {
+      nearest = std::min(nearest, Distance(corner, level->GetPoint(p)));
+    }
+    MESHLOD_CHECK_LE(nearest, 1e-9);
+  }
+  MESHLOD_CHECK_LE(Field(level, names::EstimatedError), 1e-6);
+  MESHLOD_CHECK_LE(Field(level, names::MeasuredHausdorff), 1e-6);
+  // Both triangles face +z like the input.
+  for (const Triangle& t : Triangles(level))
+  {
+    double a[3], b[3], c[3], n[3];
+    level->GetPoint(t[0], a);
+    level->GetPoint(t[1], b);
+    level->GetPoint(t[2], c);
+    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    vtkMath::Cross(u, v, n);
+    MESHLOD_CHECK_GT(n[2], 0.0);
+  }
+}
+
+//------------------------------------------------------------------------------
+// A cube: the clusters of its eight octants collapse onto the corners with zero error, so the
+// cube is kept exactly with 12 triangles.
+void TestCube()
+{
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->SetInputData(MakeCube(6));
+  filter->SetLevelModeToEpsilonList();
+  filter->AddEpsilonValue(1e-6);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 2u);
+  vtkPolyData* level = Level(h, 1);
+  MESHLOD_CHECK_EQ(level->GetNumberOfPolys(), 12);
+  MESHLOD_CHECK_EQ(level->GetNumberOfPoints(), 8);
+  for (vtkIdType p = 0; p < level->GetNumberOfPoints(); ++p)
+  {
+    const double* x = level->GetPoint(p);
+    for (int c = 0; c < 3; ++c)
+    {
+      MESHLOD_CHECK_LE(std::min(std::abs(x[c]), std::abs(x[c] - 1.0)), 1e-6);
+    }
+  }
+  MESHLOD_CHECK_LE(Field(level, names::EstimatedError), 1e-6);
+  // Closed and consistently oriented: every directed edge once, its reverse once.
+  std::map<std::pair<vtkIdType, vtkIdType>, int> directed;
+  for (const Triangle& t : Triangles(level))
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ++directed[{ t[k], t[(k + 1) % 3] }];
+    }
+  }
+  for (const auto& edge : directed)
+  {
+    MESHLOD_CHECK_EQ(edge.second, 1);
+    MESHLOD_CHECK_EQ(directed.count({ edge.first.second, edge.first.first }), 1u);
+  }
+  CheckTriangles(h);
+}
+
+//------------------------------------------------------------------------------
+// The hierarchy of a generated surface: nesting through MorphTargetId, consistent triangles,
+// ranks, point and cell data on every level, errors within epsilon.
+vtkSmartPointer<vtkPolyData> DecoratedMetaballs()
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Metaballs, 40);
+  vtkNew<vtkFloatArray> height;
+  height->SetName("Height");
+  vtkNew<vtkIntArray> label;
+  label->SetName("Label");
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    height->InsertNextValue(static_cast<float>(mesh->GetPoint(p)[2]));
+    label->InsertNextValue(static_cast<int>(p % 7));
+  }
+  mesh->GetPointData()->AddArray(height);
+  mesh->GetPointData()->AddArray(label);
+  vtkNew<vtkIntArray> triangleId;
+  triangleId->SetName("TriangleId");
+  for (vtkIdType c = 0; c < mesh->GetNumberOfPolys(); ++c)
+  {
+    triangleId->InsertNextValue(static_cast<int>(c));
+  }
+  mesh->GetCellData()->AddArray(triangleId);
+  return mesh;
+}
+
+void TestHierarchy()
+{
+  vtkSmartPointer<vtkPolyData> mesh = DecoratedMetaballs();
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->SetInputData(mesh);
+  filter->SetNumberOfLevels(4);
+  filter->SetEpsilon(0.0005);
+  filter->SetEpsilonFactor(3.0);
+  filter->MeasureLevelErrorsOn();
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 5u);
+  MESHLOD_CHECK(CheckHierarchyLayout(h, true).empty());
+  CheckTriangles(h);
+  const unsigned int levels = h->GetNumberOfBlocks();
+  const double diagonal = mesh->GetLength();
+
+  // Chained maps from input points to every level.
+  std::vector<std::vector<vtkIdType>> chain(levels);
+  chain[0].resize(Level(h, 0)->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < static_cast<vtkIdType>(chain[0].size()); ++p)
+  {
+    chain[0][p] = p;
+  }
+  for (unsigned int i = 0; i + 1 < levels; ++i)
+  {
+    vtkPolyData* level = Level(h, i);
+    vtkPolyData* next = Level(h, i + 1);
+    MESHLOD_CHECK_LT(next->GetNumberOfPolys(), level->GetNumberOfPolys());
+    vtkDataArray* targetId = level->GetPointData()->GetArray(names::MorphTargetId);
+    vtkDataArray* target = level->GetPointData()->GetArray(names::MorphTarget);
+    vtkDataArray* rank = level->GetPointData()->GetArray(names::CollapseRank);
+    std::vector<int> preimages(next->GetNumberOfPoints(), 0);
+    std::map<vtkIdType, vtkIdType> rankOfTarget;
+    vtkIdType rankMismatch = 0, badTargets = 0, unmovedButChanged = 0;
+    for (vtkIdType p = 0; p < level->GetNumberOfPoints(); ++p)
+    {
+      const vtkIdType to = static_cast<vtkIdType>(targetId->GetTuple1(p));
+      ++preimages[to];
+      double x[3];
+      target->GetTuple(p, x);
+      badTargets += Distance(x, next->GetPoint(to)) > 1e-6 * diagonal ? 1 : 0;
+      const vtkIdType r = static_cast<vtkIdType>(rank->GetTuple1(p));
+      auto inserted = rankOfTarget.emplace(to, r);
+      rankMismatch += inserted.first->second != r ? 1 : 0;
+      unmovedButChanged +=
+        (r == -1 && Distance(level->GetPoint(p), next->GetPoint(to)) > 1e-6 * diagonal) ? 1 : 0;
+    }
+    MESHLOD_CHECK_EQ(badTargets, 0);
+    MESHLOD_CHECK_EQ(rankMismatch, 0);
+    MESHLOD_CHECK_EQ(unmovedButChanged, 0);
+    MESHLOD_CHECK_EQ(std::count(preimages.begin(), preimages.end(), 0), 0);
+    chain[i + 1].resize(chain[0].size());
+    for (size_t p = 0; p < chain[0].size(); ++p)
+    {
+      chain[i + 1][p] = static_cast<vtkIdType>(targetId->GetTuple1(chain[i][p]));
+    }
+  }
+
+  // Every triangle of every level is its input triangle with the corners mapped through the
+  // chain (same order): the levels are one nested clustering of the input.
+  const std::vector<Triangle> input = Triangles(Level(h, 0));
+  for (unsigned int i = 1; i < levels; ++i)
+  {
+    vtkPolyData* level = Level(h, i);
+    vtkDataArray* triangleId = level->GetCellData()->GetArray("TriangleId");
+    MESHLOD_CHECK(triangleId != nullptr);
+    if (!triangleId)
+    {
+      continue;
+    }
+    vtkIdType mismatch = 0;
+    const std::vector<Triangle> tris = Triangles(level);
+    for (size_t t = 0; t < tris.size(); ++t)
+    {
+      const Triangle& source = input[static_cast<size_t>(triangleId->GetTuple1(t))];
+      const Triangle mapped = { chain[i][source[0]], chain[i][source[1]], chain[i][source[2]] };
+      mismatch += mapped == tris[t] ? 0 : 1;
+    }
+    MESHLOD_CHECK_EQ(mismatch, 0);
+  }
+
+  // Point data on every level; errors within the level's epsilon.
+  double range[2];
+  mesh->GetPointData()->GetArray("Height")->GetRange(range);
+  for (unsigned int i = 1; i < levels; ++i)
+  {
+    vtkPolyData* level = Level(h, i);
+    vtkDataArray* height = level->GetPointData()->GetArray("Height");
+    vtkDataArray* label = level->GetPointData()->GetArray("Label");
+    MESHLOD_CHECK(height && label && label->GetDataType() == VTK_INT);
+    if (height && label)
+    {
+      double levelRange[2], labelRange[2];
+      height->GetRange(levelRange);
+      label->GetRange(labelRange);
+      MESHLOD_CHECK_GE(levelRange[0], range[0] - 1e-6);
+      MESHLOD_CHECK_LE(levelRange[1], range[1] + 1e-6);
+      MESHLOD_CHECK_GE(labelRange[0], 0.0);
+      MESHLOD_CHECK_LE(labelRange[1], 6.0);
+    }
+    const double epsilon = filter->GetLevelEpsilon(static_cast<int>(i));
+    MESHLOD_CHECK_GT(epsilon, 0.0);
+    MESHLOD_CHECK_LE(Field(level, names::EstimatedError), epsilon * (1 + 1e-6));
+    // Clusters bound the root mean squared distance to their planes; the surface stays within a
+    // few epsilon of the input.
+    MESHLOD_CHECK_LE(Field(level, names::MeasuredHausdorff), 4.0 * epsilon);
+    MESHLOD_CHECK_LE(Field(level, names::MeasuredRMS), epsilon);
+  }
+}
+
+//------------------------------------------------------------------------------
+// Target triangle counts are met within 0.2% (the search stops there).
+void TestTargetCounts()
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Torus, 60);
+  const vtkIdType n = mesh->GetNumberOfPolys();
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->SetInputData(mesh);
+  filter->SetLevelModeToTargetTriangleCounts();
+  const vtkIdType targets[3] = { n / 4, n / 20, n / 100 };
+  for (const vtkIdType target : targets)
+  {
+    filter->AddTargetTriangleCount(target);
+  }
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 4u);
+  MESHLOD_CHECK(CheckHierarchyLayout(h, true).empty());
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    const vtkIdType count = Level(h, i)->GetNumberOfPolys();
+    const vtkIdType target = targets[i - 1];
+    MESHLOD_CHECK_LE(std::abs(count - target), std::max<vtkIdType>(2, target / 500));
+    MESHLOD_CHECK_EQ(static_cast<vtkIdType>(Field(Level(h, i), names::NumberOfTriangles)), count);
+  }
+  CheckTriangles(h);
+}
+
+//------------------------------------------------------------------------------
+// Open boundaries: every boundary point of every level lies on the input's boundary.
+std::vector<std::array<double, 6>> BoundarySegments(vtkPolyData* poly)
+{
+  std::map<std::pair<vtkIdType, vtkIdType>, int> uses;
+  for (const Triangle& t : Triangles(poly))
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ++uses[{ std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]) }];
+    }
+  }
+  std::vector<std::array<double, 6>> segments;
+  for (const auto& edge : uses)
+  {
+    if (edge.second == 1)
+    {
+      std::array<double, 6> s;
+      poly->GetPoint(edge.first.first, s.data());
+      poly->GetPoint(edge.first.second, s.data() + 3);
+      segments.push_back(s);
+    }
+  }
+  return segments;
+}
+
+double DistanceToSegments(const double x[3], const std::vector<std::array<double, 6>>& segments)
+{
+  double best = VTK_DOUBLE_MAX;
+  for (const auto& s : segments)
+  {
+    double t;
+    double closest[3];
+    best =
+      std::min(best, std::sqrt(vtkLine::DistanceToLine(x, s.data(), s.data() + 3, t, closest)));
+  }
+  return best;
+}
+
+void TestOpenBoundary(vtkPolyData* mesh, const char* what)
+{
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->SetInputData(mesh);
+  filter->SetNumberOfLevels(4);
+  filter->SetEpsilon(0.001);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 5u);
+  const std::vector<std::array<double, 6>> input = BoundarySegments(mesh);
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    vtkPolyData* level = Level(h, i);
+    double worst = 0.0;
+    for (const auto& s : BoundarySegments(level))
+    {
+      worst = std::max(worst, DistanceToSegments(s.data(), input));
+      worst = std::max(worst, DistanceToSegments(s.data() + 3, input));
+    }
+    if (worst > 1e-6 * mesh->GetLength())
+    {
+      std::cerr << what << " level " << i << ": boundary point " << worst << " off the input's\n";
+    }
+    MESHLOD_CHECK_LE(worst, 1e-6 * mesh->GetLength());
+  }
+}
+
+void TestBoundaries()
+{
+  // A wavy open sheet: its boundary curves in z.
+  vtkSmartPointer<vtkPolyData> wave = testing::MakeGrid(60, 60);
+  for (vtkIdType p = 0; p < wave->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    wave->GetPoint(p, x);
+    x[2] = 4.0 * std::sin(0.15 * x[0]) * std::cos(0.1 * x[1]);
+    wave->GetPoints()->SetPoint(p, x);
+  }
+  TestOpenBoundary(wave, "wave");
+  // A cap of an isosurface sphere: a round boundary.
+  vtkSmartPointer<vtkPolyData> sphere = testing::MakeIsosurface(testing::Field::Sphere, 50);
+  std::vector<double> points;
+  std::vector<long long> cap;
+  for (vtkIdType p = 0; p < sphere->GetNumberOfPoints(); ++p)
+  {
+    const double* x = sphere->GetPoint(p);
+    points.insert(points.end(), x, x + 3);
+  }
+  for (const Triangle& t : Triangles(sphere))
+  {
+    double z = 0.0;
+    for (const vtkIdType v : t)
+    {
+      z += sphere->GetPoint(v)[2];
+    }
+    if (z > 0.6)
+    {
+      cap.insert(cap.end(), { t[0], t[1], t[2] });
+    }
+  }
+  TestOpenBoundary(testing::MakePolyData(points, cap), "cap");
+}
+
+//------------------------------------------------------------------------------
+// Non-manifold vertices are locked: two spheres sharing one vertex keep it, in place, on every
+// level.
+void TestNonManifold()
+{
+  // Sphere A, and sphere B its mirror image through the plane x = x_m of A's rightmost vertex m:
+  // they touch at m only, which becomes one vertex with two fans.
+  vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(3);
+  const vtkIdType n = sphere->GetNumberOfPoints();
+  vtkIdType m = 0;
+  for (vtkIdType p = 1; p < n; ++p)
+  {
+    m = sphere->GetPoint(p)[0] > sphere->GetPoint(m)[0] ? p : m;
+  }
+  double p0[3];
+  sphere->GetPoint(m, p0);
+  std::vector<double> points;
+  std::vector<long long> triangles;
+  for (int copy = 0; copy < 2; ++copy)
+  {
+    for (vtkIdType p = 0; p < n; ++p)
+    {
+      double x[3];
+      sphere->GetPoint(p, x);
+      points.insert(points.end(), { copy == 0 ? x[0] : 2.0 * p0[0] - x[0], x[1], x[2] });
+    }
+  }
+  for (const Triangle& t : Triangles(sphere))
+  {
+    triangles.insert(triangles.end(), { t[0], t[1], t[2] });
+    // The mirror image reverses the orientation; B's copy of m is A's m.
+    auto b = [&](vtkIdType v) { return static_cast<long long>(v == m ? m : v + n); };
+    triangles.insert(triangles.end(), { b(t[0]), b(t[2]), b(t[1]) });
+  }
+  vtkSmartPointer<vtkPolyData> twin = testing::MakePolyData(points, triangles);
+
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->SetInputData(twin);
+  filter->SetNumberOfLevels(3);
+  filter->SetEpsilon(0.01);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 4u);
+  CheckTriangles(h);
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    vtkPolyData* level = Level(h, i);
+    MESHLOD_CHECK_LT(level->GetNumberOfPolys(), twin->GetNumberOfPolys());
+    vtkIdType at = -1;
+    for (vtkIdType p = 0; p < level->GetNumberOfPoints(); ++p)
+    {
+      at = Distance(level->GetPoint(p), p0) == 0.0 ? p : at;
+    }
+    MESHLOD_CHECK_GE(at, 0);
+    // Both spheres still meet there: triangles on both sides of x = p0.x use it.
+    int left = 0, right = 0;
+    for (const Triangle& t : Triangles(level))
+    {
+      if (t[0] == at || t[1] == at || t[2] == at)
+      {
+        double c = 0.0;
+        for (const vtkIdType v : t)
+        {
+          c += level->GetPoint(v)[0] / 3.0;
+        }
+        (c < p0[0] ? left : right) += 1;
+      }
+    }
+    MESHLOD_CHECK_GT(left, 0);
+    MESHLOD_CHECK_GT(right, 0);
+  }
+}
+
+//------------------------------------------------------------------------------
+void TestSettingsAndErrors()
+{
+  vtkNew<vtkTest::ErrorObserver> observer;
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+
+  // Empty input: empty output, no message.
+  vtkNew<vtkPolyData> empty;
+  filter->SetInputData(empty);
+  filter->Update();
+  MESHLOD_CHECK(!observer->GetError());
+  MESHLOD_CHECK(!observer->GetWarning());
+  MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
+
+  // NaN point: an error, no output.
+  vtkSmartPointer<vtkPolyData> bad = testing::MakeGrid(2, 2);
+  bad->GetPoints()->SetPoint(4, std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  filter->SetInputData(bad);
+  filter->Update();
+  MESHLOD_CHECK(observer->GetError());
+  MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
+  observer->Clear();
+
+  // Bad level lists.
+  filter->SetInputData(testing::MakeGrid(4, 4));
+  filter->SetLevelModeToEpsilonList();
+  filter->Update();
+  MESHLOD_CHECK(observer->GetError());
+  MESHLOD_CHECK(observer->GetErrorMessage().find("AddEpsilonValue") != std::string::npos);
+  observer->Clear();
+  filter->AddEpsilonValue(0.2);
+  filter->AddEpsilonValue(0.1);
+  filter->Update();
+  MESHLOD_CHECK(observer->GetError());
+  MESHLOD_CHECK(observer->GetErrorMessage().find("increasing") != std::string::npos);
+  observer->Clear();
+  filter->SetLevelModeToTargetTriangleCounts();
+  filter->AddTargetTriangleCount(5);
+  filter->AddTargetTriangleCount(10);
+  filter->Update();
+  MESHLOD_CHECK(observer->GetError());
+  MESHLOD_CHECK(observer->GetErrorMessage().find("decreasing") != std::string::npos);
+  observer->Clear();
+
+  // Baking with nothing to bake.
+  filter->SetLevelModeToGeometricEpsilon();
+  filter->BakeTextureOn();
+  filter->Update();
+  MESHLOD_CHECK(observer->GetError());
+  MESHLOD_CHECK(observer->GetErrorMessage().find("BakeTexture") != std::string::npos);
+  observer->Clear();
+  filter->BakeTextureOff();
+
+  // Clamped settings.
+  filter->SetNumberOfLevels(100);
+  MESHLOD_CHECK_EQ(filter->GetNumberOfLevels(), 32);
+  filter->SetEpsilonFactor(0.5);
+  MESHLOD_CHECK_EQ(filter->GetEpsilonFactor(), 1.0);
+  filter->SetTextureResolution(3);
+  MESHLOD_CHECK_EQ(filter->GetTextureResolution(), 16);
+
+  // Progress events, and PrintSelf names every setting.
+  int progressEvents = 0;
+  vtkNew<vtkCallbackCommand> progress;
+  progress->SetClientData(&progressEvents);
+  progress->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+  filter->AddObserver(vtkCommand::ProgressEvent, progress);
+  filter->SetNumberOfLevels(2);
+  filter->SetEpsilon(0.01);
+  filter->SetInputData(testing::MakeIcosphere(3));
+  filter->Update();
+  MESHLOD_CHECK(!observer->GetError());
+  MESHLOD_CHECK_GE(progressEvents, 3);
+  std::ostringstream printed;
+  filter->Print(printed);
+  for (const char* setting : { "LevelMode",
+         "NumberOfLevels",
+         "Epsilon:",
+         "EpsilonFactor",
+         "EpsilonValues",
+         "TargetTriangleCounts",
+         "RelativeUnits",
+         "MaximumCellSize",
+         "MaximumPointsPerCell",
+         "RepresentativeIterations",
+         "BoundaryWeight",
+         "ComputeNormals",
+         "MeasureLevelErrors",
+         "BakeTexture",
+         "TextureResolution",
+         "ColorArrayName" })
+  {
+    MESHLOD_CHECK(printed.str().find(setting) != std::string::npos);
+  }
+}
+
+//------------------------------------------------------------------------------
+// MaximumPointsPerCell and MaximumCellSize bound the clusters (§2.4 cases a and b).
+void TestCellLimits()
+{
+  vtkSmartPointer<vtkPolyData> grid = testing::MakeGrid(32, 32);
+  for (const bool bySize : { false, true })
+  {
+    vtkNew<vtkVertexClusterOctree> filter;
+    filter->SetInputData(grid);
+    filter->SetLevelModeToEpsilonList();
+    filter->AddEpsilonValue(1.0); // everything flat would merge
+    if (bySize)
+    {
+      filter->RelativeUnitsOff();
+      filter->SetMaximumCellSize(8.5); // cells of at most 8 units: 4 x 4 of them
+    }
+    else
+    {
+      filter->SetMaximumPointsPerCell(30);
+    }
+    filter->Update();
+    vtkPolyData* level0 = Level(filter->GetHierarchy(), 0);
+    vtkPolyData* level1 = Level(filter->GetHierarchy(), 1);
+    vtkDataArray* targetId = level0->GetPointData()->GetArray(names::MorphTargetId);
+    std::vector<int> members(level1->GetNumberOfPoints(), 0);
+    std::vector<std::array<double, 4>> box(level1->GetNumberOfPoints(),
+      { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX });
+    for (vtkIdType p = 0; p < level0->GetNumberOfPoints(); ++p)
+    {
+      const vtkIdType to = static_cast<vtkIdType>(targetId->GetTuple1(p));
+      ++members[to];
+      const double* x = level0->GetPoint(p);
+      box[to] = { std::min(box[to][0], x[0]),
+        std::max(box[to][1], x[0]),
+        std::min(box[to][2], x[1]),
+        std::max(box[to][3], x[1]) };
+    }
+    for (vtkIdType q = 0; q < level1->GetNumberOfPoints(); ++q)
+    {
+      if (bySize)
+      {
+        MESHLOD_CHECK_LE(box[q][1] - box[q][0], 8.0);
+        MESHLOD_CHECK_LE(box[q][3] - box[q][2], 8.0);
+      }
+      else
+      {
+        MESHLOD_CHECK_LE(members[q], 30);
+      }
+    }
+    MESHLOD_CHECK_LT(level1->GetNumberOfPolys(), grid->GetNumberOfPolys() / 4);
+  }
+}
+} // namespace
+
+int TestVertexClusterOctree(int, char*[])
+{
+  TestFlatGrid();
+  TestCube();
+  TestHierarchy();
+  TestTargetCounts();
+  TestBoundaries();
+  TestNonManifold();
+  TestCellLimits();
+  TestSettingsAndErrors();
+  return meshlod::testing::Result();
+}

@@ -1,0 +1,559 @@
+// vtkVertexClusterOctree texture baking (§4): atlas layout, continuity across edges, and the
+// colours the baked textures reproduce, from a colour array and from an input texture.
+#include "MeshLODHierarchy.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestMeshes.h"
+#include "vtkVertexClusterOctree.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkGenericCell.h"
+#include "vtkImageData.h"
+#include "vtkLookupTable.h"
+#include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkStaticCellLocator.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkTriangle.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <map>
+
+namespace
+{
+using namespace meshlod;
+using Triangle = std::array<vtkIdType, 3>;
+using Color = std::array<double, 3>;
+
+std::vector<Triangle> Triangles(vtkPolyData* poly)
+{
+  std::vector<Triangle> result;
+  auto it = vtk::TakeSmartPointer(poly->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    result.push_back({ ids[0], ids[1], ids[2] });
+  }
+  return result;
+}
+
+// Bilinear lookup (texel centres at (i + 0.5) / size, clamped at the border).
+Color Lookup(vtkImageData* image, double u, double v)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  const double x = std::min(dims[0] - 1.0, std::max(0.0, u * dims[0] - 0.5));
+  const double y = std::min(dims[1] - 1.0, std::max(0.0, v * dims[1] - 0.5));
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const int x1 = std::min(dims[0] - 1, x0 + 1), y1 = std::min(dims[1] - 1, y0 + 1);
+  const double tx = x - x0, ty = y - y0;
+  Color c{};
+  for (int k = 0; k < 3; ++k)
+  {
+    auto at = [&](int i, int j) { return scalars->GetComponent(j * dims[0] + i, k); };
+    c[k] = (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x1, y0)) +
+      ty * ((1 - tx) * at(x0, y1) + tx * at(x1, y1));
+  }
+  return c;
+}
+
+void Barycentric(vtkPolyData* poly, const Triangle& t, const double x[3], double w[3])
+{
+  double a[3], b[3], c[3];
+  poly->GetPoint(t[0], a);
+  poly->GetPoint(t[1], b);
+  poly->GetPoint(t[2], c);
+  const double e0[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double e1[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const double d[3] = { x[0] - a[0], x[1] - a[1], x[2] - a[2] };
+  const double d00 = vtkMath::Dot(e0, e0), d01 = vtkMath::Dot(e0, e1), d11 = vtkMath::Dot(e1, e1);
+  const double d20 = vtkMath::Dot(d, e0), d21 = vtkMath::Dot(d, e1);
+  const double den = d00 * d11 - d01 * d01;
+  w[1] = den != 0.0 ? (d11 * d20 - d01 * d21) / den : 0.0;
+  w[2] = den != 0.0 ? (d00 * d21 - d01 * d20) / den : 0.0;
+  w[0] = 1.0 - w[1] - w[2];
+}
+
+// Mean over area-uniform samples of the input surface of the mean RGB difference between the
+// input's colour there (`truth`) and the colour of the nearest point of `level` (`shade`).
+double MeanColorError(vtkPolyData* input,
+  const std::function<Color(const Triangle&, const double*)>& truth,
+  vtkPolyData* level,
+  const std::function<Color(const Triangle&, const double*)>& shade)
+{
+  const std::vector<Triangle> inputTris = Triangles(input);
+  const std::vector<Triangle> levelTris = Triangles(level);
+  std::vector<double> cumulative(inputTris.size() + 1, 0.0);
+  for (size_t t = 0; t < inputTris.size(); ++t)
+  {
+    double a[3], b[3], c[3];
+    input->GetPoint(inputTris[t][0], a);
+    input->GetPoint(inputTris[t][1], b);
+    input->GetPoint(inputTris[t][2], c);
+    cumulative[t + 1] = cumulative[t] + vtkTriangle::TriangleArea(a, b, c);
+  }
+  vtkNew<vtkStaticCellLocator> locator;
+  locator->SetDataSet(level);
+  locator->BuildLocator();
+  vtkNew<vtkGenericCell> cell;
+  std::uint64_t state = 12345;
+  auto random = [&]()
+  {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  const int samples = 20000;
+  double sum = 0.0;
+  for (int i = 0; i < samples; ++i)
+  {
+    const double pick = random() * cumulative.back();
+    const size_t t = std::min(inputTris.size() - 1,
+      static_cast<size_t>(std::upper_bound(cumulative.begin() + 1, cumulative.end(), pick) -
+        (cumulative.begin() + 1)));
+    const double r1 = std::sqrt(random()), r2 = random();
+    const double w[3] = { 1 - r1, r1 * (1 - r2), r1 * r2 };
+    double x[3] = { 0, 0, 0 };
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* p = input->GetPoint(inputTris[t][k]);
+      for (int c = 0; c < 3; ++c)
+      {
+        x[c] += w[k] * p[c];
+      }
+    }
+    double closest[3], dist2;
+    vtkIdType cellId;
+    int subId;
+    locator->FindClosestPoint(x, closest, cell, cellId, subId, dist2);
+    double wl[3];
+    Barycentric(level, levelTris[cellId], closest, wl);
+    const Color expected = truth(inputTris[t], w);
+    const Color got = shade(levelTris[cellId], wl);
+    sum += (std::abs(expected[0] - got[0]) + std::abs(expected[1] - got[1]) +
+             std::abs(expected[2] - got[2])) /
+      3.0;
+  }
+  return sum / samples;
+}
+
+Color Interpolate(vtkDataArray* colors, const Triangle& t, const double* w, double scale = 1.0)
+{
+  Color c{};
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      c[i] += w[k] * scale * colors->GetComponent(t[k], i);
+    }
+  }
+  return c;
+}
+
+Color BakedColor(vtkPolyData* level, vtkImageData* texture, const Triangle& t, const double* w)
+{
+  vtkDataArray* tcoords = level->GetPointData()->GetTCoords();
+  double uv[2] = { 0, 0 };
+  for (int k = 0; k < 3; ++k)
+  {
+    uv[0] += w[k] * tcoords->GetComponent(t[k], 0);
+    uv[1] += w[k] * tcoords->GetComponent(t[k], 1);
+  }
+  return Lookup(texture, uv[0], uv[1]);
+}
+
+//------------------------------------------------------------------------------
+// Atlas layout: coordinates inside [0, 1]^2, no two texture triangles overlapping, and the two
+// copies of every edge showing the same colours.
+void CheckAtlas(vtkPolyData* level, vtkImageData* texture)
+{
+  vtkDataArray* tcoords = level->GetPointData()->GetTCoords();
+  MESHLOD_CHECK(tcoords != nullptr && tcoords->GetNumberOfComponents() == 2);
+  if (!tcoords)
+  {
+    return;
+  }
+  int dims[3];
+  texture->GetDimensions(dims);
+  MESHLOD_CHECK_EQ(dims[0], dims[1]);
+  MESHLOD_CHECK_EQ(dims[0] & (dims[0] - 1), 0);
+  for (vtkIdType p = 0; p < tcoords->GetNumberOfTuples(); ++p)
+  {
+    for (int c = 0; c < 2; ++c)
+    {
+      MESHLOD_CHECK_GE(tcoords->GetComponent(p, c), 0.0);
+      MESHLOD_CHECK_LE(tcoords->GetComponent(p, c), 1.0);
+    }
+  }
+
+  // Overlaps: 4 x 4 samples per texel; a sample strictly inside two triangles is an overlap.
+  const int side = 4 * dims[0];
+  std::vector<unsigned char> covered(static_cast<size_t>(side) * side, 0);
+  vtkIdType overlaps = 0;
+  for (const Triangle& t : Triangles(level))
+  {
+    double uv[3][2];
+    for (int k = 0; k < 3; ++k)
+    {
+      uv[k][0] = tcoords->GetComponent(t[k], 0) * side;
+      uv[k][1] = tcoords->GetComponent(t[k], 1) * side;
+    }
+    const double area2 =
+      (uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1]) - (uv[1][1] - uv[0][1]) * (uv[2][0] - uv[0][0]);
+    MESHLOD_CHECK(area2 != 0.0);
+    const int x0 = static_cast<int>(std::floor(std::min({ uv[0][0], uv[1][0], uv[2][0] })));
+    const int x1 = static_cast<int>(std::ceil(std::max({ uv[0][0], uv[1][0], uv[2][0] })));
+    const int y0 = static_cast<int>(std::floor(std::min({ uv[0][1], uv[1][1], uv[2][1] })));
+    const int y1 = static_cast<int>(std::ceil(std::max({ uv[0][1], uv[1][1], uv[2][1] })));
+    for (int y = std::max(0, y0); y < std::min(side, y1); ++y)
+    {
+      for (int x = std::max(0, x0); x < std::min(side, x1); ++x)
+      {
+        const double px = x + 0.5, py = y + 0.5;
+        bool inside = true;
+        for (int k = 0; k < 3 && inside; ++k)
+        {
+          const double* a = uv[(k + 1) % 3];
+          const double* b = uv[(k + 2) % 3];
+          const double cross = (a[0] - px) * (b[1] - py) - (a[1] - py) * (b[0] - px);
+          inside = cross * area2 > 1e-9;
+        }
+        if (inside)
+        {
+          unsigned char& c = covered[static_cast<size_t>(y) * side + x];
+          overlaps += c ? 1 : 0;
+          c = 1;
+        }
+      }
+    }
+  }
+  MESHLOD_CHECK_EQ(overlaps, 0);
+
+  // Edges: the same two end points (by position) in two triangles. Compare the texture along
+  // both copies.
+  std::map<std::array<double, 6>, std::vector<std::pair<vtkIdType, vtkIdType>>> edges;
+  for (const Triangle& t : Triangles(level))
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      vtkIdType a = t[k], b = t[(k + 1) % 3];
+      double pa[3], pb[3];
+      level->GetPoint(a, pa);
+      level->GetPoint(b, pb);
+      if (std::lexicographical_compare(pb, pb + 3, pa, pa + 3))
+      {
+        std::swap(a, b);
+        std::swap(pa, pb);
+      }
+      edges[{ pa[0], pa[1], pa[2], pb[0], pb[1], pb[2] }].push_back({ a, b });
+    }
+  }
+  double worst = 0.0, sum = 0.0;
+  vtkIdType compared = 0, shared = 0, identical = 0;
+  for (const auto& edge : edges)
+  {
+    if (edge.second.size() != 2)
+    {
+      continue;
+    }
+    ++shared;
+    const auto& e0 = edge.second[0];
+    const auto& e1 = edge.second[1];
+    bool same = true;
+    for (int c = 0; c < 2; ++c)
+    {
+      same = same && tcoords->GetComponent(e0.first, c) == tcoords->GetComponent(e1.first, c) &&
+        tcoords->GetComponent(e0.second, c) == tcoords->GetComponent(e1.second, c);
+    }
+    identical += same ? 1 : 0;
+    for (int step = 0; step <= 16; ++step)
+    {
+      const double s = step / 16.0;
+      auto at = [&](const std::pair<vtkIdType, vtkIdType>& e)
+      {
+        return Lookup(texture,
+          (1 - s) * tcoords->GetComponent(e.first, 0) + s * tcoords->GetComponent(e.second, 0),
+          (1 - s) * tcoords->GetComponent(e.first, 1) + s * tcoords->GetComponent(e.second, 1));
+      };
+      const Color c0 = at(e0), c1 = at(e1);
+      for (int c = 0; c < 3; ++c)
+      {
+        const double d = std::abs(c0[c] - c1[c]);
+        worst = std::max(worst, d);
+        sum += d;
+        ++compared;
+      }
+    }
+  }
+  const double mean = compared ? sum / compared : 0.0;
+  std::cout << "  edges shared " << shared << ", on one square diagonal " << identical
+            << "; colour difference along shared edges: mean " << mean << ", largest " << worst
+            << "\n";
+  MESHLOD_CHECK_GT(identical, shared / 4); // about half the triangles pair up
+  MESHLOD_CHECK_LE(mean, 0.25);
+  MESHLOD_CHECK_LE(worst, 12.0);
+}
+
+//------------------------------------------------------------------------------
+// Colours from a point array (a scalar field through a lookup table).
+void TestColorArray()
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Metaballs, 60);
+  vtkNew<vtkFloatArray> field;
+  field->SetName("Field");
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    const double* x = mesh->GetPoint(p);
+    field->InsertNextValue(static_cast<float>(std::sin(9.0 * x[0]) * std::cos(7.0 * x[1]) + x[2]));
+  }
+  vtkNew<vtkLookupTable> lut;
+  lut->SetHueRange(0.0, 0.7);
+  lut->SetTableRange(-1.5, 1.5);
+  lut->Build();
+  vtkSmartPointer<vtkUnsignedCharArray> colors =
+    vtk::TakeSmartPointer(lut->MapScalars(field, VTK_COLOR_MODE_DEFAULT, -1));
+  colors->SetName("Colors");
+  mesh->GetPointData()->SetScalars(colors);
+
+  const vtkIdType n = mesh->GetNumberOfPolys();
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->SetInputData(mesh);
+  filter->SetLevelModeToTargetTriangleCounts();
+  filter->AddTargetTriangleCount(n / 20);
+  filter->AddTargetTriangleCount(n / 100);
+  filter->BakeTextureOn();
+  filter->SetTextureResolution(256);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  vtkMultiBlockDataSet* textures = filter->GetTextures();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
+  MESHLOD_CHECK_EQ(textures->GetNumberOfBlocks(), 3u);
+  MESHLOD_CHECK(CheckHierarchyLayout(h, true).empty());
+  MESHLOD_CHECK(textures->GetBlock(0) == nullptr);
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    auto* level = vtkPolyData::SafeDownCast(h->GetBlock(i));
+    auto* texture = vtkImageData::SafeDownCast(textures->GetBlock(i));
+    MESHLOD_CHECK(level && texture);
+    if (!level || !texture)
+    {
+      continue;
+    }
+    MESHLOD_CHECK_EQ(texture->GetPointData()->GetScalars()->GetNumberOfComponents(), 4);
+    MESHLOD_CHECK_LE(
+      std::abs(level->GetNumberOfPolys() - (i == 1 ? n / 20 : n / 100)), 2 + n / 5000);
+    CheckAtlas(level, texture);
+  }
+
+  // The coarsest level's baked texture against per-vertex averaging at the same level.
+  auto* level = vtkPolyData::SafeDownCast(h->GetBlock(2));
+  auto* texture = vtkImageData::SafeDownCast(textures->GetBlock(2));
+  auto truth = [&](const Triangle& t, const double* w) { return Interpolate(colors, t, w); };
+  const double baked = MeanColorError(mesh,
+    truth,
+    level,
+    [&](const Triangle& t, const double* w) { return BakedColor(level, texture, t, w); });
+  vtkDataArray* averaged = level->GetPointData()->GetArray("Colors");
+  const double perVertex = MeanColorError(mesh,
+    truth,
+    level,
+    [&](const Triangle& t, const double* w) { return Interpolate(averaged, t, w); });
+  std::cout << "  1% level, mean colour error (0-255): baked texture " << baked
+            << ", per-vertex average " << perVertex << "\n";
+  MESHLOD_CHECK_LT(baked, 4.0);
+  MESHLOD_CHECK_LT(baked, 0.2 * perVertex);
+}
+
+//------------------------------------------------------------------------------
+// Colours from an input texture at the input's texture coordinates.
+void TestInputTexture()
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Torus, 50);
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  vtkNew<vtkFloatArray> tcoords;
+  tcoords->SetName("UV");
+  tcoords->SetNumberOfComponents(2);
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    const double* x = mesh->GetPoint(p);
+    const float uv[2] = { static_cast<float>((x[0] - bounds[0]) / (bounds[1] - bounds[0])),
+      static_cast<float>((x[1] - bounds[2]) / (bounds[3] - bounds[2])) };
+    tcoords->InsertNextTypedTuple(uv);
+  }
+  mesh->GetPointData()->SetTCoords(tcoords);
+  vtkNew<vtkImageData> image;
+  const int size = 64;
+  image->SetDimensions(size, size, 1);
+  vtkNew<vtkUnsignedCharArray> texels;
+  texels->SetNumberOfComponents(3);
+  texels->SetNumberOfTuples(size * size);
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      const double u = (x + 0.5) / size, v = (y + 0.5) / size;
+      texels->SetTypedComponent(
+        y * size + x, 0, static_cast<unsigned char>(127.5 + 127.5 * std::sin(12.0 * u)));
+      texels->SetTypedComponent(
+        y * size + x, 1, static_cast<unsigned char>(127.5 + 127.5 * std::cos(9.0 * v)));
+      texels->SetTypedComponent(y * size + x, 2, static_cast<unsigned char>(255.0 * u * v));
+    }
+  }
+  image->GetPointData()->SetScalars(texels);
+
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->SetInputData(mesh);
+  filter->SetTextureData(image);
+  filter->SetLevelModeToTargetTriangleCounts();
+  filter->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 50);
+  filter->BakeTextureOn();
+  filter->SetTextureResolution(128);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  vtkMultiBlockDataSet* textures = filter->GetTextures();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 2u);
+  MESHLOD_CHECK_EQ(textures->GetNumberOfBlocks(), 2u);
+  MESHLOD_CHECK(textures->GetBlock(0) == image.GetPointer());
+  auto* level = vtkPolyData::SafeDownCast(h->GetBlock(1));
+  auto* texture = vtkImageData::SafeDownCast(textures->GetBlock(1));
+  MESHLOD_CHECK(level && texture);
+  if (!level || !texture)
+  {
+    return;
+  }
+  MESHLOD_CHECK(level->GetPointData()->GetTCoords() != nullptr &&
+    std::string(level->GetPointData()->GetTCoords()->GetName()) == "UV");
+  MESHLOD_CHECK_EQ(texture->GetPointData()->GetScalars()->GetNumberOfComponents(), 3);
+  CheckAtlas(level, texture);
+  auto truth = [&](const Triangle& t, const double* w)
+  {
+    double uv[2] = { 0, 0 };
+    for (int k = 0; k < 3; ++k)
+    {
+      uv[0] += w[k] * tcoords->GetComponent(t[k], 0);
+      uv[1] += w[k] * tcoords->GetComponent(t[k], 1);
+    }
+    return Lookup(image, uv[0], uv[1]);
+  };
+  const double baked = MeanColorError(mesh,
+    truth,
+    level,
+    [&](const Triangle& t, const double* w) { return BakedColor(level, texture, t, w); });
+  std::cout << "  textured input, mean colour error (0-255): " << baked << "\n";
+  MESHLOD_CHECK_LT(baked, 4.0);
+}
+//------------------------------------------------------------------------------
+// The same output for one thread and for several (the whole pipeline, baking included).
+bool SameArray(vtkDataArray* a, vtkDataArray* b)
+{
+  if (!a || !b || a->GetNumberOfTuples() != b->GetNumberOfTuples() ||
+    a->GetNumberOfComponents() != b->GetNumberOfComponents() ||
+    a->GetDataType() != b->GetDataType())
+  {
+    return false;
+  }
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples() * a->GetNumberOfComponents(); ++i)
+  {
+    if (a->GetComponent(i / a->GetNumberOfComponents(), i % a->GetNumberOfComponents()) !=
+      b->GetComponent(i / b->GetNumberOfComponents(), i % b->GetNumberOfComponents()))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+void TestThreads()
+{
+  vtkSmartPointer<vtkPolyData> mesh =
+    testing::MakeIsosurface(testing::Field::Gyroid, 40, false, true);
+  vtkNew<vtkLookupTable> lut;
+  lut->SetTableRange(-1.0, 1.0);
+  lut->Build();
+  vtkNew<vtkFloatArray> field;
+  field->SetName("Field");
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    field->InsertNextValue(static_cast<float>(std::sin(5.0 * mesh->GetPoint(p)[0])));
+  }
+  vtkSmartPointer<vtkUnsignedCharArray> colors =
+    vtk::TakeSmartPointer(lut->MapScalars(field, VTK_COLOR_MODE_DEFAULT, -1));
+  colors->SetName("Colors");
+  mesh->GetPointData()->SetScalars(colors);
+
+  const std::string original = vtkSMPTools::GetBackend();
+  std::vector<vtkSmartPointer<vtkMultiBlockDataSet>> results[2];
+  const char* backends[2] = { "Sequential", original.c_str() };
+  for (int run = 0; run < 2; ++run)
+  {
+    vtkSMPTools::SetBackend(backends[run]);
+    vtkSMPTools::Initialize(run == 0 ? 1 : 2);
+    vtkNew<vtkVertexClusterOctree> filter;
+    vtkNew<vtkTest::ErrorObserver> warnings; // the isosurface has a few degenerate triangles
+    filter->AddObserver(vtkCommand::WarningEvent, warnings);
+    filter->SetInputData(mesh);
+    filter->SetLevelModeToTargetTriangleCounts();
+    filter->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 5);
+    filter->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 50);
+    filter->ComputeNormalsOn();
+    filter->BakeTextureOn();
+    filter->SetTextureResolution(128);
+    filter->Update();
+    for (int port = 0; port < 2; ++port)
+    {
+      auto copy = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+      copy->DeepCopy(filter->GetOutputDataObject(port));
+      results[run].push_back(copy);
+    }
+  }
+  vtkSMPTools::SetBackend(original.c_str());
+  vtkMultiBlockDataSet* one = results[0][0];
+  vtkMultiBlockDataSet* two = results[1][0];
+  MESHLOD_CHECK_EQ(one->GetNumberOfBlocks(), 3u);
+  MESHLOD_CHECK_EQ(one->GetNumberOfBlocks(), two->GetNumberOfBlocks());
+  for (unsigned int i = 0; i < std::min(one->GetNumberOfBlocks(), two->GetNumberOfBlocks()); ++i)
+  {
+    auto* a = vtkPolyData::SafeDownCast(one->GetBlock(i));
+    auto* b = vtkPolyData::SafeDownCast(two->GetBlock(i));
+    MESHLOD_CHECK(SameArray(a->GetPoints()->GetData(), b->GetPoints()->GetData()));
+    MESHLOD_CHECK(Triangles(a) == Triangles(b));
+    MESHLOD_CHECK_EQ(
+      a->GetPointData()->GetNumberOfArrays(), b->GetPointData()->GetNumberOfArrays());
+    for (int k = 0; k < a->GetPointData()->GetNumberOfArrays(); ++k)
+    {
+      MESHLOD_CHECK(SameArray(a->GetPointData()->GetArray(k),
+        b->GetPointData()->GetArray(a->GetPointData()->GetArrayName(k))));
+    }
+    auto* ta = vtkImageData::SafeDownCast(results[0][1]->GetBlock(i));
+    auto* tb = vtkImageData::SafeDownCast(results[1][1]->GetBlock(i));
+    MESHLOD_CHECK((ta == nullptr) == (tb == nullptr));
+    if (ta && tb)
+    {
+      MESHLOD_CHECK(SameArray(ta->GetPointData()->GetScalars(), tb->GetPointData()->GetScalars()));
+    }
+  }
+}
+} // namespace
+
+int TestVertexClusterOctreeTexture(int, char*[])
+{
+  TestColorArray();
+  TestInputTexture();
+  TestThreads();
+  return meshlod::testing::Result();
+}
