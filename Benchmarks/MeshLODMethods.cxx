@@ -10,6 +10,7 @@
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkTriangleCollapseDecimation.h"
+#include "vtkVertexClusterOctree.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -91,6 +92,27 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     });
   curvature.MaximumInputTriangles = 700000;
   methods.push_back(curvature);
+
+  // The octree clustering is compared with vtkQuadricClustering: one level per target, epsilon
+  // searched by the filter inside the timed run.
+  Method octree;
+  octree.Name = "vtkVertexClusterOctree";
+  octree.Settings = "TargetTriangleCounts level mode, one level per target, defaults otherwise";
+  octree.Parallel = true;
+  octree.Hierarchy = [](vtkPolyData* input, const std::vector<vtkIdType>& targets) {
+    vtkNew<vtkVertexClusterOctree> cluster;
+    cluster->SetInputData(input);
+    cluster->SetLevelModeToTargetTriangleCounts();
+    std::vector<vtkIdType> sorted(targets);
+    std::sort(sorted.rbegin(), sorted.rend());
+    for (const vtkIdType target : sorted)
+    {
+      cluster->AddTargetTriangleCount(target);
+    }
+    cluster->Update();
+    return NearestLevels(cluster->GetHierarchy(), targets);
+  };
+  methods.push_back(octree);
 }
 
 } // namespace benchmark
