@@ -25,7 +25,6 @@ set(meshlod_private_headers
   Filters/Core/LocalSurfaceFit.h
   Filters/Core/OctreeClustering.h
   Filters/Core/Quadric.h
-  Filters/Core/QuadricMetric.h
   Filters/Core/TextureAtlas.h
   Filters/Core/TriangleCollapse.h
   Filters/Core/TriangleMesh.h
@@ -45,7 +44,6 @@ set(meshlod_sources
   Filters/Core/LocalSurfaceFit.cxx
   Filters/Core/OctreeClustering.cxx
   Filters/Core/Quadric.cxx
-  Filters/Core/QuadricMetric.cxx
   Filters/Core/TextureAtlas.cxx
   Filters/Core/TriangleCollapse.cxx
   Filters/Core/TriangleMesh.cxx

@@ -155,9 +155,9 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
     {
       centroid[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
     }
-    q.Minimize(centroid, c.Position);
+    q.MinimizeRegularized(centroid, c.Position);
     c.Cost = q.Evaluate(c.Position);
-    c.Error = q.Weight > 0.0 ? std::sqrt(c.Cost / q.Weight) : 0.0;
+    c.Error = q.Weight() > 0.0 ? std::sqrt(c.Cost / q.Weight()) : 0.0;
     if (this->Options.Operator == CollapseOperator::TrianglesAndEdges)
     {
       c.Cost /= this->Options.TriangleCostFactor; // ranked against edges, see below
@@ -192,9 +192,9 @@ double CollapseCostModel::Edge(const Id* tri, int k, CollapseCandidate& c) const
   const double* b = this->State.Mesh.Point(tri[l]);
   const Quadric q = this->State.Quadrics[tri[k]] + this->State.Quadrics[tri[l]];
   const double middle[3] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
-  q.Minimize(middle, c.Position);
+  q.MinimizeRegularized(middle, c.Position);
   c.Cost = q.Evaluate(c.Position);
-  c.Error = q.Weight > 0.0 ? std::sqrt(c.Cost / q.Weight) : 0.0;
+  c.Error = q.Weight() > 0.0 ? std::sqrt(c.Cost / q.Weight()) : 0.0;
   c.Members[0] = tri[k];
   c.Members[1] = tri[l];
   c.MemberCount = 2;
@@ -217,13 +217,13 @@ double CollapseCostModel::BestEdge(const Id* tri, CollapseCandidate& c, double& 
     const Quadric q = this->State.Quadrics[tri[k]] + this->State.Quadrics[tri[l]];
     const double middle[3] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
     double x[3];
-    q.Minimize(middle, x);
+    q.MinimizeRegularized(middle, x);
     const double cost = q.Evaluate(x);
     worst = std::max(worst, cost);
     if (cost < best)
     {
       best = cost;
-      bestError = q.Weight > 0.0 ? std::sqrt(cost / q.Weight) : 0.0;
+      bestError = q.Weight() > 0.0 ? std::sqrt(cost / q.Weight()) : 0.0;
       bestEdge = k;
       std::copy_n(x, 3, bestPosition);
     }

@@ -95,36 +95,25 @@ void CollapseMesh::Initialize(
       {
         const Id t = adj.Triangles[i];
         const Id* tri = mesh.Triangle(t);
+        Quadric plane;
         double normal[3];
-        const double twiceArea =
-          TriangleNormal(mesh.Point(tri[0]), mesh.Point(tri[1]), mesh.Point(tri[2]), normal);
-        if (twiceArea <= 0.0)
+        TriangleQuadric(mesh.Point(tri[0]), mesh.Point(tri[1]), mesh.Point(tri[2]), plane, normal);
+        if (!(plane.Weight() > 0.0))
         {
-          continue;
+          continue; // degenerate triangle
         }
-        q += Quadric::FromPlane(normal, mesh.Point(tri[0]), 0.5 * twiceArea);
+        q += plane;
         // Boundary edges of t at v get a plane through the edge, perpendicular to t, so that
         // the boundary resists moving sideways.
         const int c = CornerOf(tri, v);
         for (const int e : { c, (c + 2) % 3 })
         {
-          if (topology.EdgeNeighbors[3 * static_cast<std::size_t>(t) + e] != BoundaryEdge)
+          if (topology.EdgeNeighbors[3 * static_cast<std::size_t>(t) + e] == BoundaryEdge)
           {
-            continue;
-          }
-          const double* p = mesh.Point(tri[e]);
-          const double* r = mesh.Point(tri[(e + 1) % 3]);
-          double edge[3], side[3];
-          Subtract(r, p, edge);
-          Cross(edge, normal, side);
-          const double length = std::sqrt(Dot(side, side)); // == |edge|
-          if (length > 0.0)
-          {
-            for (double& s : side)
-            {
-              s /= length;
-            }
-            q += Quadric::FromPlane(side, p, boundaryWeight * length * length);
+            Quadric side;
+            BoundaryEdgeQuadric(
+              mesh.Point(tri[e]), mesh.Point(tri[(e + 1) % 3]), normal, boundaryWeight, side);
+            q += side;
           }
         }
       }

@@ -17,7 +17,7 @@
 #ifndef meshlod_CollapseMesh_h
 #define meshlod_CollapseMesh_h
 
-#include "QuadricMetric.h"
+#include "Quadric.h"
 #include "TriangleMesh.h"
 
 #include <cstdint>

@@ -26,13 +26,53 @@ void Quadric::AddPlane(const double n[3], const double point[3], double weight)
 }
 
 //------------------------------------------------------------------------------
-double Quadric::Evaluate(const double v[3]) const
+double Quadric::RmsDistance(const double v[3]) const
 {
+  const double weight = this->Weight();
+  return weight > 0.0 ? std::sqrt(this->Evaluate(v) / weight) : 0.0;
+}
+
+//------------------------------------------------------------------------------
+void Quadric::MinimizeRegularized(const double origin[3],
+  double result[3],
+  double relativeTolerance) const
+{
+  // With x = o + y the gradient A (o + y) + b = 0 gives A y = -(A o + b); A + eps I is
+  // positive definite, so a Cholesky factorisation always exists.
   const double* q = this->Q;
-  const double x = v[0], y = v[1], z = v[2];
-  const double value = q[0] * x * x + 2.0 * q[1] * x * y + 2.0 * q[2] * x * z + q[3] * y * y +
-    2.0 * q[4] * y * z + q[5] * z * z + 2.0 * (q[6] * x + q[7] * y + q[8] * z) + q[9];
-  return std::max(0.0, value);
+  const double* o = origin;
+  const double r0 = -(q[0] * o[0] + q[1] * o[1] + q[2] * o[2] + q[6]);
+  const double r1 = -(q[1] * o[0] + q[3] * o[1] + q[4] * o[2] + q[7]);
+  const double r2 = -(q[2] * o[0] + q[4] * o[1] + q[5] * o[2] + q[8]);
+  const double trace = q[0] + q[3] + q[5];
+  result[0] = o[0];
+  result[1] = o[1];
+  result[2] = o[2];
+  if (!(trace > 0.0) || !std::isfinite(trace))
+  {
+    return;
+  }
+  const double eps = relativeTolerance * trace;
+  // Cholesky L L^T of the regularised matrix.
+  const double l00 = std::sqrt(q[0] + eps);
+  const double l10 = q[1] / l00;
+  const double l20 = q[2] / l00;
+  const double d11 = q[3] + eps - l10 * l10;
+  const double l11 = std::sqrt(d11 > 0.0 ? d11 : eps);
+  const double l21 = (q[4] - l20 * l10) / l11;
+  const double d22 = q[5] + eps - l20 * l20 - l21 * l21;
+  const double l22 = std::sqrt(d22 > 0.0 ? d22 : eps);
+  // Forward then back substitution.
+  const double i00 = 1.0 / l00, i11 = 1.0 / l11, i22 = 1.0 / l22;
+  const double z0 = r0 * i00;
+  const double z1 = (r1 - l10 * z0) * i11;
+  const double z2 = (r2 - l20 * z0 - l21 * z1) * i22;
+  const double y2 = z2 * i22;
+  const double y1 = (z1 - l21 * y2) * i11;
+  const double y0 = (z0 - l10 * y1 - l20 * y2) * i00;
+  result[0] += y0;
+  result[1] += y1;
+  result[2] += y2;
 }
 
 //------------------------------------------------------------------------------

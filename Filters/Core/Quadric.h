@@ -30,14 +30,56 @@ struct VTKFILTERSMESHLOD_EXPORT Quadric
       this->Q[i] += scale * other.Q[i];
     }
   }
+  Quadric& operator+=(const Quadric& other)
+  {
+    for (int i = 0; i < 10; ++i)
+    {
+      this->Q[i] += other.Q[i];
+    }
+    return *this;
+  }
+  friend Quadric operator+(Quadric a, const Quadric& b) { return a += b; }
+
   /// Add the plane through `point` with unit normal `n`, weighted by `weight`.
   void AddPlane(const double n[3], const double point[3], double weight);
+
+  /// The quadric of one plane (see AddPlane).
+  static Quadric FromPlane(const double n[3], const double point[3], double weight)
+  {
+    Quadric q;
+    q.AddPlane(n, point, weight);
+    return q;
+  }
 
   /// The sum of the plane weights (trace of the 3x3 block).
   double Weight() const { return this->Q[0] + this->Q[3] + this->Q[5]; }
 
-  /// v^T Q v: the weighted sum of squared distances (never negative after rounding).
-  double Evaluate(const double v[3]) const;
+  /// v^T Q v: the weighted sum of squared distances (never negative after rounding). Inline:
+  /// collapse costs evaluate it in their innermost loop.
+  double Evaluate(const double v[3]) const
+  {
+    const double* q = this->Q;
+    const double ax = q[0] * v[0] + q[1] * v[1] + q[2] * v[2];
+    const double ay = q[1] * v[0] + q[3] * v[1] + q[4] * v[2];
+    const double az = q[2] * v[0] + q[4] * v[1] + q[5] * v[2];
+    const double value = v[0] * (ax + 2.0 * q[6]) + v[1] * (ay + 2.0 * q[7]) +
+      v[2] * (az + 2.0 * q[8]) + q[9];
+    return value > 0.0 ? value : 0.0;
+  }
+
+  /// Root-mean-square distance to the planes, sqrt(v^T Q v / Weight()); 0 without planes.
+  double RmsDistance(const double v[3]) const;
+
+  /// The minimiser found by one regularised 3x3 Cholesky solve, (A + eps I) y = -(A o + b) with
+  /// eps = relativeTolerance * trace(A) and result o + y. Along eigenvectors whose eigenvalue
+  /// is well above eps this is the exact minimiser; along (nearly) null directions the point
+  /// stays near `origin` (typically the centroid of the collapsing vertices), so on a flat
+  /// patch it does not slide along the patch and on a crease it slides only along the crease.
+  /// It behaves like MinimizeQuadric's truncated pseudo-inverse at a fraction of the cost,
+  /// which matters where every candidate collapse is costed.
+  void MinimizeRegularized(const double origin[3],
+    double result[3],
+    double relativeTolerance = 1e-6) const;
 };
 
 /// The point minimising the quadric in its well-determined directions: starting from `centre`,
