@@ -99,6 +99,8 @@ public:
     this->Waiting.resize(kept);
   }
 
+  std::size_t GetNumberOfWaiting() const { return this->Waiting.size(); }
+
 private:
   std::vector<std::int64_t> ParkedAt; // per triangle, -1 when not waiting
   std::vector<std::int64_t> ChangedAt; // per vertex
@@ -107,6 +109,8 @@ private:
 
 // Greedy schedule: the parking lot is checked after this many collapses.
 constexpr std::int64_t ParkedRetryCollapses = 256;
+// ... or after one collapse per this many waiting triangles, if that is later.
+constexpr std::size_t ParkedRetryShare = 4;
 
 // State shared by both schedules: the mesh, the level bookkeeping, the costs.
 class Collapser
@@ -439,11 +443,17 @@ TriangleCollapseResult Collapser::RunGreedy()
   const bool widen = this->Options.Method == CollapseMethod::Curvature;
   std::vector<Id> touched;
   auto release = [&](Id s) { heap.Update(s); };
+  std::int64_t nextRelease = ParkedRetryCollapses;
   while (!this->Finished())
   {
-    if (heap.Empty() || this->Result.Collapses % ParkedRetryCollapses == 0)
+    if (heap.Empty() || this->Result.Collapses >= nextRelease)
     {
       lot.Release(this->State, release);
+      // A check costs time in proportion to the waiting triangles: space the checks so that
+      // they cost a bounded amount per collapse however many triangles wait.
+      nextRelease = this->Result.Collapses +
+        std::max<std::int64_t>(ParkedRetryCollapses,
+          static_cast<std::int64_t>(lot.GetNumberOfWaiting() / ParkedRetryShare));
       if (heap.Empty())
       {
         break;
