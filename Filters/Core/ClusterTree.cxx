@@ -290,10 +290,7 @@ void ClusterTree::Builder::MergeGroup(const HalfEdge* items,
     const Id node = this->NodeOf[this->Find(tri[k])];
     Quadric& q = store.Work[node - store.Base].Q;
     double p[3][3];
-    for (int c = 0; c < 3; ++c)
-    {
-      this->Tree.RelativePoint(tri[c], p[c]);
-    }
+    this->Tree.RelativeTriangle(tri, p);
     Quadric face;
     double n[3];
     TriangleQuadric(p[0], p[1], p[2], face, n);
@@ -432,10 +429,7 @@ void ClusterTree::VertexQuadric(Id v, Quadric& q, double normal[3]) const
     const Id t = adj.Triangles[i];
     const Id* tri = this->Mesh->Triangle(t);
     double p[3][3];
-    for (int k = 0; k < 3; ++k)
-    {
-      this->RelativePoint(tri[k], p[k]);
-    }
+    this->RelativeTriangle(tri, p);
     Quadric face;
     double n[3];
     TriangleQuadric(p[0], p[1], p[2], face, n);
@@ -525,10 +519,7 @@ void ClusterTree::RelatedQuadric(Id node,
         continue;
       }
       double p[3][3];
-      for (int k = 0; k < 3; ++k)
-      {
-        this->RelativePoint(tri[k], p[k]);
-      }
+      this->RelativeTriangle(tri, p);
       Quadric face;
       double n[3];
       TriangleQuadric(p[0], p[1], p[2], face, n);

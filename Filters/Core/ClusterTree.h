@@ -104,6 +104,14 @@ public:
     out[1] = p[1] - this->Centre[1];
     out[2] = p[2] - this->Centre[2];
   }
+  /// The corners of triangle `tri` relative to Centre.
+  void RelativeTriangle(const Id* tri, double p[3][3]) const
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      this->RelativePoint(tri[k], p[k]);
+    }
+  }
   /// The longest edge of the cell of a node formed at `depth`.
   double CellSize(int depth) const;
   /// The cell of `depth` holding vertex v: lowest corner (relative to Centre) and edge lengths.

@@ -180,6 +180,7 @@ struct OctreeClustering::Internals
   // --- nodes -----------------------------------------------------------------------------------
   bool CheapInadmissible(Id index) const;
   void UpdateThreshold(Id index);
+  void MovedNormal(Id item, const double v0[3], double moved[3]) const;
   void AddCrossingTerms(const double v0[3], const EvaluationScratch& crossing, Quadric& q) const;
   bool HasFlip(const double v0[3], const EvaluationScratch& crossing, int depth) const;
   void Evaluate(Id index, EvaluationScratch& scratch);
@@ -235,6 +236,16 @@ void OctreeClustering::Internals::UpdateThreshold(Id index)
 }
 
 //------------------------------------------------------------------------------
+// Normal (not normalised) of crossing triangle item / 3 with its corner item % 3 moved to v0.
+void OctreeClustering::Internals::MovedNormal(Id item, const double v0[3], double moved[3]) const
+{
+  double p[3][3];
+  this->Tree.RelativeTriangle(this->Mesh.Triangle(item / 3), p);
+  std::copy_n(v0, 3, p[item % 3]);
+  Normal(p[0], p[1], p[2], moved);
+}
+
+//------------------------------------------------------------------------------
 // e2 (§3): the squared distance of the vertex inside a crossing triangle (v, a, b) to the new
 // triangle (v0, a, b) is (area(v, a, b) / area(v0, a, b))^2 times the squared distance of v0 to
 // the original plane, so e2 reweights the crossing triangles' planes.
@@ -244,17 +255,8 @@ void OctreeClustering::Internals::AddCrossingTerms(const double v0[3],
 {
   for (size_t i = 0; i < crossing.Crossing.size(); ++i)
   {
-    const Id item = crossing.Crossing[i];
-    const Id* tri = this->Mesh.Triangle(item / 3);
-    const int c = static_cast<int>(item % 3);
-    double p[3][3];
-    for (int k = 0; k < 3; ++k)
-    {
-      this->Tree.RelativePoint(tri[k], p[k]);
-    }
-    std::copy_n(v0, 3, p[c]);
     double moved[3];
-    Normal(p[0], p[1], p[2], moved);
+    this->MovedNormal(crossing.Crossing[i], v0, moved);
     const double* n = crossing.Normals.data() + 3 * i;
     const double before = Dot(n, n);
     const double after = Dot(moved, moved);
@@ -282,14 +284,8 @@ bool OctreeClustering::Internals::HasFlip(const double v0[3],
     {
       continue;
     }
-    double p[3][3];
-    for (int k = 0; k < 3; ++k)
-    {
-      this->Tree.RelativePoint(tri[k], p[k]);
-    }
-    std::copy_n(v0, 3, p[c]);
     double moved[3];
-    Normal(p[0], p[1], p[2], moved);
+    this->MovedNormal(item, v0, moved);
     if (!(Dot(crossing.Normals.data() + 3 * i, moved) > 0.0))
     {
       return true;
@@ -345,10 +341,7 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   {
     const Id* tri = this->Mesh.Triangle(scratch.Crossing[i] / 3);
     double p[3][3];
-    for (int k = 0; k < 3; ++k)
-    {
-      this->Tree.RelativePoint(tri[k], p[k]);
-    }
+    this->Tree.RelativeTriangle(tri, p);
     TriangleQuadric(p[0], p[1], p[2], scratch.Planes[i], scratch.Normals.data() + 3 * i);
   }
   const EvaluationScratch& crossing = scratch;

@@ -16,15 +16,8 @@ double Length2(const double* a, const double* b)
 
 double Area(const TriangleMesh& mesh, Id t)
 {
-  const Id* tri = mesh.Triangle(t);
-  const double* a = mesh.Point(tri[0]);
-  const double* b = mesh.Point(tri[1]);
-  const double* c = mesh.Point(tri[2]);
-  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-  const double n[3] = {
-    u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
-  };
+  double n[3];
+  mesh.AreaVector(t, n);
   return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 

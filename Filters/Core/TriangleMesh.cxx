@@ -7,6 +7,20 @@
 namespace meshlod
 {
 //------------------------------------------------------------------------------
+void TriangleMesh::AreaVector(Id t, double n[3]) const
+{
+  const Id* tri = this->Triangle(t);
+  const double* a = this->Point(tri[0]);
+  const double* b = this->Point(tri[1]);
+  const double* c = this->Point(tri[2]);
+  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  n[0] = u[1] * v[2] - u[2] * v[1];
+  n[1] = u[2] * v[0] - u[0] * v[2];
+  n[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+//------------------------------------------------------------------------------
 void VertexTriangleAdjacency::Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints)
 {
   // Counting sort: count, prefix sum, fill. Filling in triangle order keeps each row sorted.
@@ -227,66 +241,71 @@ int TriangleTopology::TrianglesOnEdge(
 }
 
 //------------------------------------------------------------------------------
-TriangleTopology::EdgeCounts TriangleTopology::CountEdges(const TriangleMesh& mesh) const
+// Calls f(t, k, neighbour) for edge k of every live triangle t until f returns false; returns
+// whether every call returned true.
+namespace
 {
-  EdgeCounts counts;
+template <typename F>
+bool ForEachLiveEdge(const TriangleMesh& mesh, const std::vector<Id>& edgeNeighbors, F&& f)
+{
   for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
   {
-    const Id* tri = mesh.Triangle(t);
-    if (tri[0] == InvalidId)
+    if (mesh.Triangle(t)[0] == InvalidId)
     {
       continue;
     }
     for (int k = 0; k < 3; ++k)
     {
-      const Id nb = this->EdgeNeighbors[3 * static_cast<size_t>(t) + k];
-      if (nb == BoundaryEdge)
-      {
-        ++counts.Boundary;
-      }
-      else if (nb >= 0)
-      {
-        counts.Manifold += (t < nb) ? 1 : 0;
-      }
-      else
-      {
-        // Count a non-manifold edge once: from the lowest triangle id on it.
-        Id first = InvalidId;
-        this->TrianglesOnEdge(mesh, tri[k], tri[(k + 1) % 3], &first, 1);
-        counts.NonManifold += (first == t) ? 1 : 0;
-      }
-    }
-  }
-  return counts;
-}
-
-//------------------------------------------------------------------------------
-bool TriangleTopology::IsConsistentlyOriented(const TriangleMesh& mesh) const
-{
-  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
-  {
-    const Id* tri = mesh.Triangle(t);
-    if (tri[0] == InvalidId)
-    {
-      continue;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      const Id nb = this->EdgeNeighbors[3 * static_cast<size_t>(t) + k];
-      if (nb < 0)
-      {
-        continue;
-      }
-      // t runs a -> b, so the neighbour must run b -> a.
-      const Id* ntri = mesh.Triangle(nb);
-      const int cb = CornerOf(ntri, tri[(k + 1) % 3]);
-      if (ntri[(cb + 1) % 3] != tri[k])
+      if (!f(t, k, edgeNeighbors[3 * static_cast<size_t>(t) + k]))
       {
         return false;
       }
     }
   }
   return true;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+TriangleTopology::EdgeCounts TriangleTopology::CountEdges(const TriangleMesh& mesh) const
+{
+  EdgeCounts counts;
+  ForEachLiveEdge(mesh, this->EdgeNeighbors, [&](Id t, int k, Id nb) {
+    if (nb == BoundaryEdge)
+    {
+      ++counts.Boundary;
+    }
+    else if (nb >= 0)
+    {
+      counts.Manifold += (t < nb) ? 1 : 0;
+    }
+    else
+    {
+      // Count a non-manifold edge once: from the lowest triangle id on it.
+      const Id* tri = mesh.Triangle(t);
+      Id first = InvalidId;
+      this->TrianglesOnEdge(mesh, tri[k], tri[(k + 1) % 3], &first, 1);
+      counts.NonManifold += (first == t) ? 1 : 0;
+    }
+    return true;
+  });
+  return counts;
+}
+
+//------------------------------------------------------------------------------
+bool TriangleTopology::IsConsistentlyOriented(const TriangleMesh& mesh) const
+{
+  return ForEachLiveEdge(mesh, this->EdgeNeighbors, [&](Id t, int k, Id nb) {
+    if (nb < 0)
+    {
+      return true;
+    }
+    // t runs a -> b, so the neighbour must run b -> a.
+    const Id* tri = mesh.Triangle(t);
+    const Id* ntri = mesh.Triangle(nb);
+    const int cb = CornerOf(ntri, tri[(k + 1) % 3]);
+    return ntri[(cb + 1) % 3] == tri[k];
+  });
 }
 
 //------------------------------------------------------------------------------

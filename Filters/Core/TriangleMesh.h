@@ -32,6 +32,9 @@ struct VTKFILTERSMESHLOD_EXPORT TriangleMesh
   double* Point(Id v) { return this->Points.data() + 3 * static_cast<std::size_t>(v); }
   const Id* Triangle(Id t) const { return this->Triangles.data() + 3 * static_cast<std::size_t>(t); }
   Id* Triangle(Id t) { return this->Triangles.data() + 3 * static_cast<std::size_t>(t); }
+
+  /// (p1 - p0) x (p2 - p0) of triangle t: its normal, twice its area in length.
+  void AreaVector(Id t, double n[3]) const;
 };
 
 /// Vertex -> incident triangles, as offsets into one flat list (compressed rows). The triangles
