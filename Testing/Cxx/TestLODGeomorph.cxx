@@ -3,6 +3,7 @@
 // degenerate triangles, errors, and the same output for every SMP backend.
 #include "vtkLODGeomorph.h"
 
+#include "MeshLODHierarchyChecks.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestHierarchies.h"
@@ -32,6 +33,7 @@
 namespace
 {
 using namespace meshlod;
+using testing::Level;
 
 // The mesh with float or double points and point data: Height (double, = z), Label (int,
 // 10 * id), Normals (float, the attribute) and cell data CellLabel (int, 100 + id).
@@ -70,11 +72,6 @@ vtkSmartPointer<vtkPolyData> Decorate(vtkPolyData* mesh, int pointType)
   }
   out->GetCellData()->AddArray(cellLabel);
   return out;
-}
-
-vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, int i)
-{
-  return vtkPolyData::SafeDownCast(hierarchy->GetBlock(i));
 }
 
 vtkPolyData* Run(vtkLODGeomorph* filter, double lod)
@@ -336,17 +333,14 @@ void TestErrors(vtkMultiBlockDataSet* h)
 // The same points, arrays and cells for the sequential and the default SMP backend.
 void TestBackends(vtkMultiBlockDataSet* h)
 {
-  auto compute = [&](const char* backend) {
-    vtkSMPTools::SetBackend(backend);
+  const std::string initial = vtkSMPTools::GetBackend();
+  const auto runs = testing::RunWithBothBackends([&] {
     vtkNew<vtkLODGeomorph> filter;
     filter->SetInputData(h);
-    auto copy = vtkSmartPointer<vtkPolyData>::New();
-    copy->DeepCopy(Run(filter, 0.37));
-    return copy;
-  };
-  const std::string initial = vtkSMPTools::GetBackend();
-  vtkSmartPointer<vtkPolyData> sequential = compute("Sequential");
-  vtkSmartPointer<vtkPolyData> parallel = compute(initial.c_str());
+    return vtkSmartPointer<vtkPolyData>(Run(filter, 0.37));
+  });
+  vtkPolyData* sequential = runs.first;
+  vtkPolyData* parallel = runs.second;
   MESHLOD_CHECK(SameValues(sequential->GetPoints()->GetData(), parallel->GetPoints()->GetData()));
   MESHLOD_CHECK(SameValues(
     sequential->GetPointData()->GetArray("Height"), parallel->GetPointData()->GetArray("Height")));

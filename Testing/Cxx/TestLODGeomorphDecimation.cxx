@@ -34,12 +34,8 @@
 namespace
 {
 using namespace meshlod;
+using testing::Level;
 using SDDP = vtkStreamingDemandDrivenPipeline;
-
-vtkPolyData* Level(vtkMultiBlockDataSet* h, int i)
-{
-  return vtkPolyData::SafeDownCast(h->GetBlock(static_cast<unsigned int>(i)));
-}
 
 vtkPolyData* AtLevelOfDetail(vtkLODGeomorph* filter, double lod)
 {

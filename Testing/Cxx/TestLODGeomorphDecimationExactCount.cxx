@@ -14,6 +14,7 @@
 #include "vtkTriangleCollapseDecimation.h"
 
 #include "Core/TriangleMesh.h"
+#include "MeshLODHierarchyChecks.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestHierarchies.h"
 #include "MeshLODTestMeshes.h"
@@ -32,11 +33,7 @@
 namespace
 {
 using namespace meshlod;
-
-vtkPolyData* Level(vtkMultiBlockDataSet* h, int i)
-{
-  return vtkPolyData::SafeDownCast(h->GetBlock(static_cast<unsigned int>(i)));
-}
+using testing::Level;
 
 // What is wrong with a mesh that should be closed, manifold, consistently oriented, of Euler
 // characteristic `euler`, with every point used and no degenerate or repeated triangle; empty

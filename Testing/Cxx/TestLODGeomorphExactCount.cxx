@@ -4,6 +4,7 @@
 #include "vtkLODGeomorph.h"
 
 #include "Core/TriangleMesh.h"
+#include "MeshLODHierarchyChecks.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODInputMesh.h"
 #include "MeshLODTestCheck.h"
@@ -34,11 +35,7 @@
 namespace
 {
 using namespace meshlod;
-
-vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, int i)
-{
-  return vtkPolyData::SafeDownCast(hierarchy->GetBlock(i));
-}
+using testing::Level;
 
 vtkPolyData* Run(vtkLODGeomorph* filter, vtkIdType count, double fraction = 0.0)
 {
@@ -290,30 +287,12 @@ void TestCluster()
 
 void TestBackends(vtkMultiBlockDataSet* h)
 {
-  auto compute = [&](const char* backend) {
-    vtkSMPTools::SetBackend(backend);
+  const auto runs = testing::RunWithBothBackends([&] {
     vtkNew<vtkLODGeomorph> filter;
     filter->SetInputData(h);
-    auto copy = vtkSmartPointer<vtkPolyData>::New();
-    copy->DeepCopy(Run(filter, Level(h, 1)->GetNumberOfPolys() + 40, 0.3));
-    return copy;
-  };
-  const std::string initial = vtkSMPTools::GetBackend();
-  vtkSmartPointer<vtkPolyData> sequential = compute("Sequential");
-  vtkSmartPointer<vtkPolyData> parallel = compute(initial.c_str());
-  MESHLOD_CHECK_EQ(sequential->GetNumberOfPoints(), parallel->GetNumberOfPoints());
-  bool same = sequential->GetNumberOfPoints() == parallel->GetNumberOfPoints();
-  for (vtkIdType p = 0; p < sequential->GetNumberOfPoints() && same; ++p)
-  {
-    double a[3], b[3];
-    sequential->GetPoint(p, a);
-    parallel->GetPoint(p, b);
-    same = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
-  }
-  MESHLOD_CHECK(same);
-  const TriangleMesh ms = testing::ToTriangleMesh(sequential);
-  const TriangleMesh mp = testing::ToTriangleMesh(parallel);
-  MESHLOD_CHECK(ms.Triangles == mp.Triangles);
+    return vtkSmartPointer<vtkPolyData>(Run(filter, Level(h, 1)->GetNumberOfPolys() + 40, 0.3));
+  });
+  MESHLOD_CHECK(testing::SameMesh(runs.first, runs.second));
 }
 } // namespace
 

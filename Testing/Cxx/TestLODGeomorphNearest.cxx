@@ -3,6 +3,7 @@
 // the correspondence cache, and the same output for every SMP backend.
 #include "vtkLODGeomorph.h"
 
+#include "MeshLODHierarchyChecks.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODNearestCorrespondence.h"
 #include "MeshLODSurfaceDistance.h"
@@ -31,11 +32,7 @@
 namespace
 {
 using namespace meshlod;
-
-vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, int i)
-{
-  return vtkPolyData::SafeDownCast(hierarchy->GetBlock(i));
-}
+using testing::Level;
 
 vtkPolyData* Run(vtkLODGeomorph* filter, double lod)
 {
@@ -228,29 +225,12 @@ void TestDecimatedPair()
   observer->Clear();
 
   // Same output for the sequential and the default backend.
-  auto compute = [&](const char* backend) {
-    vtkSMPTools::SetBackend(backend);
+  const auto runs = testing::RunWithBothBackends([&] {
     vtkNew<vtkLODGeomorph> f;
     f->SetInputData(h);
-    auto copy = vtkSmartPointer<vtkPolyData>::New();
-    copy->DeepCopy(Run(f, 0.97));
-    return copy;
-  };
-  const std::string initial = vtkSMPTools::GetBackend();
-  vtkSmartPointer<vtkPolyData> sequential = compute("Sequential");
-  vtkSmartPointer<vtkPolyData> parallel = compute(initial.c_str());
-  MESHLOD_CHECK_EQ(sequential->GetNumberOfPoints(), parallel->GetNumberOfPoints());
-  bool same = sequential->GetNumberOfPoints() == parallel->GetNumberOfPoints();
-  for (vtkIdType p = 0; p < sequential->GetNumberOfPoints() && same; ++p)
-  {
-    double a[3], b[3];
-    sequential->GetPoint(p, a);
-    parallel->GetPoint(p, b);
-    same = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
-  }
-  MESHLOD_CHECK(same);
-  MESHLOD_CHECK(
-    testing::ToTriangleMesh(sequential).Triangles == testing::ToTriangleMesh(parallel).Triangles);
+    return vtkSmartPointer<vtkPolyData>(Run(f, 0.97));
+  });
+  MESHLOD_CHECK(testing::SameMesh(runs.first, runs.second));
 }
 
 // A morph hierarchy read with the nearest-vertex correspondence instead.

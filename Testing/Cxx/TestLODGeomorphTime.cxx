@@ -3,6 +3,7 @@
 // hierarchy that has no time and runs only once.
 #include "vtkLODGeomorph.h"
 
+#include "MeshLODHierarchyChecks.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestHierarchies.h"
 #include "MeshLODTestMeshes.h"
@@ -24,6 +25,7 @@
 namespace
 {
 using namespace meshlod;
+using testing::SameMesh;
 using SDDP = vtkStreamingDemandDrivenPipeline;
 
 // A pipeline source handing out a fixed hierarchy and counting its executions.
@@ -64,25 +66,6 @@ protected:
 };
 vtkStandardNewMacro(HierarchySource);
 
-bool SameMesh(vtkPolyData* a, vtkPolyData* b)
-{
-  if (a->GetNumberOfPoints() != b->GetNumberOfPoints() ||
-    a->GetNumberOfPolys() != b->GetNumberOfPolys())
-  {
-    return false;
-  }
-  for (vtkIdType p = 0; p < a->GetNumberOfPoints(); ++p)
-  {
-    double x[3], y[3];
-    a->GetPoint(p, x);
-    b->GetPoint(p, y);
-    if (x[0] != y[0] || x[1] != y[1] || x[2] != y[2])
-    {
-      return false;
-    }
-  }
-  return testing::ToTriangleMesh(a).Triangles == testing::ToTriangleMesh(b).Triangles;
-}
 } // namespace
 
 int TestLODGeomorphTime(int, char*[])

@@ -34,11 +34,7 @@
 namespace
 {
 using namespace meshlod;
-
-vtkPolyData* Level(vtkMultiBlockDataSet* h, unsigned int i)
-{
-  return vtkPolyData::SafeDownCast(h->GetBlock(i));
-}
+using testing::Level;
 
 double Field(vtkPolyData* level, const char* name)
 {

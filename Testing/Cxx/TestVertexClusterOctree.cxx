@@ -1,5 +1,6 @@
 // vtkVertexClusterOctree: exact results on hand-made meshes, the hierarchy's properties on
 // generated ones, settings and input errors.
+#include "MeshLODHierarchyChecks.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
@@ -35,26 +36,9 @@
 namespace
 {
 using namespace meshlod;
-using Triangle = std::array<vtkIdType, 3>;
-
-std::vector<Triangle> Triangles(vtkPolyData* poly)
-{
-  std::vector<Triangle> result;
-  auto it = vtk::TakeSmartPointer(poly->GetPolys()->NewIterator());
-  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-  {
-    vtkIdType n;
-    const vtkIdType* ids;
-    it->GetCurrentCell(n, ids);
-    result.push_back({ ids[0], ids[1], ids[2] });
-  }
-  return result;
-}
-
-vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, unsigned int i)
-{
-  return vtkPolyData::SafeDownCast(hierarchy->GetBlock(i));
-}
+using testing::Level;
+using testing::Triangles;
+using Triangle = testing::TriangleIds;
 
 double Field(vtkPolyData* level, const char* name)
 {

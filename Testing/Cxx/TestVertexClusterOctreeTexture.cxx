@@ -1,5 +1,6 @@
 // vtkVertexClusterOctree texture baking (§4): atlas layout, continuity across edges, and the
 // colours the baked textures reproduce, from a colour array and from an input texture.
+#include "MeshLODHierarchyChecks.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
@@ -34,22 +35,9 @@
 namespace
 {
 using namespace meshlod;
-using Triangle = std::array<vtkIdType, 3>;
+using testing::Triangles;
+using Triangle = testing::TriangleIds;
 using Color = std::array<double, 3>;
-
-std::vector<Triangle> Triangles(vtkPolyData* poly)
-{
-  std::vector<Triangle> result;
-  auto it = vtk::TakeSmartPointer(poly->GetPolys()->NewIterator());
-  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-  {
-    vtkIdType n;
-    const vtkIdType* ids;
-    it->GetCurrentCell(n, ids);
-    result.push_back({ ids[0], ids[1], ids[2] });
-  }
-  return result;
-}
 
 // Bilinear lookup (texel centres at (i + 0.5) / size, clamped at the border).
 Color Lookup(vtkImageData* image, double u, double v)

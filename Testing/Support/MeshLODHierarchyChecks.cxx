@@ -10,6 +10,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkStaticCellLocator.h"
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <iostream>
 #include <map>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace meshlod
@@ -26,24 +28,7 @@ namespace testing
 {
 namespace
 {
-using Triangle = std::array<vtkIdType, 3>;
-
-std::vector<Triangle> Triangles(vtkPolyData* mesh)
-{
-  std::vector<Triangle> triangles;
-  vtkIdType n;
-  const vtkIdType* ids;
-  vtkCellArray* polys = mesh->GetPolys();
-  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
-  {
-    polys->GetCellAtId(c, n, ids);
-    if (n == 3)
-    {
-      triangles.push_back({ ids[0], ids[1], ids[2] });
-    }
-  }
-  return triangles;
-}
+using Triangle = TriangleIds;
 
 // The rotation of a triangle that starts with its smallest id: equal for equal oriented
 // triangles.
@@ -337,6 +322,46 @@ double BoundaryDeviation(vtkPolyData* fine, vtkPolyData* coarse)
     worst = std::max(worst, std::sqrt(best));
   }
   return worst;
+}
+
+//------------------------------------------------------------------------------
+std::vector<TriangleIds> Triangles(vtkPolyData* mesh)
+{
+  std::vector<TriangleIds> triangles;
+  vtkIdType n;
+  const vtkIdType* ids;
+  vtkCellArray* polys = mesh->GetPolys();
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+  {
+    polys->GetCellAtId(c, n, ids);
+    if (n == 3)
+    {
+      triangles.push_back({ ids[0], ids[1], ids[2] });
+    }
+  }
+  return triangles;
+}
+
+//------------------------------------------------------------------------------
+vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, unsigned int i)
+{
+  return vtkPolyData::SafeDownCast(hierarchy->GetBlock(i));
+}
+
+//------------------------------------------------------------------------------
+std::pair<vtkSmartPointer<vtkPolyData>, vtkSmartPointer<vtkPolyData>> RunWithBothBackends(
+  const std::function<vtkSmartPointer<vtkPolyData>()>& make)
+{
+  const std::string initial = vtkSMPTools::GetBackend();
+  auto run = [&](const char* backend) {
+    vtkSMPTools::SetBackend(backend);
+    auto copy = vtkSmartPointer<vtkPolyData>::New();
+    copy->DeepCopy(make());
+    return copy;
+  };
+  auto sequential = run("Sequential");
+  auto parallel = run(initial.c_str());
+  return { sequential, parallel };
 }
 
 //------------------------------------------------------------------------------

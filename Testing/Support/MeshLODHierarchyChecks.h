@@ -3,7 +3,14 @@
 #ifndef MeshLODHierarchyChecks_h
 #define MeshLODHierarchyChecks_h
 
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include <array>
 #include <cstdint>
+#include <functional>
+#include <utility>
+#include <vector>
 
 class vtkMultiBlockDataSet;
 class vtkPolyData;
@@ -43,6 +50,19 @@ double BoundaryDeviation(vtkPolyData* fine, vtkPolyData* coarse);
 
 /// True when the two meshes have bitwise equal points and cells.
 bool SameMesh(vtkPolyData* a, vtkPolyData* b);
+
+/// Block i of a hierarchy as a polydata (null when it is not one).
+vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, unsigned int i);
+
+/// The triangles of a mesh's polygons, in cell order (other polygons skipped).
+using TriangleIds = std::array<vtkIdType, 3>;
+std::vector<TriangleIds> Triangles(vtkPolyData* mesh);
+
+/// Runs `make` with the Sequential vtkSMPTools backend, then with the backend that was in use
+/// (which is restored), and returns deep copies of both outputs: for "same output for any
+/// thread count" checks.
+std::pair<vtkSmartPointer<vtkPolyData>, vtkSmartPointer<vtkPolyData>> RunWithBothBackends(
+  const std::function<vtkSmartPointer<vtkPolyData>()>& make);
 
 } // namespace testing
 } // namespace meshlod
