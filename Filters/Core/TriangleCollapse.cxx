@@ -443,6 +443,19 @@ TriangleCollapseResult Collapser::RunGreedy()
   const bool widen = this->Options.Method == CollapseMethod::Curvature;
   std::vector<Id> touched;
   auto release = [&](Id s) { heap.Update(s); };
+  // A new cost for triangle s; a triangle that cannot collapse any more leaves the heap.
+  auto reweigh = [&](Id s) {
+    lot.Unpark(s);
+    this->Costs[s] = this->EvaluateCost(s, scratch);
+    if (this->Costs[s] < Infinity)
+    {
+      heap.Update(s);
+    }
+    else
+    {
+      heap.Remove(s);
+    }
+  };
   std::int64_t nextRelease = ParkedRetryCollapses;
   while (!this->Finished())
   {
@@ -486,12 +499,7 @@ TriangleCollapseResult Collapser::RunGreedy()
     this->State.ForEachTriangle(survivor, [&](Id s) {
       const Id* tri = this->State.Mesh.Triangle(s);
       lot.Touch(tri, this->Result.Collapses);
-      lot.Unpark(s);
-      this->Costs[s] = this->EvaluateCost(s, scratch);
-      if (this->Costs[s] < Infinity)
-      {
-        heap.Update(s);
-      }
+      reweigh(s);
       if (widen)
       {
         touched.insert(touched.end(), tri, tri + 3);
@@ -504,12 +512,7 @@ TriangleCollapseResult Collapser::RunGreedy()
       this->State.ForEachTriangle(u, [&](Id s) {
         if (CornerOf(this->State.Mesh.Triangle(s), survivor) < 0)
         {
-          lot.Unpark(s);
-          this->Costs[s] = this->EvaluateCost(s, scratch);
-          if (this->Costs[s] < Infinity)
-          {
-            heap.Update(s);
-          }
+          reweigh(s);
         }
       });
     }
