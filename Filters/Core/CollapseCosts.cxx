@@ -174,7 +174,7 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   bool boundary = false;
   for (int k = 0; k < 3; ++k)
   {
-    this->State.ForEachTriangle(members[k], [&](Id) { ++triangles; });
+    triangles += this->State.TriangleCount(members[k]);
     boundary = boundary || this->State.IsBoundary(members[k]);
   }
   const int valence = std::max(0, triangles - 9 + (boundary ? 1 : 0));

@@ -121,6 +121,12 @@ void CollapseMesh::Initialize(
     }
   });
 
+  this->TriangleCounts.resize(nv);
+  for (Id v = 0; v < nv; ++v)
+  {
+    this->TriangleCounts[v] = adj.Count(v);
+  }
+
   // The topology's vertex -> triangle rows are the first rows.
   this->Rows.Offsets.swap(topology.VertexTriangles.Offsets);
   this->Rows.Triangles.swap(topology.VertexTriangles.Triangles);
@@ -147,9 +153,7 @@ int CollapseMesh::Valence(Id v, std::vector<Id>& scratch) const
   if (!this->IsLocked(v))
   {
     // A manifold fan: as many neighbours as triangles, plus one when the fan is open.
-    int triangles = 0;
-    this->ForEachTriangle(v, [&](Id) { ++triangles; });
-    return triangles + (this->IsBoundary(v) ? 1 : 0);
+    return this->TriangleCounts[v] + (this->IsBoundary(v) ? 1 : 0);
   }
   scratch.clear();
   this->ForEachTriangle(v, [&](Id t) {
@@ -365,7 +369,12 @@ Id CollapseMesh::Apply(const Star& star, const double x[3])
   const Id survivor = star.Members[0];
   for (const Id t : star.Dying)
   {
-    this->Mesh.Triangles[3 * static_cast<std::size_t>(t)] = InvalidId;
+    Id* tri = this->Mesh.Triangle(t);
+    for (int k = 0; k < 3; ++k)
+    {
+      --this->TriangleCounts[tri[k]];
+    }
+    tri[0] = InvalidId;
   }
   for (std::size_t i = 0; i < star.Ring.size(); ++i)
   {
@@ -378,6 +387,8 @@ Id CollapseMesh::Apply(const Star& star, const double x[3])
     this->Quadrics[survivor] += this->Quadrics[v];
     this->Flags[survivor] |= this->Flags[v];
     this->Survivor[v] = survivor;
+    this->TriangleCounts[survivor] += this->TriangleCounts[v];
+    this->TriangleCounts[v] = 0;
     this->ChainNext[this->ChainTail[survivor]] = v;
     this->ChainTail[survivor] = this->ChainTail[v];
   }

@@ -104,6 +104,9 @@ public:
     }
   }
 
+  /// Number of live triangles around v (kept up to date by Apply, so O(1)).
+  Id TriangleCount(Id v) const { return this->TriangleCounts[v]; }
+
   /// Number of distinct neighbours of v.
   int Valence(Id v, std::vector<Id>& scratch) const;
 
@@ -127,6 +130,7 @@ public:
 
 private:
   VertexTriangleAdjacency Rows; // as of the last rebuild
+  std::vector<Id> TriangleCounts; // per vertex, live triangles around it
   std::vector<Id> ChainNext;
   std::vector<Id> ChainTail;
 };
