@@ -490,18 +490,25 @@ private:
     }
   }
 
-  const Row* Reference(const Row& row) const
+  const Row* Find(size_t mesh, const std::string& method, int threads, double fraction) const
   {
-    for (const Row& other : this->Rows)
+    for (const Row& row : this->Rows)
     {
-      if (other.MeshIndex == row.MeshIndex && other.Fraction == row.Fraction &&
-        other.Threads == 1 && other.Method == "vtkQuadricDecimation")
+      if (row.MeshIndex == mesh && row.Fraction == fraction && row.Threads == threads &&
+        row.Method == method)
       {
-        return &other;
+        return &row;
       }
     }
     return nullptr;
   }
+
+  const Row* Reference(const Row& row) const
+  {
+    return this->Find(row.MeshIndex, "vtkQuadricDecimation", 1, row.Fraction);
+  }
+
+  std::string TargetSummary() const;
 
   const Options& Opts;
   Backends Smp;
@@ -548,6 +555,84 @@ int LogicalCpus()
 std::string Ratio(double value, double reference)
 {
   return reference > 0.0 && value >= 0.0 ? Format("%.2f", value / reference) : "-";
+}
+
+// MeshLOD's hierarchy methods against the VTK filter each is meant to beat: the quality ratio
+// per target, the time of the whole hierarchy on one thread against the reference's time for the
+// largest target alone, the two-thread speed-up, and the memory.
+std::string Benchmark::TargetSummary() const
+{
+  struct Pair
+  {
+    const char* Method;
+    const char* Against;
+  };
+  const Pair pairs[] = { { "vtkTriangleCollapseDecimation", "vtkQuadricDecimation" },
+    { "vtkTriangleCollapseDecimation independent sets", "vtkQuadricDecimation" },
+    { "vtkTriangleCollapseDecimation triangles only", "vtkQuadricDecimation" },
+    { "vtkTriangleCollapseDecimation curvature", "vtkQuadricDecimation" },
+    { "vtkVertexClusterOctree", "vtkQuadricClustering" } };
+  if (this->Opts.Targets.empty())
+  {
+    return std::string();
+  }
+  const double largest = this->Opts.Targets.front();
+  std::ostringstream md;
+  md << "## Against the reference filters\n\n"
+     << "Ratios of the columns above (below 1: MeshLOD is better). *Quality*: Hausdorff and RMS "
+        "over the reference's at each target. *Time, all levels*: the one-thread time of the "
+        "whole hierarchy over the reference's one-thread time for its "
+     << Format("%g", 100.0 * largest)
+     << "% target alone. *Two threads*: one-thread time over two-thread time. *Memory*: bytes "
+        "per input triangle, and over vtkQuadricDecimation's for the same target.\n\n"
+     << "| mesh | method | against | ";
+  for (double fraction : this->Opts.Targets)
+  {
+    md << Format("%g", 100.0 * fraction) << "%: Hausdorff, RMS | ";
+  }
+  md << "time, all levels | two threads | memory (B/triangle, x QD) |\n|---|---|---|";
+  for (size_t i = 0; i < this->Opts.Targets.size(); ++i)
+  {
+    md << "---:|";
+  }
+  md << "---:|---:|---:|\n";
+  for (size_t m = 0; m < this->Meshes.size(); ++m)
+  {
+    for (const Pair& pair : pairs)
+    {
+      const Row* one = this->Find(m, pair.Method, 1, largest);
+      const Row* reference = this->Find(m, pair.Against, 1, largest);
+      if (!one || !reference)
+      {
+        continue;
+      }
+      md << "| " << this->Meshes[m].Label << " | " << pair.Method << " | " << pair.Against
+         << " | ";
+      for (double fraction : this->Opts.Targets)
+      {
+        const Row* row = this->Find(m, pair.Method, 1, fraction);
+        const Row* against = this->Find(m, pair.Against, 1, fraction);
+        md << (row && against ? Ratio(row->Hausdorff, against->Hausdorff) + ", " +
+                 Ratio(row->Rms, against->Rms)
+                              : std::string("-"))
+           << " | ";
+      }
+      const Row* two = this->Find(m, pair.Method, 2, largest);
+      const Row* qd = this->Reference(*one);
+      const double memory = one->PeakBytes >= 0
+        ? static_cast<double>(one->PeakBytes) / one->InputTriangles
+        : -1.0;
+      const double qdMemory = qd && qd->PeakBytes >= 0
+        ? static_cast<double>(qd->PeakBytes) / qd->InputTriangles
+        : -1.0;
+      md << Ratio(one->Seconds, reference->Seconds) << " | "
+         << (two ? Ratio(one->Seconds, two->Seconds) : "-") << " | "
+         << (memory >= 0.0 ? Format("%.0f", memory) : "n/a") << ", "
+         << Ratio(memory, qdMemory) << " |\n";
+    }
+  }
+  md << "\n";
+  return md.str();
 }
 
 std::string Benchmark::Report(const std::vector<Method>& methods) const
@@ -647,6 +732,8 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
     }
     md << "\n";
   }
+
+  md << this->TargetSummary();
 
   md << "## Settings of the methods\n\n";
   for (const Method& method : methods)
