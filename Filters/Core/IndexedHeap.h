@@ -1,6 +1,10 @@
 // A binary min-heap of ids keyed by an external cost array, with the position of every id kept
-// so that an id's cost can be changed or the id removed in O(log n). Ties are broken by id, so
-// the order (and everything built on it) is deterministic. Each heap entry carries a copy of its
+// so that an id's cost can be changed or the id removed in O(log n). Equal costs are ordered by
+// a second key (optional), then by a fixed bijective scramble of the id, so the order (and
+// everything built on it) is deterministic. Not by the id itself: on an exactly flat region
+// every collapse costs 0, and taking the lowest id first would keep collapsing around the same
+// survivor (its triangles keep the lowest ids), growing one vertex of huge valence. Each heap
+// entry carries a copy of its
 // cost: sifting then compares neighbouring entries instead of reading the cost array at random
 // places, which on large meshes is most of the heap's time (cache misses).
 #ifndef meshlod_IndexedHeap_h
@@ -8,6 +12,7 @@
 
 #include "TriangleMesh.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace meshlod
@@ -15,10 +20,12 @@ namespace meshlod
 class IndexedHeap
 {
 public:
-  /// Ids 0..size-1 keyed by costs[id]; the heap reads `costs` (it does not copy it).
-  void Reset(const std::vector<double>* costs, Id size)
+  /// Ids 0..size-1 keyed by costs[id], then ties[id] (when given); the heap reads both arrays
+  /// when an id is inserted or updated (it does not copy them).
+  void Reset(const std::vector<double>* costs, Id size, const std::vector<float>* ties = nullptr)
   {
     this->Costs = costs;
+    this->Ties = ties;
     this->Heap.clear();
     this->Position.assign(size, InvalidId);
   }
@@ -38,7 +45,7 @@ public:
       if (keep(id))
       {
         this->Position[id] = static_cast<Id>(this->Heap.size());
-        this->Heap.push_back({ (*this->Costs)[id], id });
+        this->Heap.push_back(MakeEntry(id));
       }
     }
     for (Id i = static_cast<Id>(this->Heap.size()) / 2 - 1; i >= 0; --i)
@@ -79,12 +86,12 @@ public:
     if (i == InvalidId)
     {
       i = static_cast<Id>(this->Heap.size());
-      this->Heap.push_back({ (*this->Costs)[id], id });
+      this->Heap.push_back(MakeEntry(id));
       this->Position[id] = i;
     }
     else
     {
-      this->Heap[i].Cost = (*this->Costs)[id];
+      this->Heap[i] = this->MakeEntry(id);
     }
     this->SiftDown(this->SiftUp(i));
   }
@@ -93,12 +100,33 @@ private:
   struct Entry
   {
     double Cost;
+    float Tie;
     Id Item;
   };
 
+  // A bijection of 32-bit integers that mixes every bit into every other (the finaliser of
+  // MurmurHash3): each step is invertible.
+  static std::uint32_t Scramble(Id id)
+  {
+    std::uint32_t h = static_cast<std::uint32_t>(id);
+    h ^= h >> 16;
+    h *= 0x85ebca6bu;
+    h ^= h >> 13;
+    h *= 0xc2b2ae35u;
+    h ^= h >> 16;
+    return h;
+  }
+
+  Entry MakeEntry(Id id) const
+  {
+    return { (*this->Costs)[id], this->Ties ? (*this->Ties)[id] : 0.0f, id };
+  }
+
   static bool Less(const Entry& a, const Entry& b)
   {
-    return a.Cost < b.Cost || (a.Cost == b.Cost && a.Item < b.Item);
+    return a.Cost < b.Cost ||
+      (a.Cost == b.Cost &&
+        (a.Tie < b.Tie || (a.Tie == b.Tie && Scramble(a.Item) < Scramble(b.Item))));
   }
 
   Id SiftUp(Id i)
@@ -148,6 +176,7 @@ private:
   }
 
   const std::vector<double>* Costs = nullptr;
+  const std::vector<float>* Ties = nullptr;
   std::vector<Entry> Heap;
   std::vector<Id> Position;
 };

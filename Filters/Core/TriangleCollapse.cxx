@@ -135,6 +135,7 @@ public:
     this->Targets = options.LevelTargets;
     this->LastEmitted = this->InitialTriangles;
     this->Costs.assign(this->InitialTriangles, Infinity);
+    this->Spreads.assign(this->InitialTriangles, 0.0f);
     this->Choices.assign(this->InitialTriangles, TriangleChoice);
   }
 
@@ -181,6 +182,10 @@ private:
   CollapseCostModel Model;
   CollapseRules Rules;
   std::vector<double> Costs;
+  // Per triangle, how far its chosen collapse moves the merged vertices (sum of squared
+  // distances): the greedy order between equal costs. On an exactly flat region every collapse
+  // costs 0; taking the ones that move vertices least first decimates it evenly.
+  std::vector<float> Spreads;
   // What the last evaluation of each triangle chose (CollapseCandidate::Choice), so that the
   // check of a chosen triangle solves for that collapse only.
   std::vector<std::uint8_t> Choices;
@@ -201,6 +206,16 @@ double Collapser::EvaluateCost(Id t, CostScratch& scratch)
     return Infinity;
   }
   this->Choices[t] = static_cast<std::uint8_t>(c.Choice);
+  double spread = 0.0;
+  for (int m = 0; m < c.MemberCount; ++m)
+  {
+    const double* p = this->State.Mesh.Point(c.Members[m]);
+    for (int i = 0; i < 3; ++i)
+    {
+      spread += (p[i] - c.Position[i]) * (p[i] - c.Position[i]);
+    }
+  }
+  this->Spreads[t] = static_cast<float>(spread);
   return c.Cost;
 }
 
@@ -432,7 +447,7 @@ TriangleCollapseResult Collapser::RunGreedy()
 {
   this->EvaluateAll();
   IndexedHeap heap;
-  heap.Reset(&this->Costs, this->InitialTriangles);
+  heap.Reset(&this->Costs, this->InitialTriangles, &this->Spreads);
   heap.Build([&](Id t) { return this->Costs[t] < Infinity; });
 
   Star star;
