@@ -19,7 +19,9 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 vtkStandardNewMacro(vtkVertexClusterOctree);
@@ -223,6 +225,31 @@ double vtkVertexClusterOctree::GetLevelEpsilon(int level) const
   return (level >= 1 && level <= static_cast<int>(this->LevelEpsilons.size()))
     ? this->LevelEpsilons[level - 1]
     : 0.0;
+}
+
+//------------------------------------------------------------------------------
+// The search meets a count within 0.2%; a level off by more than 2% of the count is reported
+// with its likely cause (see the class documentation).
+void vtkVertexClusterOctree::WarnIfCountMissed(int level, vtkIdType asked, vtkIdType reached)
+{
+  if (std::abs(reached - asked) <= std::max<vtkIdType>(2, asked / 50))
+  {
+    return;
+  }
+  if (reached < asked)
+  {
+    vtkWarningMacro("Level " << level << ": asked for " << asked << " triangles, reached "
+                             << reached << ": the clusters merged at the smallest epsilon "
+                                           "already have zero error (e.g. exactly flat "
+                                           "regions); set MaximumCellSize to keep more.");
+  }
+  else
+  {
+    vtkWarningMacro("Level " << level << ": asked for " << asked << " triangles, reached "
+                             << reached << ": no epsilon merges more (clusters that would flip "
+                                           "triangles, non-manifold vertices or separate "
+                                           "components stop the merging).");
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -445,6 +472,11 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
       break;
     }
     this->LevelEpsilons.push_back(level.Epsilon);
+    if (requests[i].ByCount)
+    {
+      this->WarnIfCountMissed(static_cast<int>(i + 1), requests[i].Count,
+        static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()));
+    }
 
     meshlod::TextureAtlas atlas;
     SplitMap split;

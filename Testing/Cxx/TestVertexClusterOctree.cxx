@@ -361,6 +361,36 @@ void TestTargetCounts()
 }
 
 //------------------------------------------------------------------------------
+// A count the flat grid cannot give (every cluster has zero error, so every epsilon collapses
+// it to a few triangles) is reported, not silently missed; MaximumCellSize then keeps more.
+void TestUnreachableCount()
+{
+  vtkNew<vtkTest::ErrorObserver> observer;
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->SetInputData(testing::MakeGrid(32, 32));
+  filter->SetLevelModeToTargetTriangleCounts();
+  filter->AddTargetTriangleCount(200);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 2u);
+  const vtkIdType reached = Level(h, 1)->GetNumberOfPolys();
+  MESHLOD_CHECK_LE(reached, 4);
+  MESHLOD_CHECK(observer->GetWarning());
+  MESHLOD_CHECK(observer->GetWarningMessage().find(
+                  "asked for 200 triangles, reached " + std::to_string(reached)) !=
+    std::string::npos);
+
+  observer->Clear();
+  filter->SetMaximumCellSize(0.1); // of the diagonal (45 units): cells of at most 4.5 units
+  filter->Update();
+  const vtkIdType kept = Level(filter->GetHierarchy(), 1)->GetNumberOfPolys();
+  std::cerr << "  flat 32 x 32 grid, MaximumCellSize 0.1: " << kept << " triangles\n";
+  MESHLOD_CHECK_GT(kept, 2);
+  CheckTriangles(filter->GetHierarchy());
+}
+
+//------------------------------------------------------------------------------
 // Open boundaries: every boundary point of every level lies on the input's boundary.
 std::vector<std::array<double, 6>> BoundarySegments(vtkPolyData* poly)
 {
@@ -695,6 +725,7 @@ int TestVertexClusterOctree(int, char*[])
   TestCube();
   TestHierarchy();
   TestTargetCounts();
+  TestUnreachableCount();
   TestBoundaries();
   TestNonManifold();
   TestCellLimits();
