@@ -18,6 +18,7 @@ set(meshlod_private_headers
   Filters/Core/CollapseCosts.h
   Filters/Core/CollapseMesh.h
   Filters/Core/CollapseSchedule.h
+  Filters/Core/Collapser.h
   Filters/Core/EdgeMerge.h
   Filters/Core/IndexedHeap.h
   Filters/Core/LevelData.h
@@ -39,10 +40,14 @@ set(meshlod_sources
   Filters/Core/CollapseCosts.cxx
   Filters/Core/CollapseMesh.cxx
   Filters/Core/CollapseSchedule.cxx
+  Filters/Core/Collapser.cxx
   Filters/Core/EdgeMerge.cxx
+  Filters/Core/GreedySchedule.cxx
+  Filters/Core/IndependentSetSchedule.cxx
   Filters/Core/LevelTracker.cxx
   Filters/Core/LocalSurfaceFit.cxx
   Filters/Core/OctreeClustering.cxx
+  Filters/Core/PartitionedGreedy.cxx
   Filters/Core/Quadric.cxx
   Filters/Core/TextureAtlas.cxx
   Filters/Core/TriangleCollapse.cxx

@@ -131,6 +131,7 @@ int vtkTriangleCollapseDecimation::RequestData(
                                               : meshlod::CollapseSchedule::IndependentSets;
   options.Operator = this->Operator == TRIANGLES ? meshlod::CollapseOperator::Triangles
                                                  : meshlod::CollapseOperator::TrianglesAndEdges;
+  options.PartitionedGreedy = this->PartitionedGreedy;
   options.TriangleCostFactor = this->TriangleCostFactor;
   options.MaximumError = this->MaximumError;
   options.LevelFraction = this->LevelFraction;
@@ -199,6 +200,7 @@ void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Method: " << this->GetMethodAsString() << "\n";
   os << indent << "Schedule: " << this->GetScheduleAsString() << "\n";
   os << indent << "Operator: " << this->GetOperatorAsString() << "\n";
+  os << indent << "PartitionedGreedy: " << (this->PartitionedGreedy ? "On" : "Off") << "\n";
   os << indent << "TriangleCostFactor: " << this->TriangleCostFactor << "\n";
   os << indent << "TargetReduction: " << this->TargetReduction << "\n";
   os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";

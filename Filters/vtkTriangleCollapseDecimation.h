@@ -37,7 +37,11 @@
  * neighbourhood is one disk or half-disk (no pinch, no non-manifold edge, no duplicate triangle,
  * same genus), no neighbour apex drops to valence 3 (paper 000's "no new cycle" rule), the
  * stencil boundary polygon projected on the triangle's plane is star-shaped around the collapse
- * point, and no triangle's normal turns by more than MaximumNormalDeviation. A triangle refused
+ * point, no triangle's normal turns by more than MaximumNormalDeviation, and no triangle faces
+ * away from the original surface its corners stand for (the summed area vectors of the input
+ * triangles merged into them; without this, many small turns can add up to a fold at coarse
+ * levels). Zero-area input triangles (coincident points, as marching cubes makes where the
+ * surface passes through a sample) are collapsed, not kept. A triangle refused
  * only because a neighbour apex has a low valence gets the edge swap of paper 000 (figure 3):
  * the shared edge is swapped and one of the two new triangles collapses; swap and collapse are
  * made as one merge of three vertices joined by two edges, which keeps every level's
@@ -45,15 +49,20 @@
  *
  * Two schedules order the collapses (SetSchedule):
  * - Greedy (the default): one collapse at a time from a priority queue, cheapest first, with the
- *   costs around each collapse updated (paper 002, section 2.4).
+ *   costs around each collapse updated (paper 002, section 2.4). With the quadric method and
+ *   PartitionedGreedy on (the default) the greedy order runs in parallel rounds: each round
+ *   cuts space into the cells of a grid and runs the greedy loop in every cell at once, up to a
+ *   cost threshold shared by all cells; a collapse that would reach into another cell waits
+ *   for the next round, whose grid is shifted by half a cell.
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
  *   around what changed.
  * Either way, output levels are snapshots taken when the triangle count reaches each level's
  * target; the collapses between two levels are composed. On the benchmark meshes both reach
- * about the same error per triangle (Benchmarks/RESULTS.md); Greedy is the default because it
- * is the faster of the two on one thread.
+ * about the same RMS error per triangle, Greedy the lower Hausdorff distance at 1%
+ * (Benchmarks/RESULTS.md); Greedy is the default because it is also the faster of the two, on
+ * one thread and on two.
  *
  * Levels: by default NumberOfLevels levels follow level 0 with triangle counts spaced
  * geometrically down to (1 - TargetReduction) times the input's (8 levels to 1% gives 56%, 32%,
@@ -81,9 +90,9 @@
  * an error. Points with equal coordinates on boundary edges are merged; non-manifold vertices
  * are kept but locked.
  *
- * The data-parallel parts (initial weights, re-weighting and legality checks of a pass,
- * collapsing an independent set, output arrays) run with vtkSMPTools; the output is the same
- * for every thread count.
+ * The data-parallel parts (initial weights, the greedy rounds' cells, re-weighting and legality
+ * checks of a pass, collapsing an independent set, output arrays) run with vtkSMPTools; the
+ * output is the same for every thread count.
  *
  * @sa vtkLODGeomorph vtkVertexClusterOctree vtkQuadricDecimation vtkDecimatePro
  */
@@ -144,6 +153,20 @@ public:
   void SetScheduleToGreedy() { this->SetSchedule(GREEDY); }
   void SetScheduleToIndependentSets() { this->SetSchedule(INDEPENDENT_SETS); }
   const char* GetScheduleAsString() const;
+  ///@}
+
+  ///@{
+  /**
+   * Greedy schedule, quadric method: make the greedy order's collapses in parallel, in rounds
+   * over the cells of a spatial grid (on, the default), or strictly one after the other
+   * (off: the order of paper 002, on one thread). Each round takes the cheapest collapses up to a
+   * cost threshold shared by all cells; the last collapses before each level are serial, so the
+   * levels land on their triangle counts either way. The output does not depend on the number
+   * of threads.
+   */
+  vtkSetMacro(PartitionedGreedy, bool);
+  vtkGetMacro(PartitionedGreedy, bool);
+  vtkBooleanMacro(PartitionedGreedy, bool);
   ///@}
 
   ///@{
@@ -299,6 +322,7 @@ protected:
   int Method = QUADRIC;
   int Schedule = GREEDY;
   int Operator = TRIANGLES_AND_EDGES;
+  bool PartitionedGreedy = true;
   double TriangleCostFactor = 2.0;
   double TargetReduction = 0.99;
   int NumberOfLevels = 8;

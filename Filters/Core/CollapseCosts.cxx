@@ -107,7 +107,7 @@ bool CollapseCostModel::Evaluate(Id t, CollapseCandidate& c, CostScratch& scratc
   if (this->Options.Method == CollapseMethod::Quadric &&
     this->Options.Operator == CollapseOperator::TrianglesAndEdges)
   {
-    return this->EvaluateTriangleOrEdge(tri, c);
+    return this->EvaluateTriangleOrEdge(tri, c, scratch);
   }
   return this->EvaluateTriple(tri, c, scratch);
 }
@@ -188,13 +188,11 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
 double CollapseCostModel::Edge(const Id* tri, int k, CollapseCandidate& c) const
 {
   const int l = (k + 1) % 3;
-  const double* a = this->State.Mesh.Point(tri[k]);
-  const double* b = this->State.Mesh.Point(tri[l]);
-  const Quadric q = this->State.Quadrics[tri[k]] + this->State.Quadrics[tri[l]];
-  const double middle[3] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
-  q.MinimizeRegularized(middle, c.Position);
-  c.Cost = q.Evaluate(c.Position);
-  c.Error = q.Weight() > 0.0 ? std::sqrt(c.Cost / q.Weight()) : 0.0;
+  EdgeSolution e;
+  this->SolveEdge(tri[k], tri[l], e, nullptr);
+  c.Cost = e.Cost;
+  c.Error = e.Error;
+  std::copy_n(e.Position, 3, c.Position);
   c.Members[0] = tri[k];
   c.Members[1] = tri[l];
   c.MemberCount = 2;
@@ -203,40 +201,62 @@ double CollapseCostModel::Edge(const Id* tri, int k, CollapseCandidate& c) const
   return c.Cost;
 }
 
-double CollapseCostModel::BestEdge(const Id* tri, CollapseCandidate& c, double& worst) const
+void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scratch) const
+{
+  const bool spoke = scratch != nullptr && (a == scratch->SpokeCentre || b == scratch->SpokeCentre);
+  const Id other = spoke && a == scratch->SpokeCentre ? b : a;
+  if (spoke)
+  {
+    for (const EdgeSolution& known : scratch->Spokes)
+    {
+      if (known.Other == other)
+      {
+        e = known;
+        return;
+      }
+    }
+  }
+  const double* pa = this->State.Mesh.Point(a);
+  const double* pb = this->State.Mesh.Point(b);
+  const Quadric q = this->State.Quadrics[a] + this->State.Quadrics[b];
+  const double middle[3] = { 0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]) };
+  q.MinimizeRegularized(middle, e.Position);
+  e.Cost = q.Evaluate(e.Position);
+  e.Error = q.Weight() > 0.0 ? std::sqrt(e.Cost / q.Weight()) : 0.0;
+  e.Other = other;
+  if (spoke)
+  {
+    scratch->Spokes.push_back(e);
+  }
+}
+
+double CollapseCostModel::BestEdge(
+  const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const
 {
   // Solve the three edges, keep the cheapest (ties: the first).
-  double best = Infinity, bestError = 0.0, bestPosition[3] = { 0, 0, 0 };
+  EdgeSolution edge, best;
+  best.Cost = Infinity;
   int bestEdge = 0;
   worst = 0.0;
   for (int k = 0; k < 3; ++k)
   {
-    const int l = (k + 1) % 3;
-    const double* a = this->State.Mesh.Point(tri[k]);
-    const double* b = this->State.Mesh.Point(tri[l]);
-    const Quadric q = this->State.Quadrics[tri[k]] + this->State.Quadrics[tri[l]];
-    const double middle[3] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
-    double x[3];
-    q.MinimizeRegularized(middle, x);
-    const double cost = q.Evaluate(x);
-    worst = std::max(worst, cost);
-    if (cost < best)
+    this->SolveEdge(tri[k], tri[(k + 1) % 3], edge, scratch);
+    worst = std::max(worst, edge.Cost);
+    if (edge.Cost < best.Cost)
     {
-      best = cost;
-      bestError = q.Weight() > 0.0 ? std::sqrt(cost / q.Weight()) : 0.0;
+      best = edge;
       bestEdge = k;
-      std::copy_n(x, 3, bestPosition);
     }
   }
-  c.Cost = best;
-  c.Error = bestError;
-  std::copy_n(bestPosition, 3, c.Position);
+  c.Cost = best.Cost;
+  c.Error = best.Error;
+  std::copy_n(best.Position, 3, c.Position);
   c.Members[0] = tri[bestEdge];
   c.Members[1] = tri[(bestEdge + 1) % 3];
   c.MemberCount = 2;
   c.Choice = bestEdge;
   c.Swapped = false;
-  return best;
+  return best.Cost;
 }
 
 bool CollapseCostModel::EvaluateBestEdge(const Id* tri, CollapseCandidate& c) const
@@ -246,19 +266,20 @@ bool CollapseCostModel::EvaluateBestEdge(const Id* tri, CollapseCandidate& c) co
     return false;
   }
   double worst;
-  this->BestEdge(tri, c, worst);
+  this->BestEdge(tri, c, worst, nullptr);
   return true;
 }
 
 //------------------------------------------------------------------------------
-bool CollapseCostModel::EvaluateTriangleOrEdge(const Id* tri, CollapseCandidate& c) const
+bool CollapseCostModel::EvaluateTriangleOrEdge(
+  const Id* tri, CollapseCandidate& c, CostScratch& scratch) const
 {
   if (this->State.IsLocked(tri[0]) || this->State.IsLocked(tri[1]) || this->State.IsLocked(tri[2]))
   {
     return false;
   }
   double worst;
-  const double best = this->BestEdge(tri, c, worst);
+  const double best = this->BestEdge(tri, c, worst, &scratch);
   // A triangle collapse removes twice the triangles of an edge collapse: it is taken when it
   // costs at most TriangleCostFactor times the cheapest edge, and ranked by its cost over that
   // factor. Its quadric contains each edge's, so it costs at least the dearest edge: when that

@@ -31,11 +31,31 @@ struct CollapseCandidate
   double Area = 0.0, Kappa = 0.0, Alpha = 0.0, ValenceTerm = 0.0;
 };
 
+/// The best collapse of one edge.
+struct EdgeSolution
+{
+  Id Other = InvalidId; // the endpoint that is not the spoke centre (see CostScratch)
+  double Cost = 0.0;
+  double Error = 0.0;
+  double Position[3] = { 0, 0, 0 };
+};
+
 /// Per-thread scratch for the evaluations.
 struct CostScratch
 {
   std::vector<Id> Vertices;
   std::vector<double> Points;
+  /// After a collapse every triangle around the survivor is evaluated again, and each edge
+  /// from the survivor belongs to two of them: between BeginSpokes(v) and EndSpokes() the
+  /// solutions of edges from v are kept and reused (they are the same numbers either way).
+  Id SpokeCentre = InvalidId;
+  std::vector<EdgeSolution> Spokes;
+  void BeginSpokes(Id centre)
+  {
+    this->SpokeCentre = centre;
+    this->Spokes.clear();
+  }
+  void EndSpokes() { this->SpokeCentre = InvalidId; }
 };
 
 class CollapseCostModel
@@ -75,9 +95,11 @@ public:
 private:
   // TrianglesAndEdges: fill the candidate with the triangle collapse or, when that costs more
   // than TriangleCostFactor times the cheapest edge collapse, with that edge.
-  bool EvaluateTriangleOrEdge(const Id* tri, CollapseCandidate& c) const;
+  bool EvaluateTriangleOrEdge(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const;
   // The cheapest edge of the triangle into c; returns its cost and the dearest edge's in worst.
-  double BestEdge(const Id* tri, CollapseCandidate& c, double& worst) const;
+  double BestEdge(const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const;
+  // The collapse of edge (a, b), from the scratch's spokes when it is one of them.
+  void SolveEdge(Id a, Id b, EdgeSolution& solution, CostScratch* scratch) const;
   // Edge k of the triangle into c; returns its cost.
   double Edge(const Id* tri, int k, CollapseCandidate& c) const;
   void FitSurface(const Id* tri, CollapseCandidate& candidate, CostScratch& scratch) const;

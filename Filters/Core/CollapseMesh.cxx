@@ -78,6 +78,7 @@ void CollapseMesh::Initialize(
   const Id nt = mesh.GetNumberOfTriangles();
   this->Flags.assign(nv, 0);
   this->Quadrics.assign(nv, Quadric());
+  this->Facing.assign(3 * static_cast<std::size_t>(nv), 0.0f);
   this->Survivor.resize(nv);
   std::iota(this->Survivor.begin(), this->Survivor.end(), 0);
   this->AliveTriangles = nt;
@@ -91,6 +92,7 @@ void CollapseMesh::Initialize(
       this->Flags[v] = kind == VertexKind::NonManifold ? FlagLocked
                                                        : (kind == VertexKind::Boundary ? FlagBoundary : 0);
       Quadric q;
+      double facing[3] = { 0, 0, 0 };
       for (Id i = adj.Begin(v); i < adj.End(v); ++i)
       {
         const Id t = adj.Triangles[i];
@@ -103,6 +105,10 @@ void CollapseMesh::Initialize(
           continue; // degenerate triangle
         }
         q += plane;
+        for (int i = 0; i < 3; ++i)
+        {
+          facing[i] += normal[i] / 6.0; // a third of the area vector (normal is twice it)
+        }
         // Boundary edges of t at v get a plane through the edge, perpendicular to t, so that
         // the boundary resists moving sideways.
         const int c = CornerOf(tri, v);
@@ -118,6 +124,10 @@ void CollapseMesh::Initialize(
         }
       }
       this->Quadrics[v] = q;
+      for (int i = 0; i < 3; ++i)
+      {
+        this->Facing[3 * static_cast<std::size_t>(v) + i] = static_cast<float>(facing[i]);
+      }
     }
   });
 
@@ -180,6 +190,7 @@ bool CollapseMesh::GatherStar(const Id* members, int count, Star& star) const
   star.Ring.clear();
   star.RingCorner.clear();
   star.Apexes.clear();
+  star.Foreign = false;
   for (int m = 0; m < count; ++m)
   {
     const Id v = star.Members[m];
@@ -193,6 +204,12 @@ bool CollapseMesh::GatherStar(const Id* members, int count, Star& star) const
     const Id v = star.Members[m];
     this->ForEachTriangle(v, [&](Id t) {
       const Id* tri = this->Mesh.Triangle(t);
+      if (star.Owner != nullptr &&
+        (star.Owner[tri[0]] != star.Block || star.Owner[tri[1]] != star.Block ||
+          star.Owner[tri[2]] != star.Block))
+      {
+        star.Foreign = true;
+      }
       const int inside = CountMembers(tri, star.Members, count);
       if (inside == 1)
       {
@@ -224,7 +241,7 @@ bool CollapseMesh::GatherStar(const Id* members, int count, Star& star) const
   }
   // Each edge between members has at most two triangles (members are manifold), so a triangle
   // collapse kills at most 4 triangles and an edge collapse at most 2.
-  return !star.Dying.empty() && static_cast<int>(star.Dying.size()) <= (count == 3 ? 4 : 2);
+  return !star.Foreign && !star.Dying.empty() && static_cast<int>(star.Dying.size()) <= (count == 3 ? 4 : 2);
 }
 
 //------------------------------------------------------------------------------
@@ -333,6 +350,14 @@ Legality CollapseMesh::IsLegal(
   // Geometry: no ring triangle may flip or turn too far, and (paper 000) the stencil boundary
   // polygon must be star-shaped around the collapse point seen along the triangle's normal.
   // Normals stay unnormalised (twice the area); angles are compared through squares.
+  double merged[3] = { 0, 0, 0 }; // the members' facing, which the merged vertex gets
+  for (int m = 0; m < star.MemberCount; ++m)
+  {
+    const float* f = this->Facing.data() + 3 * static_cast<std::size_t>(star.Members[m]);
+    merged[0] += f[0];
+    merged[1] += f[1];
+    merged[2] += f[2];
+  }
   for (std::size_t i = 0; i < ringSize; ++i)
   {
     const Id* tri = this->Mesh.Triangle(star.Ring[i]);
@@ -347,9 +372,17 @@ Legality CollapseMesh::IsLegal(
     Cross(toU, uw, after);
     const double after2 = Dot(after, after);
     const double before2 = Dot(before, before);
-    if (!(after2 > 1e-30 * Dot(uw, uw) * Dot(uw, uw)))
+    const double tiny = 1e-30 * Dot(uw, uw) * Dot(uw, uw);
+    if (!(after2 > tiny))
     {
-      return Legality::Illegal; // the new triangle would be degenerate
+      if (before2 > tiny)
+      {
+        return Legality::Illegal; // the new triangle would be degenerate
+      }
+      // Degenerate already (coincident input points, as marching cubes makes where the surface
+      // passes through a sample): no worse, and a later collapse removes it. Refusing would
+      // lock every collapse around it.
+      continue;
     }
     if (before2 > 0.0 && !WithinAngle(Dot(before, after), before2 * after2, rules.MinimumNormalCosine))
     {
@@ -358,6 +391,17 @@ Legality CollapseMesh::IsLegal(
     if (planeNormal != nullptr && rules.RequireStarShaped && Dot(after, planeNormal) <= 0.0)
     {
       return Legality::Illegal;
+    }
+    if (rules.KeepFacing)
+    {
+      const float* fu = this->Facing.data() + 3 * static_cast<std::size_t>(tri[(c + 1) % 3]);
+      const float* fw = this->Facing.data() + 3 * static_cast<std::size_t>(tri[(c + 2) % 3]);
+      const double facing[3] = { merged[0] + fu[0] + fw[0], merged[1] + fu[1] + fw[1],
+        merged[2] + fu[2] + fw[2] };
+      if (Dot(after, facing) <= 0.0)
+      {
+        return Legality::Illegal;
+      }
     }
   }
   return Legality::Legal;
@@ -385,6 +429,11 @@ Id CollapseMesh::Apply(const Star& star, const double x[3])
   {
     const Id v = star.Members[m];
     this->Quadrics[survivor] += this->Quadrics[v];
+    for (int i = 0; i < 3; ++i)
+    {
+      this->Facing[3 * static_cast<std::size_t>(survivor) + i] +=
+        this->Facing[3 * static_cast<std::size_t>(v) + i];
+    }
     this->Flags[survivor] |= this->Flags[v];
     this->Survivor[v] = survivor;
     this->TriangleCounts[survivor] += this->TriangleCounts[v];

@@ -44,6 +44,10 @@ struct CollapseRules
   /// Paper 000 condition (3): the stencil boundary polygon, projected on the collapsing
   /// triangle's plane, must be star-shaped around the projected collapse point.
   bool RequireStarShaped = true;
+  /// No ring triangle may face away from the original surface its corners stand for
+  /// (CollapseMesh::Facing). The per-collapse normal test alone lets many small turns add up
+  /// to a fold at coarse levels.
+  bool KeepFacing = true;
 };
 
 /// Outcome of a legality check.
@@ -52,6 +56,7 @@ enum class Legality
   Legal,
   LowValenceApex, // only an apex's valence forbids it (see Star::BlockingApex)
   Illegal,
+  Foreign, // the star reaches a vertex of another block (see Star::Owner); not a verdict
 };
 
 /// The triangles around a set of merging vertices (scratch storage reused between calls).
@@ -64,6 +69,12 @@ struct Star
   std::vector<std::int8_t> RingCorner; // the corner of the member in each ring triangle
   std::vector<Id> Apexes;     // the non-member vertex of each two-member dying triangle
   mutable Id BlockingApex = InvalidId; // set by IsLegal on LowValenceApex
+  // Spatial blocks collapsing in parallel (see PartitionedGreedy.cxx): when Owner is set, a
+  // star with a corner whose Owner is not Block is refused (GatherStar returns false with
+  // Foreign set), so that a block never reads or writes what another block may change.
+  const std::uint32_t* Owner = nullptr;
+  std::uint32_t Block = 0;
+  bool Foreign = false;
   mutable std::vector<Id> LinkScratch;
   mutable std::vector<Id> ValenceScratch;
 };
@@ -73,6 +84,9 @@ class VTKFILTERSMESHLOD_EXPORT CollapseMesh
 public:
   TriangleMesh Mesh;             // positions and triangles; dead triangles have corner 0 invalid
   std::vector<Quadric> Quadrics; // per vertex: planes of the original triangles merged into it
+  /// Per vertex (x, y, z): the summed area vectors of the original triangles merged into it (a
+  /// third of each around it), i.e. which way the original surface it stands for faces.
+  std::vector<float> Facing;
   std::vector<std::uint8_t> Flags;
   std::vector<Id> Survivor;      // vertex -> the vertex it merged into (itself while alive)
   Id AliveTriangles = 0;
@@ -111,7 +125,8 @@ public:
   int Valence(Id v, std::vector<Id>& scratch) const;
 
   /// Collect dying and ring triangles for merging `members`; false when a member is locked or
-  /// the configuration is not a manifold edge/triangle neighbourhood.
+  /// the configuration is not a manifold edge/triangle neighbourhood, or (star.Foreign) when a
+  /// triangle of the star has a corner owned by another block.
   bool GatherStar(const Id* members, int count, Star& star) const;
 
   /// Whether merging the star's members at x keeps a manifold mesh of the same topology with no

@@ -27,10 +27,26 @@ public:
     this->Costs = costs;
     this->Ties = ties;
     this->Heap.clear();
-    this->Position.assign(size, InvalidId);
+    this->OwnPositions.assign(size, InvalidId);
+    this->Position = this->OwnPositions.data();
+    this->Size = size;
+  }
+
+  /// The same keyed by shared arrays, with the positions kept in `positions` (one per id,
+  /// InvalidId for every id not in this heap): several heaps holding disjoint ids can share it,
+  /// each used by one thread. Clear() before the heap is dropped.
+  void Attach(const std::vector<double>* costs, const std::vector<float>* ties, Id* positions)
+  {
+    this->Costs = costs;
+    this->Ties = ties;
+    this->Heap.clear();
+    this->OwnPositions.clear();
+    this->Position = positions;
+    this->Size = static_cast<Id>(costs->size());
   }
 
   bool Empty() const { return this->Heap.empty(); }
+  std::size_t GetSize() const { return this->Heap.size(); }
   bool Contains(Id id) const { return this->Position[id] != InvalidId; }
   Id Top() const { return this->Heap.front().Item; }
 
@@ -39,7 +55,7 @@ public:
   void Build(Keep&& keep)
   {
     this->Heap.clear();
-    for (Id id = 0; id < static_cast<Id>(this->Position.size()); ++id)
+    for (Id id = 0; id < this->Size; ++id)
     {
       this->Position[id] = InvalidId;
       if (keep(id))
@@ -48,10 +64,28 @@ public:
         this->Heap.push_back(MakeEntry(id));
       }
     }
-    for (Id i = static_cast<Id>(this->Heap.size()) / 2 - 1; i >= 0; --i)
+    this->Heapify();
+  }
+
+  /// Add `count` ids not in the heap yet, then heapify.
+  void Build(const Id* ids, std::size_t count)
+  {
+    for (std::size_t i = 0; i < count; ++i)
     {
-      this->SiftDown(i);
+      this->Position[ids[i]] = static_cast<Id>(this->Heap.size());
+      this->Heap.push_back(MakeEntry(ids[i]));
     }
+    this->Heapify();
+  }
+
+  /// Remove every id.
+  void Clear()
+  {
+    for (const Entry& entry : this->Heap)
+    {
+      this->Position[entry.Item] = InvalidId;
+    }
+    this->Heap.clear();
   }
 
   Id Pop()
@@ -129,6 +163,14 @@ private:
         (a.Tie < b.Tie || (a.Tie == b.Tie && Scramble(a.Item) < Scramble(b.Item))));
   }
 
+  void Heapify()
+  {
+    for (Id i = static_cast<Id>(this->Heap.size()) / 2 - 1; i >= 0; --i)
+    {
+      this->SiftDown(i);
+    }
+  }
+
   Id SiftUp(Id i)
   {
     const Entry entry = this->Heap[i];
@@ -178,7 +220,9 @@ private:
   const std::vector<double>* Costs = nullptr;
   const std::vector<float>* Ties = nullptr;
   std::vector<Entry> Heap;
-  std::vector<Id> Position;
+  Id* Position = nullptr; // OwnPositions, or shared positions (Attach)
+  Id Size = 0;
+  std::vector<Id> OwnPositions;
 };
 
 } // namespace meshlod

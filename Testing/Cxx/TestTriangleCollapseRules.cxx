@@ -195,12 +195,17 @@ void TestStarShape()
   const std::array<double, 3> centroid = f.Centroid(tri);
   MESHLOD_CHECK(f.Check(tri, centroid.data()) == Legality::Legal);
   // Seen from (3.4, 1.3, 0) the stencil polygon is not star-shaped: some new triangles would
-  // face down. With the normal test off only the star rule refuses it.
+  // face down. With the normal and facing tests off only the star rule refuses it; with the
+  // star rule off too, only the facing rule (no triangle may face away from the original
+  // surface it stands for).
   const double outside[3] = { 3.4, 1.3, 0.0 };
   f.Rules.MinimumNormalCosine = -1.0;
+  f.Rules.KeepFacing = false;
   MESHLOD_CHECK(f.Check(tri, outside) == Legality::Illegal);
   f.Rules.RequireStarShaped = false;
   MESHLOD_CHECK(f.Check(tri, outside) == Legality::Legal);
+  f.Rules.KeepFacing = true;
+  MESHLOD_CHECK(f.Check(tri, outside) == Legality::Illegal);
   // The normal rule: lifting the point tilts the ring triangles.
   f.Rules.RequireStarShaped = true;
   f.Rules.MinimumNormalCosine = 0.5; // 60 degrees

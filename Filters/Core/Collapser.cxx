@@ -1,0 +1,295 @@
+#include "Collapser.h"
+
+#include "LevelData.h"
+
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace meshlod
+{
+namespace
+{
+// Rows are rebuilt once this fraction of the triangles alive at the last rebuild has died.
+constexpr double RebuildAfterDying = 0.5;
+} // namespace
+
+//------------------------------------------------------------------------------
+Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
+  const TriangleCollapseOptions& options, const TriangleCollapseCallbacks& callbacks)
+  : Options(options)
+  , Callbacks(callbacks)
+  , Model(options, State, Tracker, OriginalPoints)
+{
+  const bool curvature = options.Method == CollapseMethod::Curvature;
+  if (curvature)
+  {
+    this->OriginalPoints = mesh.Points; // the fits use the ancestral (original) points
+  }
+  this->InitialTriangles = mesh.GetNumberOfTriangles();
+  this->Tracker.Initialize(mesh.GetNumberOfPoints(), curvature);
+  this->State.Initialize(std::move(mesh), std::move(topology), options.BoundaryWeight);
+  this->Rules.MinimumNormalCosine =
+    std::cos(std::min(180.0, std::max(0.0, options.MaximumNormalDeviation)) * M_PI / 180.0);
+  this->Targets = options.LevelTargets;
+  this->LastEmitted = this->InitialTriangles;
+  this->Costs.assign(this->InitialTriangles, InfiniteCost);
+  this->Spreads.assign(this->InitialTriangles, 0.0f);
+  this->Choices.assign(this->InitialTriangles, TriangleChoice);
+  this->Lot.Reset(this->InitialTriangles, this->State.Mesh.GetNumberOfPoints());
+}
+
+//------------------------------------------------------------------------------
+double Collapser::EvaluateCost(Id t, CostScratch& scratch)
+{
+  CollapseCandidate c;
+  if (!this->State.IsAlive(t) || !this->Model.Evaluate(t, c, scratch))
+  {
+    return InfiniteCost;
+  }
+  this->Choices[t] = static_cast<std::uint8_t>(c.Choice);
+  double spread = 0.0;
+  for (int m = 0; m < c.MemberCount; ++m)
+  {
+    const double* p = this->State.Mesh.Point(c.Members[m]);
+    for (int i = 0; i < 3; ++i)
+    {
+      spread += (p[i] - c.Position[i]) * (p[i] - c.Position[i]);
+    }
+  }
+  this->Spreads[t] = static_cast<float>(spread);
+  return c.Cost;
+}
+
+void Collapser::EvaluateAll()
+{
+  const Id nt = this->InitialTriangles;
+  vtkSMPThreadLocal<CostScratch> scratch;
+  if (this->Options.Method == CollapseMethod::Quadric)
+  {
+    vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
+      CostScratch& local = scratch.Local();
+      for (Id t = begin; t < end; ++t)
+      {
+        this->Costs[t] = this->EvaluateCost(t, local);
+      }
+    });
+    return;
+  }
+  // Curvature: first the raw curvatures (kept in Costs), then the weights.
+  vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
+    CostScratch& local = scratch.Local();
+    for (Id t = begin; t < end; ++t)
+    {
+      CollapseCandidate c;
+      this->Costs[t] = this->State.IsAlive(t) && this->Model.Evaluate(t, c, local) ? c.Kappa : -1.0;
+    }
+  });
+  double maximum = 0.0;
+  for (const double kappa : this->Costs)
+  {
+    maximum = std::max(maximum, kappa);
+  }
+  this->Model.SetCurvatureNormalization(maximum);
+  vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
+    CostScratch& local = scratch.Local();
+    for (Id t = begin; t < end; ++t)
+    {
+      this->Costs[t] = this->Costs[t] < 0.0 ? InfiniteCost : this->EvaluateCost(t, local);
+    }
+  });
+}
+
+//------------------------------------------------------------------------------
+Legality Collapser::CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const
+{
+  c.MemberCount = 0;
+  if (!this->State.IsAlive(t) || !this->Model.EvaluateChoice(t, this->Choices[t], c, scratch))
+  {
+    return Legality::Illegal;
+  }
+  const Legality legality = this->Legal(star, c);
+  if (legality == Legality::Legal || legality == Legality::Foreign || c.MemberCount != 3 ||
+    this->Options.Method != CollapseMethod::Quadric ||
+    this->Options.Operator != CollapseOperator::TrianglesAndEdges)
+  {
+    return legality;
+  }
+  // The triangle cannot go: with edges allowed, its cheapest edge may. (A swap is still
+  // possible for the triangle when the edge is not legal either.)
+  CollapseCandidate edge;
+  if (this->Model.EvaluateBestEdge(this->State.Mesh.Triangle(t), edge) &&
+    this->Legal(star, edge) == Legality::Legal)
+  {
+    c = edge;
+    return Legality::Legal;
+  }
+  this->Legal(star, c); // restore the triangle's star for a swap
+  return legality;
+}
+
+Legality Collapser::Check(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const
+{
+  const Legality legality = this->CheckDirect(t, star, c, scratch);
+  if (legality != Legality::LowValenceApex || c.MemberCount != 3)
+  {
+    return legality == Legality::Legal || legality == Legality::Foreign ? legality
+                                                                        : Legality::Illegal;
+  }
+  if (this->TrySwap(t, star, c, scratch))
+  {
+    return Legality::Legal;
+  }
+  return star.Foreign ? Legality::Foreign : Legality::Illegal;
+}
+
+Legality Collapser::Legal(Star& star, const CollapseCandidate& c) const
+{
+  // The star-shape test of paper 000 projects on the collapsing triangle's plane; an edge
+  // collapse has no such plane and relies on the normal test alone.
+  if (!this->State.GatherStar(c.Members, c.MemberCount, star))
+  {
+    return star.Foreign ? Legality::Foreign : Legality::Illegal;
+  }
+  return this->State.IsLegal(star, c.Position, c.MemberCount == 3 ? c.Normal : nullptr, this->Rules);
+}
+
+//------------------------------------------------------------------------------
+// Paper 000, figure 3: when a neighbour's apex p has too low a valence, swap the edge (a, b)
+// between triangle t = (a, b, c) and that neighbour, then collapse one of the two new
+// triangles, (c, a, p) or (c, b, p). The swap and the collapse together merge three vertices
+// joined by a path of two edges and remove the same triangles whichever diagonal the quad had,
+// so they are done as one merge and the levels' correspondence stays exact.
+bool Collapser::TrySwap(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const
+{
+  const Id p = star.BlockingApex;
+  const Id* tri = this->State.Mesh.Triangle(t);
+  Id a = InvalidId, b = InvalidId;
+  for (const Id d : star.Dying)
+  {
+    const Id* dt = this->State.Mesh.Triangle(d);
+    if (d != t && CornerOf(dt, p) >= 0)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        if (dt[k] != p)
+        {
+          (a == InvalidId ? a : b) = dt[k];
+        }
+      }
+      break;
+    }
+  }
+  if (a == InvalidId || b == InvalidId || this->State.IsBoundary(p))
+  {
+    return false;
+  }
+  Id apexCorner = InvalidId;
+  for (int k = 0; k < 3; ++k)
+  {
+    apexCorner = (tri[k] != a && tri[k] != b) ? tri[k] : apexCorner;
+  }
+  CollapseCandidate best;
+  bool found = false;
+  for (const Id other : { a, b })
+  {
+    // The new triangle keeps the orientation of t: (c, a, p) or (c, p, b).
+    const Id triple[3] = { apexCorner, other == a ? a : p, other == a ? p : b };
+    CollapseCandidate trial;
+    if (this->Model.EvaluateTriple(triple, trial, scratch) && (!found || trial.Cost < best.Cost) &&
+      this->Legal(star, trial) == Legality::Legal)
+    {
+      best = trial;
+      found = true;
+    }
+  }
+  if (!found)
+  {
+    return false;
+  }
+  c = best;
+  c.Swapped = true;
+  return this->State.GatherStar(c.Members, c.MemberCount, star);
+}
+
+int Collapser::Collapse(const Star& star, CollapseCandidate& c, std::int64_t sequence)
+{
+  const double* points[3];
+  for (int m = 0; m < star.MemberCount; ++m)
+  {
+    points[m] = this->State.Mesh.Point(star.Members[m]);
+  }
+  double weights[3];
+  CollapseWeights(points, star.MemberCount, c.Position, weights);
+  this->Tracker.Merge(star.Members, weights, star.MemberCount, sequence);
+  this->State.Apply(star, c.Position);
+  c.Dying = static_cast<int>(star.Dying.size());
+  return c.Dying;
+}
+
+//------------------------------------------------------------------------------
+double Collapser::LevelError() const
+{
+  // The largest RMS distance of a live vertex to the original planes merged into it.
+  double error = 0.0;
+  const Id nv = this->State.Mesh.GetNumberOfPoints();
+  for (Id v = 0; v < nv; ++v)
+  {
+    if (this->State.Survivor[v] == v)
+    {
+      error = std::max(error, this->State.Quadrics[v].RmsDistance(this->State.Mesh.Point(v)));
+    }
+  }
+  return error;
+}
+
+void Collapser::EmitLevel()
+{
+  LevelData level;
+  this->Tracker.Snapshot(this->State, this->LevelError(), level);
+  this->LastEmitted = this->State.AliveTriangles;
+  ++this->Result.LevelsEmitted;
+  if (this->Callbacks.EmitLevel)
+  {
+    this->Callbacks.EmitLevel(level);
+  }
+}
+
+bool Collapser::AfterProgress()
+{
+  while (!this->Finished() && this->State.AliveTriangles <= this->CurrentTarget())
+  {
+    this->EmitLevel();
+    ++this->NextTarget;
+  }
+  if (this->State.AliveTriangles < RebuildAfterDying * this->State.AliveAtLastRebuild)
+  {
+    this->State.RebuildRows();
+  }
+  if (this->Callbacks.Progress && !this->Targets.empty())
+  {
+    const double total = static_cast<double>(this->InitialTriangles - this->Targets.back());
+    const double done = static_cast<double>(this->InitialTriangles - this->State.AliveTriangles);
+    if (!this->Callbacks.Progress(total > 0.0 ? std::min(1.0, done / total) : 1.0))
+    {
+      this->Result.Aborted = true;
+      return false;
+    }
+  }
+  return true;
+}
+
+TriangleCollapseResult Collapser::FinishRun()
+{
+  if (!this->Result.Aborted && this->AfterProgress() && !this->Finished() &&
+    this->State.AliveTriangles < this->LastEmitted)
+  {
+    this->EmitLevel();
+  }
+  this->Result.FinalTriangles = this->State.AliveTriangles;
+  return this->Result;
+}
+
+} // namespace meshlod

@@ -1,0 +1,217 @@
+// The engine behind RunTriangleCollapse (TriangleCollapse.h): the mesh, the costs and the level
+// bookkeeping shared by the schedules, each schedule in a file of its own:
+// - GreedySchedule.cxx: one collapse at a time from a priority queue (paper 002, section 2.4);
+// - PartitionedGreedy.cxx: the same order, run in parallel over spatial blocks;
+// - IndependentSetSchedule.cxx: passes of collapses with disjoint stencils (paper 000, section 6).
+#ifndef meshlod_Collapser_h
+#define meshlod_Collapser_h
+
+#include "CollapseCosts.h"
+#include "CollapseMesh.h"
+#include "LevelTracker.h"
+#include "TriangleCollapse.h"
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace meshlod
+{
+struct CellGrid; // PartitionedGreedy.cxx
+
+constexpr double InfiniteCost = std::numeric_limits<double>::infinity();
+
+// Triangles refused by the legality check wait here until something around them changes: a
+// collapse moves vertices and changes valences, which can make a refused collapse legal.
+// "Time" is the collapser's Clock; rather than searching around every collapse for refused
+// triangles, the lot is checked now and then.
+class ParkingLot
+{
+public:
+  void Reset(Id triangles, Id vertices)
+  {
+    this->ParkedAt.assign(triangles, -1);
+    this->ChangedAt.assign(vertices, 0);
+    this->Waiting.clear();
+  }
+
+  bool IsParked(Id t) const { return this->ParkedAt[t] >= 0; }
+
+  /// Park t at `now`; a new waiting triangle joins `list` (the lot's own list by default;
+  /// collapses running in parallel keep lists of their own and Adopt them afterwards).
+  void Park(Id t, std::int64_t now, std::vector<Id>* list = nullptr)
+  {
+    if (this->ParkedAt[t] < 0)
+    {
+      (list ? *list : this->Waiting).push_back(t);
+    }
+    this->ParkedAt[t] = now;
+  }
+  void Adopt(const std::vector<Id>& list)
+  {
+    this->Waiting.insert(this->Waiting.end(), list.begin(), list.end());
+  }
+
+  /// The triangle was re-weighted for another reason: it is no longer waiting.
+  void Unpark(Id t) { this->ParkedAt[t] = -1; }
+
+  /// Every vertex of triangle t changed (position, neighbours) at `now`.
+  void Touch(const Id* t, std::int64_t now)
+  {
+    this->ChangedAt[t[0]] = this->ChangedAt[t[1]] = this->ChangedAt[t[2]] = now;
+  }
+
+  /// Call release(t) for every live waiting triangle with a vertex of a triangle around its
+  /// corners changed after it was parked; those leave the lot.
+  template <typename F>
+  void Release(const CollapseMesh& state, F&& release)
+  {
+    std::size_t kept = 0;
+    for (const Id t : this->Waiting)
+    {
+      if (this->ParkedAt[t] < 0 || !state.IsAlive(t))
+      {
+        this->ParkedAt[t] = -1;
+        continue;
+      }
+      bool changed = false;
+      const Id* tri = state.Mesh.Triangle(t);
+      const std::int64_t since = this->ParkedAt[t];
+      for (int k = 0; k < 3 && !changed; ++k)
+      {
+        state.ForEachTriangle(tri[k], [&](Id n) {
+          const Id* nt = state.Mesh.Triangle(n);
+          changed = changed || this->ChangedAt[nt[0]] > since || this->ChangedAt[nt[1]] > since ||
+            this->ChangedAt[nt[2]] > since;
+        });
+      }
+      if (changed)
+      {
+        this->ParkedAt[t] = -1;
+        release(t);
+      }
+      else
+      {
+        this->Waiting[kept++] = t;
+      }
+    }
+    this->Waiting.resize(kept);
+  }
+
+  std::size_t GetNumberOfWaiting() const { return this->Waiting.size(); }
+
+private:
+  std::vector<std::int64_t> ParkedAt;  // per triangle, -1 when not waiting
+  std::vector<std::int64_t> ChangedAt; // per vertex
+  std::vector<Id> Waiting;
+};
+
+class Collapser
+{
+public:
+  Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
+    const TriangleCollapseOptions& options, const TriangleCollapseCallbacks& callbacks);
+
+  TriangleCollapseResult RunGreedy();
+  TriangleCollapseResult RunPartitionedGreedy();
+  TriangleCollapseResult RunIndependentSets();
+
+private:
+  // What a greedy run up to a triangle count ended with.
+  enum class StepsEnd
+  {
+    Reached, // the live triangles reached the count
+    Stuck,   // nothing collapsible left
+    Stopped, // MaximumError reached, or aborted
+  };
+  // Greedy collapses, cheapest first, until at most `until` triangles are alive (levels are
+  // emitted on the way).
+  StepsEnd GreedySteps(std::int64_t until);
+
+  // Partitioned greedy: one round of greedy collapses inside the cells of a grid, in
+  // parallel, removing at most `budget` triangles (and 3 more per cell); returns how many it
+  // removed.
+  std::int64_t BlockRound(std::int64_t budget, int round, bool& errorLimited);
+  // The cost below which about `count` of the live, unparked triangles are (sampled);
+  // -infinity when none has a finite cost.
+  double CostQuantile(double count) const;
+  // List the live, unparked triangles costing at most `threshold` by cell of the grid (one cell
+  // without a grid), leaving out those with corners in several cells; returns the number of
+  // cells (see CellFirst).
+  std::uint32_t ListCandidates(double threshold, const CellGrid* grid);
+  // The box and surface area the grids of BlockRound are sized from.
+  void PrepareGrid();
+  // List the live triangles and vertices again (the first time: all of them).
+  void ListLive();
+
+  // Evaluate every live triangle (in parallel); for the curvature method, normalise kappa by
+  // the largest curvature found.
+  void EvaluateAll();
+  // The cost of collapsing triangle t; also records how many triangles it would remove.
+  double EvaluateCost(Id t, CostScratch& scratch);
+
+  // Merge the star's members (safe in parallel for stars with disjoint stencils: it touches
+  // only their triangles and groups). Returns the number of triangles removed.
+  int Collapse(const Star& star, CollapseCandidate& c, std::int64_t sequence);
+  // Whether the collapse evaluated for triangle t (or a fallback: the swap variant, the
+  // cheapest edge) is legal; on Legal, c and star describe the collapse to make. Foreign when
+  // the answer needs vertices of another block.
+  Legality Check(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
+  // The same without the swap (which reaches beyond the triangle's neighbourhood).
+  Legality CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
+  Legality Legal(Star& star, const CollapseCandidate& c) const;
+  bool TrySwap(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
+
+  // Emit levels whose target is reached; returns false on abort.
+  bool AfterProgress();
+  void EmitLevel();
+  // When the run stops before the last target (nothing collapsible left, or MaximumError),
+  // the coarsest mesh reached still becomes a level.
+  TriangleCollapseResult FinishRun();
+  bool Finished() const { return this->NextTarget >= this->Targets.size(); }
+  std::int64_t CurrentTarget() const { return this->Targets[this->NextTarget]; }
+  bool ErrorAllows(double error) const
+  {
+    return this->Options.MaximumError <= 0.0 || error <= this->Options.MaximumError;
+  }
+  double LevelError() const;
+
+  const TriangleCollapseOptions& Options;
+  const TriangleCollapseCallbacks& Callbacks;
+  std::vector<double> OriginalPoints; // curvature method only
+  CollapseMesh State;
+  LevelTracker Tracker;
+  CollapseCostModel Model;
+  CollapseRules Rules;
+  ParkingLot Lot;
+  std::vector<double> Costs;
+  // Per triangle, how far its chosen collapse moves the merged vertices (sum of squared
+  // distances): the greedy order between equal costs. On an exactly flat region every collapse
+  // costs 0; taking the ones that move vertices least first decimates it evenly.
+  std::vector<float> Spreads;
+  // What the last evaluation of each triangle chose (CollapseCandidate::Choice), so that the
+  // check of a chosen triangle solves for that collapse only.
+  std::vector<std::uint8_t> Choices;
+  std::vector<std::int64_t> Targets;
+  std::size_t NextTarget = 0;
+  Id InitialTriangles = 0;
+  std::int64_t Sequence = 0; // numbers the collapses (CollapseRank order)
+  std::int64_t Clock = 0;    // the parking lot's time
+  Id LastEmitted = 0;        // triangles of the last level handed over
+  TriangleCollapseResult Result;
+
+  // Partitioned greedy (PartitionedGreedy.cxx): storage kept between rounds.
+  double GridBounds[6] = { 0, 0, 0, 0, 0, 0 };
+  double GridArea = 0.0;
+  std::vector<Id> LiveTriangles;            // every live triangle, and some dead ones
+  std::vector<Id> LiveVertices;             // the same for vertices
+  std::vector<std::uint32_t> Owner;         // per vertex: its cell in this round
+  std::vector<std::uint32_t> CandidateCell; // per live triangle: its cell, when a candidate
+  std::vector<Id> Candidates;               // candidates, cell by cell
+  std::vector<Id> CellFirst;                // cell -> its first candidate
+  std::vector<Id> HeapPositions;            // shared by the cells' heaps
+};
+
+} // namespace meshlod
+
+#endif

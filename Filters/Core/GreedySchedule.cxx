@@ -1,0 +1,131 @@
+// The greedy schedule (paper 002, section 2.4): always the cheapest legal collapse next.
+#include "Collapser.h"
+
+#include "IndexedHeap.h"
+
+#include <algorithm>
+
+namespace meshlod
+{
+namespace
+{
+// The parking lot is checked after this many collapses ...
+constexpr std::int64_t ParkedRetryCollapses = 256;
+// ... or after one collapse per this many waiting triangles, if that is later.
+constexpr std::size_t ParkedRetryShare = 4;
+} // namespace
+
+//------------------------------------------------------------------------------
+TriangleCollapseResult Collapser::RunGreedy()
+{
+  this->EvaluateAll();
+  if (!this->Finished())
+  {
+    this->GreedySteps(this->Targets.back());
+  }
+  return this->FinishRun();
+}
+
+//------------------------------------------------------------------------------
+Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
+{
+  IndexedHeap heap;
+  heap.Reset(&this->Costs, this->InitialTriangles, &this->Spreads);
+  heap.Build([&](Id t) {
+    return this->State.IsAlive(t) && this->Costs[t] < InfiniteCost && !this->Lot.IsParked(t);
+  });
+
+  Star star;
+  CostScratch scratch;
+  CollapseCandidate c;
+  const std::int64_t progressEvery = std::max<std::int64_t>(1000, this->InitialTriangles / 200);
+  const bool widen = this->Options.Method == CollapseMethod::Curvature;
+  std::vector<Id> touched;
+  auto release = [&](Id s) { heap.Update(s); };
+  // A new cost for triangle s; a triangle that cannot collapse any more leaves the heap.
+  auto reweigh = [&](Id s) {
+    this->Lot.Unpark(s);
+    this->Costs[s] = this->EvaluateCost(s, scratch);
+    if (this->Costs[s] < InfiniteCost)
+    {
+      heap.Update(s);
+    }
+    else
+    {
+      heap.Remove(s);
+    }
+  };
+  std::int64_t nextRelease = this->Clock + ParkedRetryCollapses;
+  while (this->State.AliveTriangles > until)
+  {
+    if (heap.Empty() || this->Clock >= nextRelease)
+    {
+      this->Lot.Release(this->State, release);
+      // A check costs time in proportion to the waiting triangles: space the checks so that
+      // they cost a bounded amount per collapse however many triangles wait.
+      nextRelease = this->Clock +
+        std::max<std::int64_t>(ParkedRetryCollapses,
+          static_cast<std::int64_t>(this->Lot.GetNumberOfWaiting() / ParkedRetryShare));
+      if (heap.Empty())
+      {
+        return StepsEnd::Stuck;
+      }
+    }
+    const Id t = heap.Pop();
+    if (this->Check(t, star, c, scratch) != Legality::Legal)
+    {
+      this->Lot.Park(t, this->Clock);
+      continue;
+    }
+    if (!this->ErrorAllows(c.Error))
+    {
+      return StepsEnd::Stopped;
+    }
+    const Id survivor = star.Members[0];
+    const int dying = this->Collapse(star, c, this->Sequence++);
+    this->Result.Swaps += c.Swapped ? 1 : 0;
+    this->State.AliveTriangles -= dying;
+    ++this->Result.Collapses;
+    ++this->Clock;
+    for (const Id d : star.Dying)
+    {
+      heap.Remove(d);
+    }
+
+    // New costs around the survivor; its neighbours' valences and its position changed, which
+    // the parking lot takes note of. For the curvature method the triangles one ring further
+    // out are re-weighted too: their stencils moved.
+    touched.clear();
+    scratch.BeginSpokes(survivor);
+    this->State.ForEachTriangle(survivor, [&](Id s) {
+      const Id* tri = this->State.Mesh.Triangle(s);
+      this->Lot.Touch(tri, this->Clock);
+      reweigh(s);
+      if (widen)
+      {
+        touched.insert(touched.end(), tri, tri + 3);
+      }
+    });
+    scratch.EndSpokes();
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (const Id u : touched)
+    {
+      this->State.ForEachTriangle(u, [&](Id s) {
+        if (CornerOf(this->State.Mesh.Triangle(s), survivor) < 0)
+        {
+          reweigh(s);
+        }
+      });
+    }
+    const bool levelReached =
+      !this->Finished() && this->State.AliveTriangles <= this->CurrentTarget();
+    if ((this->Result.Collapses % progressEvery == 0 || levelReached) && !this->AfterProgress())
+    {
+      return StepsEnd::Stopped;
+    }
+  }
+  return StepsEnd::Reached;
+}
+
+} // namespace meshlod

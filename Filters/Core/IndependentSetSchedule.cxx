@@ -1,0 +1,290 @@
+// The independent-set schedule (paper 000, section 6): passes of simultaneous collapses.
+#include "Collapser.h"
+
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <iterator>
+
+namespace meshlod
+{
+namespace
+{
+// A pass chooses among the cheapest PoolFactor times as many triangles as its budget of
+// removed triangles.
+constexpr std::int64_t PoolFactor = 4;
+
+// Triangles found illegal are retried after this many passes.
+constexpr std::int64_t ParkedRetryPasses = 8;
+} // namespace
+
+//------------------------------------------------------------------------------
+// Independent sets (paper 000, section 6): each pass collapses at once many cheap triangles
+// whose stencils share no vertex.
+TriangleCollapseResult Collapser::RunIndependentSets()
+{
+  this->EvaluateAll();
+  const Id nt = this->InitialTriangles;
+  std::vector<unsigned char> isDirty(nt, 0);
+  // Vertex -> 1 + the index of the pass's candidate whose neighbourhood holds it, 0 if none.
+  std::vector<Id> owner(this->State.Mesh.GetNumberOfPoints(), 0);
+  std::vector<Id> live(nt), dirty, pool, chosen, owned, survivors, neighbourhood;
+  for (Id t = 0; t < nt; ++t)
+  {
+    live[t] = t;
+  }
+  std::vector<CollapseCandidate> candidates;
+  std::vector<unsigned char> outcome;
+  vtkSMPThreadLocal<CostScratch> scratch;
+  vtkSMPThreadLocal<Star> stars;
+  enum : unsigned char
+  {
+    Refused = 0,
+    Collapsed = 1,
+    NeedsSwap = 2,
+    TooLarge = 3, // legal, but above MaximumError
+    Skipped = 4,  // legal, not needed for this pass's budget
+  };
+
+  while (!this->Finished())
+  {
+    ++this->Result.Passes;
+    ++this->Clock;
+    // 1. Re-weight what changed in the last pass (in parallel).
+    vtkSMPTools::For(0, static_cast<Id>(dirty.size()), [&](Id begin, Id end) {
+      CostScratch& mine = scratch.Local();
+      for (Id i = begin; i < end; ++i)
+      {
+        this->Costs[dirty[i]] = this->EvaluateCost(dirty[i], mine);
+      }
+    });
+    for (const Id t : dirty)
+    {
+      isDirty[t] = 0;
+    }
+    dirty.clear();
+
+    // 2. The cheapest candidates: a pool a few times larger than what one pass can take.
+    live.erase(std::remove_if(live.begin(), live.end(), [&](Id t) { return !this->State.IsAlive(t); }),
+      live.end());
+    const Id alive = this->State.AliveTriangles;
+    // LevelFraction is the paper's fraction of triangles selected per pass; a triangle
+    // collapse removes four, so a pass removes up to 4 * LevelFraction of the triangles, in
+    // whatever mix of triangle and edge collapses.
+    const std::int64_t budget = std::min<std::int64_t>(
+      std::max<std::int64_t>(1, static_cast<std::int64_t>(4.0 * this->Options.LevelFraction * alive)),
+      static_cast<std::int64_t>(alive) - this->CurrentTarget());
+    pool.clear();
+    std::copy_if(live.begin(), live.end(), std::back_inserter(pool),
+      [&](Id t) { return this->Costs[t] < InfiniteCost; });
+    auto cheaper = [&](Id a, Id b) {
+      return this->Costs[a] < this->Costs[b] || (this->Costs[a] == this->Costs[b] && a < b);
+    };
+
+    // 3. Choose, cheapest first, triangles whose neighbourhoods (every triangle around their
+    // corners: it holds the stencil of the triangle's collapse and of each edge's) share no
+    // vertex, until the pass's budget of removed triangles is reached (a little beyond it,
+    // and a few dozen at least: some of the chosen will not be legal). These collapses are independent: none can change
+    // another's legality, so they can be checked and made at once. Only the cheapest
+    // PoolFactor * budget triangles are eligible, so that a pass stays greedy even when their
+    // neighbourhoods overlap a lot; they are ordered a block at a time, as far as the choice gets.
+    chosen.clear();
+    std::int64_t estimate = 0;
+    const std::int64_t wanted = budget + budget / 4 + 64;
+    const std::size_t eligible =
+      std::min<std::size_t>(pool.size(), static_cast<std::size_t>(PoolFactor * budget + 64));
+    if (eligible < pool.size())
+    {
+      std::nth_element(pool.begin(), pool.begin() + eligible, pool.end(), cheaper);
+    }
+    const std::size_t block = static_cast<std::size_t>(std::max<std::int64_t>(64, budget));
+    for (std::size_t first = 0; first < eligible && estimate < wanted; first += block)
+    {
+      const std::size_t last = std::min(eligible, first + block);
+      if (last < eligible)
+      {
+        std::nth_element(pool.begin() + first, pool.begin() + last, pool.begin() + eligible, cheaper);
+      }
+      std::sort(pool.begin() + first, pool.begin() + last, cheaper);
+      for (std::size_t i = first; i < last && estimate < wanted; ++i)
+      {
+        const Id t = pool[i];
+        const Id* tri = this->State.Mesh.Triangle(t);
+        if (owner[tri[0]] || owner[tri[1]] || owner[tri[2]])
+        {
+          continue;
+        }
+        neighbourhood.clear();
+        bool blocked = false;
+        for (int k = 0; k < 3 && !blocked; ++k)
+        {
+          this->State.ForEachTriangle(tri[k], [&](Id n) {
+            const Id* nt = this->State.Mesh.Triangle(n);
+            blocked = blocked || owner[nt[0]] || owner[nt[1]] || owner[nt[2]];
+            neighbourhood.push_back(nt[0]);
+            neighbourhood.push_back(nt[1]);
+            neighbourhood.push_back(nt[2]);
+          });
+        }
+        if (blocked)
+        {
+          continue;
+        }
+        chosen.push_back(t);
+        const Id mark = static_cast<Id>(chosen.size());
+        for (const Id v : neighbourhood)
+        {
+          if (!owner[v])
+          {
+            owner[v] = mark;
+            owned.push_back(v);
+          }
+        }
+        estimate += this->Choices[t] == TriangleChoice ? 4 : 2; // at most
+      }
+    }
+
+    // 4. Check the chosen ones (in parallel), keep the cheapest legal ones up to the pass's
+    // budget, and collapse those (in parallel). Collapse numbers follow the choice order, so
+    // the levels' ranks do not depend on the thread count.
+    const Id count = static_cast<Id>(chosen.size());
+    candidates.resize(count);
+    outcome.assign(count, Refused);
+    survivors.assign(count, InvalidId);
+    vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+      CostScratch& mine = scratch.Local();
+      Star& star = stars.Local();
+      for (Id i = begin; i < end; ++i)
+      {
+        const Legality legality = this->CheckDirect(chosen[i], star, candidates[i], mine);
+        candidates[i].Dying = static_cast<int>(star.Dying.size());
+        if (legality == Legality::Legal)
+        {
+          outcome[i] = this->ErrorAllows(candidates[i].Error) ? Collapsed : TooLarge;
+        }
+        else if (legality == Legality::LowValenceApex && candidates[i].MemberCount == 3)
+        {
+          outcome[i] = NeedsSwap;
+        }
+      }
+    });
+    std::int64_t removed = 0;
+    bool errorLimited = false;
+    for (Id i = 0; i < count; ++i)
+    {
+      if (outcome[i] == Collapsed && removed >= budget)
+      {
+        outcome[i] = Skipped; // the level's target is reached without it
+      }
+      removed += outcome[i] == Collapsed ? candidates[i].Dying : 0;
+    }
+    const std::int64_t base = this->Sequence;
+    vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+      Star& star = stars.Local();
+      for (Id i = begin; i < end; ++i)
+      {
+        if (outcome[i] == Collapsed)
+        {
+          this->State.GatherStar(candidates[i].Members, candidates[i].MemberCount, star);
+          this->Collapse(star, candidates[i], base + i);
+          survivors[i] = star.Members[0];
+        }
+      }
+    });
+    this->Sequence += count;
+
+    // 5. Triangles blocked by a low-valence apex try the swap (paper 000, figure 3), one after
+    // the other: the swap reaches one ring beyond the chosen neighbourhood.
+    Star& star = stars.Local();
+    CostScratch& mine = scratch.Local();
+    for (Id i = 0; i < count; ++i)
+    {
+      if (outcome[i] == NeedsSwap && removed < budget)
+      {
+        const Id t = chosen[i];
+        outcome[i] = Refused;
+        if (this->CheckDirect(t, star, candidates[i], mine) == Legality::LowValenceApex &&
+          this->TrySwap(t, star, candidates[i], mine))
+        {
+          outcome[i] = this->ErrorAllows(candidates[i].Error) ? Collapsed : TooLarge;
+          if (outcome[i] == Collapsed)
+          {
+            removed += this->Collapse(star, candidates[i], this->Sequence++);
+            survivors[i] = star.Members[0];
+          }
+        }
+      }
+      if (outcome[i] == Collapsed)
+      {
+        this->Result.Swaps += candidates[i].Swapped ? 1 : 0;
+        ++this->Result.Collapses;
+      }
+      else if (outcome[i] == TooLarge)
+      {
+        errorLimited = true;
+      }
+      else if (outcome[i] == Refused)
+      {
+        // Parked until a collapse nearby changes its neighbourhood (see step 6).
+        this->Costs[chosen[i]] = InfiniteCost;
+        this->Lot.Park(chosen[i], this->Clock);
+      }
+    }
+    this->State.AliveTriangles -= static_cast<Id>(removed);
+    for (const Id v : owned)
+    {
+      owner[v] = 0;
+    }
+    owned.clear();
+
+    // 6. List for re-weighting the triangles whose weight changed: those around the survivors
+    // (for the curvature method also one ring further out, whose stencils moved).
+    const bool widen = this->Options.Method == CollapseMethod::Curvature;
+    auto markDirty = [&](Id s) {
+      if (!isDirty[s])
+      {
+        isDirty[s] = 1;
+        this->Lot.Unpark(s);
+        dirty.push_back(s);
+      }
+    };
+    for (const Id survivor : survivors)
+    {
+      if (survivor == InvalidId)
+      {
+        continue;
+      }
+      this->State.ForEachTriangle(survivor, [&](Id s) {
+        markDirty(s);
+        this->Lot.Touch(this->State.Mesh.Triangle(s), this->Clock);
+        if (widen)
+        {
+          const Id* st = this->State.Mesh.Triangle(s);
+          for (int k = 0; k < 3; ++k)
+          {
+            this->State.ForEachTriangle(st[k], markDirty);
+          }
+        }
+      });
+    }
+    // Parked triangles further out may have become legal (valences and positions changed);
+    // rather than searching for them around every collapse, look now and then.
+    if (this->Result.Passes % ParkedRetryPasses == 0 || count == 0)
+    {
+      this->Lot.Release(this->State, markDirty);
+    }
+    // Stuck when nothing could be chosen and no refused triangle has a changed neighbourhood.
+    if (count == 0 && dirty.empty())
+    {
+      break; // nothing collapsible (or allowed by MaximumError) is left
+    }
+    if (errorLimited || !this->AfterProgress())
+    {
+      break;
+    }
+  }
+  return this->FinishRun();
+}
+
+} // namespace meshlod

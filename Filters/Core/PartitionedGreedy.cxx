@@ -1,0 +1,456 @@
+// The greedy schedule in parallel: greedy collapses inside spatial blocks, the blocks at once.
+//
+// Cheapest-first collapses far apart from each other do not interact, and most of a greedy
+// run's time is spent on them, in an order that jumps across the whole mesh (cache misses on
+// large meshes). So the run goes in rounds. A round cuts space into cells of a grid (a vertex
+// belongs to the cell holding it), takes as candidates the triangles whose three corners lie in
+// one cell and whose cost is below a threshold shared by all cells, and runs the greedy loop in
+// every cell at once: cheapest candidate first, costs around each collapse updated, until the
+// cell's heap is empty or its share of the round's budget is removed. A collapse whose star
+// reaches a vertex of another cell is left for a later round (Star::Owner): then no cell reads
+// or writes what another may change, and every cell's result depends on the mesh at the start
+// of the round only, whatever the number of threads. Rounds alternate between two grids
+// shifted by half a cell, so that what one round leaves at cell borders the next finds inside
+// a cell.
+//
+// The threshold is the cost quantile that holds about as many candidates as the round may
+// remove, so every cell stops near the same cost: together the cells follow the global
+// cheapest-first order closely. A round removes at most RoundShare of what is left to the next
+// level's triangle count. The last collapses before each level are a serial round (one cell
+// holding everything, its budget exactly what is left), which lands the level on its count;
+// when thresholds find nothing more, the plain greedy loop (GreedySteps) finishes the level.
+#include "Collapser.h"
+
+#include "IndexedHeap.h"
+
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace meshlod
+{
+namespace
+{
+// Cells are sized for about this many triangles (more cells: more parallel work, shorter
+// heaps; fewer: less left at cell borders) ...
+constexpr std::int64_t TrianglesPerCell = 32768;
+// ... but a round has at least this many cells (to keep two threads busy) when every cell
+// still gets MinimumTrianglesPerCell.
+constexpr std::int64_t MinimumCells = 16;
+constexpr std::int64_t MinimumTrianglesPerCell = 4096;
+// The grid never has more cells than this (each round counts candidates per cell).
+constexpr std::int64_t MaximumCells = 1 << 16;
+// A round removes at most this fraction of what is left to the next level's count ...
+constexpr double RoundShare = 0.8;
+// ... and the collapses before a level are serial once fewer than max(SerialGap, live
+// triangles / SerialShare) triangles are left to remove.
+constexpr std::int64_t SerialGap = 1024;
+constexpr std::int64_t SerialShare = 32;
+// The threshold is a quantile of about this many sampled costs.
+constexpr Id CostSamples = 1 << 16;
+// A serial round's threshold holds this many candidates per triangle of its budget: it must
+// reach the budget although collapses kill some of its candidates.
+constexpr double SerialCandidateFactor = 2.0;
+
+constexpr std::uint32_t NoCell = 0xffffffffu;
+
+// How many cells a round aims at for `alive` triangles.
+std::int64_t CellsFor(std::int64_t alive)
+{
+  return std::max(
+    std::min(MinimumCells, alive / MinimumTrianglesPerCell), alive / TrianglesPerCell);
+}
+
+// Per-thread scratch of the cells' greedy loops.
+struct CellScratch
+{
+  IndexedHeap Heap;
+  Star Stars;
+  CostScratch Cost;
+  CollapseCandidate Candidate;
+};
+
+// What one cell did in a round.
+struct CellOutcome
+{
+  std::int64_t Removed = 0;
+  std::int64_t Collapses = 0;
+  std::int64_t Swaps = 0;
+  bool ErrorLimited = false;
+  std::vector<Id> Parked;
+};
+} // namespace
+
+// A uniform grid over a box; cell ids are x + nx (y + ny z).
+struct CellGrid
+{
+  double Origin[3] = { 0, 0, 0 };
+  double Size = 1.0;
+  int Dims[3] = { 1, 1, 1 };
+
+  // Cells of about `size` (at most half the box's longest side) centred on the box; `shifted`
+  // moves every cell border by half a cell, so that the borders of the two grids are far apart.
+  void Set(const double bounds[6], double size, bool shifted)
+  {
+    double longest = 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      longest = std::max(longest, bounds[2 * i + 1] - bounds[2 * i]);
+    }
+    size = std::min(size, 0.5 * longest);
+    for (;;)
+    {
+      std::int64_t cells = 1;
+      for (int i = 0; i < 3; ++i)
+      {
+        const double extent = bounds[2 * i + 1] - bounds[2 * i];
+        const int dims = static_cast<int>(std::min(1.0e6, std::ceil(extent / size)));
+        this->Dims[i] = std::max(1, dims) + (shifted ? 1 : 0);
+        this->Origin[i] = 0.5 * (bounds[2 * i] + bounds[2 * i + 1]) - 0.5 * this->Dims[i] * size;
+        cells *= this->Dims[i];
+      }
+      if (cells <= MaximumCells)
+      {
+        break;
+      }
+      size *= 1.26; // about twice fewer cells
+    }
+    this->Size = size;
+  }
+
+  std::uint32_t CellOf(const double* x) const
+  {
+    int index[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      const double u = std::floor((x[i] - this->Origin[i]) / this->Size);
+      index[i] = static_cast<int>(std::min<double>(this->Dims[i] - 1, std::max(0.0, u)));
+    }
+    return static_cast<std::uint32_t>(
+      index[0] + this->Dims[0] * (index[1] + this->Dims[1] * index[2]));
+  }
+
+  std::int64_t Cells() const
+  {
+    return static_cast<std::int64_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
+  }
+};
+
+//------------------------------------------------------------------------------
+TriangleCollapseResult Collapser::RunPartitionedGreedy()
+{
+  this->EvaluateAll();
+  int round = 0;
+  while (!this->Finished())
+  {
+    // In parallel while much is left to the next level, then a serial round (one cell, the
+    // whole budget) lands on its count.
+    const std::int64_t alive = this->State.AliveTriangles;
+    const std::int64_t gap = alive - this->CurrentTarget();
+    const std::int64_t cells = CellsFor(alive);
+    const std::int64_t budget = static_cast<std::int64_t>(RoundShare * gap) - 4 * cells;
+    const bool parallel =
+      cells >= 2 && gap > std::max(SerialGap, alive / SerialShare) && budget > 0;
+    bool errorLimited = false;
+    const std::int64_t removed =
+      this->BlockRound(parallel ? budget : gap, parallel ? round++ : -1, errorLimited);
+    if (removed == 0 || errorLimited)
+    {
+      // The rounds' thresholds found nothing more (or the error limit is near): finish the
+      // level with the plain greedy loop, which retries refused triangles as it goes.
+      if (this->GreedySteps(this->CurrentTarget()) != StepsEnd::Reached)
+      {
+        break;
+      }
+      continue;
+    }
+    if (!this->AfterProgress())
+    {
+      return this->Result;
+    }
+  }
+  return this->FinishRun();
+}
+
+//------------------------------------------------------------------------------
+double Collapser::CostQuantile(double count) const
+{
+  const Id live = static_cast<Id>(this->LiveTriangles.size());
+  const Id stride = std::max<Id>(1, live / CostSamples);
+  std::vector<double> sample;
+  for (Id i = 0; i < live; i += stride)
+  {
+    const Id t = this->LiveTriangles[i];
+    if (this->State.IsAlive(t) && this->Costs[t] < InfiniteCost && !this->Lot.IsParked(t))
+    {
+      sample.push_back(this->Costs[t]);
+    }
+  }
+  if (sample.empty())
+  {
+    return -InfiniteCost;
+  }
+  const double share = count / (static_cast<double>(sample.size()) * stride);
+  const std::size_t k =
+    std::min(sample.size() - 1, static_cast<std::size_t>(std::max(0.0, share) * sample.size()));
+  std::nth_element(sample.begin(), sample.begin() + k, sample.end());
+  return sample[k];
+}
+
+//------------------------------------------------------------------------------
+std::uint32_t Collapser::ListCandidates(double threshold, const CellGrid* grid)
+{
+  const TriangleMesh& mesh = this->State.Mesh;
+  const Id live = static_cast<Id>(this->LiveTriangles.size());
+  if (grid != nullptr)
+  {
+    this->Owner.resize(mesh.GetNumberOfPoints(), NoCell);
+    const Id liveVertices = static_cast<Id>(this->LiveVertices.size());
+    vtkSMPTools::For(0, liveVertices, [&](Id begin, Id end) {
+      for (Id i = begin; i < end; ++i)
+      {
+        const Id v = this->LiveVertices[i];
+        this->Owner[v] = grid->CellOf(mesh.Point(v));
+      }
+    });
+  }
+  // Every candidate's cell (0 without a grid), NoCell for the others.
+  this->CandidateCell.resize(live);
+  vtkSMPTools::For(0, live, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
+    {
+      const Id t = this->LiveTriangles[i];
+      std::uint32_t cell = NoCell;
+      if (this->State.IsAlive(t) && this->Costs[t] <= threshold && !this->Lot.IsParked(t))
+      {
+        const Id* tri = mesh.Triangle(t);
+        const std::uint32_t c = grid ? this->Owner[tri[0]] : 0;
+        cell = !grid || (this->Owner[tri[1]] == c && this->Owner[tri[2]] == c) ? c : NoCell;
+      }
+      this->CandidateCell[i] = cell;
+    }
+  });
+  // Counting sort by cell: the candidates of cell c are Candidates[CellFirst[c] ..
+  // CellFirst[c + 1]), in increasing id order.
+  const std::uint32_t cells = grid ? static_cast<std::uint32_t>(grid->Cells()) : 1;
+  this->CellFirst.assign(cells + 1, 0);
+  for (const std::uint32_t cell : this->CandidateCell)
+  {
+    if (cell != NoCell)
+    {
+      ++this->CellFirst[cell + 1];
+    }
+  }
+  for (std::uint32_t c = 0; c < cells; ++c)
+  {
+    this->CellFirst[c + 1] += this->CellFirst[c];
+  }
+  this->Candidates.resize(this->CellFirst[cells]);
+  std::vector<Id> next(this->CellFirst.begin(), this->CellFirst.end() - 1);
+  for (Id i = 0; i < live; ++i)
+  {
+    const std::uint32_t cell = this->CandidateCell[i];
+    if (cell != NoCell)
+    {
+      this->Candidates[next[cell]++] = this->LiveTriangles[i];
+    }
+  }
+  return cells;
+}
+
+//------------------------------------------------------------------------------
+std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLimited)
+{
+  // Refused triangles whose neighbourhood changed in the last round compete again.
+  this->Lot.Release(this->State, [](Id) {});
+  // The live triangles and vertices, listed again when many died since the last listing.
+  const Id alive = this->State.AliveTriangles;
+  if (this->LiveTriangles.empty() || this->LiveTriangles.size() > 1.25 * alive)
+  {
+    this->ListLive();
+  }
+
+  // 1. The threshold: the cost quantile holding about `budget` candidates (twice that for a
+  // serial round, which must reach its budget).
+  const bool parallel = round >= 0;
+  const double threshold =
+    this->CostQuantile(static_cast<double>(budget) * (parallel ? 1.0 : SerialCandidateFactor));
+  if (!(threshold > -InfiniteCost))
+  {
+    return 0;
+  }
+
+  // 2. The candidates, cell by cell: for a parallel round, the cells of a grid sized from the
+  // surface area, shifted every other round.
+  CellGrid grid;
+  if (parallel)
+  {
+    const double wanted = static_cast<double>(CellsFor(alive));
+    grid.Set(this->GridBounds, std::sqrt(1.5 * this->GridArea / wanted), round % 2 == 1);
+  }
+  const std::uint32_t cells = this->ListCandidates(threshold, parallel ? &grid : nullptr);
+  const Id candidates = static_cast<Id>(this->Candidates.size());
+  std::vector<std::uint32_t> busy; // cells with candidates, in increasing order
+  for (std::uint32_t c = 0; c < cells; ++c)
+  {
+    if (this->CellFirst[c + 1] > this->CellFirst[c])
+    {
+      busy.push_back(c);
+    }
+  }
+  if (busy.empty() || (parallel && busy.size() < 2))
+  {
+    return 0; // nothing to do, or nothing to do in parallel: the serial loop does better
+  }
+
+  // 3. Every cell's greedy loop, in parallel. A cell may remove its share of the budget (in
+  // proportion to its candidates), and up to 3 triangles more with its last collapse.
+  this->HeapPositions.resize(this->State.Mesh.GetNumberOfTriangles(), InvalidId);
+  const Id cellsBusy = static_cast<Id>(busy.size());
+  std::vector<CellOutcome> outcomes(cellsBusy);
+  vtkSMPThreadLocal<CellScratch> scratch;
+  const std::int64_t clock = this->Clock;
+  const std::int64_t sequence = this->Sequence;
+  vtkSMPTools::For(0, cellsBusy, 1, [&](Id begin, Id end) {
+    CellScratch& mine = scratch.Local();
+    for (Id b = begin; b < end; ++b)
+    {
+      const std::uint32_t cell = busy[b];
+      const Id first = this->CellFirst[cell];
+      const Id count = this->CellFirst[cell + 1] - first;
+      const std::int64_t quota = budget * count / candidates;
+      CellOutcome& out = outcomes[b];
+      IndexedHeap& heap = mine.Heap;
+      Star& star = mine.Stars;
+      CollapseCandidate& c = mine.Candidate;
+      heap.Attach(&this->Costs, &this->Spreads, this->HeapPositions.data());
+      heap.Build(this->Candidates.data() + first, static_cast<std::size_t>(count));
+      star.Owner = parallel ? this->Owner.data() : nullptr;
+      star.Block = cell;
+      while (!heap.Empty() && out.Removed < quota)
+      {
+        const Id t = heap.Pop();
+        const Legality legality = this->Check(t, star, c, mine.Cost);
+        if (legality == Legality::Foreign)
+        {
+          continue; // for a later round
+        }
+        const std::int64_t now = clock + out.Collapses;
+        if (legality != Legality::Legal)
+        {
+          this->Lot.Park(t, now, &out.Parked);
+          continue;
+        }
+        if (!this->ErrorAllows(c.Error))
+        {
+          out.ErrorLimited = true;
+          break;
+        }
+        const Id survivor = star.Members[0];
+        // Collapse numbers interleave the cells, cheapest first in each.
+        out.Removed += this->Collapse(star, c, sequence + out.Collapses * cellsBusy + b);
+        out.Swaps += c.Swapped ? 1 : 0;
+        ++out.Collapses;
+        for (const Id d : star.Dying)
+        {
+          heap.Remove(d);
+        }
+        mine.Cost.BeginSpokes(survivor);
+        this->State.ForEachTriangle(survivor, [&](Id s) {
+          this->Lot.Touch(this->State.Mesh.Triangle(s), now + 1);
+          this->Lot.Unpark(s);
+          this->Costs[s] = this->EvaluateCost(s, mine.Cost);
+          if (this->Costs[s] <= threshold)
+          {
+            heap.Update(s);
+          }
+          else
+          {
+            heap.Remove(s);
+          }
+        });
+        mine.Cost.EndSpokes();
+      }
+      heap.Clear();
+      star.Owner = nullptr;
+    }
+  });
+
+  // 4. Sum up in cell order.
+  std::int64_t removed = 0, longest = 0;
+  for (const CellOutcome& out : outcomes)
+  {
+    removed += out.Removed;
+    this->Result.Collapses += out.Collapses;
+    this->Result.Swaps += out.Swaps;
+    errorLimited = errorLimited || out.ErrorLimited;
+    longest = std::max(longest, out.Collapses);
+    this->Lot.Adopt(out.Parked);
+  }
+  this->State.AliveTriangles -= static_cast<Id>(removed);
+  this->Clock += longest + 1;
+  this->Sequence += (longest + 1) * cellsBusy;
+  return removed;
+}
+
+//------------------------------------------------------------------------------
+void Collapser::ListLive()
+{
+  const auto dead = [&](Id t) { return !this->State.IsAlive(t); };
+  const auto merged = [&](Id v) { return this->State.Survivor[v] != v; };
+  if (this->LiveTriangles.empty())
+  {
+    this->LiveTriangles.resize(this->State.Mesh.GetNumberOfTriangles());
+    std::iota(this->LiveTriangles.begin(), this->LiveTriangles.end(), 0);
+    this->LiveVertices.resize(this->State.Mesh.GetNumberOfPoints());
+    std::iota(this->LiveVertices.begin(), this->LiveVertices.end(), 0);
+    this->PrepareGrid();
+  }
+  auto& t = this->LiveTriangles;
+  t.erase(std::remove_if(t.begin(), t.end(), dead), t.end());
+  auto& v = this->LiveVertices;
+  v.erase(std::remove_if(v.begin(), v.end(), merged), v.end());
+}
+
+//------------------------------------------------------------------------------
+void Collapser::PrepareGrid()
+{
+  const TriangleMesh& mesh = this->State.Mesh;
+  for (int i = 0; i < 3; ++i)
+  {
+    this->GridBounds[2 * i] = InfiniteCost;
+    this->GridBounds[2 * i + 1] = -InfiniteCost;
+  }
+  double area = 0.0;
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    if (!this->State.IsAlive(t))
+    {
+      continue;
+    }
+    double n[3];
+    mesh.AreaVector(t, n);
+    area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* x = mesh.Point(mesh.Triangle(t)[k]);
+      for (int i = 0; i < 3; ++i)
+      {
+        this->GridBounds[2 * i] = std::min(this->GridBounds[2 * i], x[i]);
+        this->GridBounds[2 * i + 1] = std::max(this->GridBounds[2 * i + 1], x[i]);
+      }
+    }
+  }
+  // A surface of zero area (all triangles degenerate) still needs cells of some size.
+  double diagonal = 0.0;
+  for (int i = 0; i < 3; ++i)
+  {
+    diagonal = std::max(diagonal, this->GridBounds[2 * i + 1] - this->GridBounds[2 * i]);
+  }
+  this->GridArea = area > 0.0 ? area : std::max(1e-300, diagonal * diagonal);
+}
+
+} // namespace meshlod
