@@ -1,5 +1,6 @@
 #include "MeshLODInputMesh.h"
 
+#include "vtkAOSDataArrayTemplate.h"
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -47,6 +48,38 @@ vtkIdType FirstNonFinitePoint(const std::vector<double>& xyz)
     first = std::min(first, v);
   }
   return first == std::numeric_limits<vtkIdType>::max() ? -1 : first;
+}
+
+// Points as doubles: straight from the array's memory for float and double points (the usual
+// case; a virtual GetTuple per point costs more than the copy), through GetTuple otherwise.
+template <typename ValueT>
+bool CopyTypedPoints(vtkDataArray* xyz, std::vector<double>& points)
+{
+  auto* typed = vtkAOSDataArrayTemplate<ValueT>::FastDownCast(xyz);
+  if (typed == nullptr || typed->GetNumberOfComponents() != 3)
+  {
+    return false;
+  }
+  const ValueT* src = typed->GetPointer(0);
+  const vtkIdType n = 3 * typed->GetNumberOfTuples();
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    std::copy(src + begin, src + end, points.data() + begin);
+  });
+  return true;
+}
+
+void CopyPoints(vtkDataArray* xyz, std::vector<double>& points)
+{
+  if (CopyTypedPoints<float>(xyz, points) || CopyTypedPoints<double>(xyz, points))
+  {
+    return;
+  }
+  vtkSMPTools::For(0, xyz->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      xyz->GetTuple(i, points.data() + 3 * i);
+    }
+  });
 }
 
 // Copy the connectivity of an all-triangle cell array into 32-bit ids.
@@ -271,13 +304,7 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   const vtkIdType numberOfPoints = result.Source->GetNumberOfPoints();
   TriangleMesh& mesh = result.Mesh;
   mesh.Points.resize(3 * static_cast<size_t>(numberOfPoints));
-  vtkDataArray* xyz = result.Source->GetPoints()->GetData();
-  vtkSMPTools::For(0, numberOfPoints, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      xyz->GetTuple(i, mesh.Points.data() + 3 * i);
-    }
-  });
+  CopyPoints(result.Source->GetPoints()->GetData(), mesh.Points);
   const vtkIdType bad = FirstNonFinitePoint(mesh.Points);
   if (bad >= 0)
   {

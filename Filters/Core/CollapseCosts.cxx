@@ -191,7 +191,7 @@ double CollapseCostModel::Edge(const Id* tri, int k, CollapseCandidate& c) const
   EdgeSolution e;
   this->SolveEdge(tri[k], tri[l], e, nullptr);
   c.Cost = e.Cost;
-  c.Error = e.Error;
+  c.Error = e.Error();
   std::copy_n(e.Position, 3, c.Position);
   c.Members[0] = tri[k];
   c.Members[1] = tri[l];
@@ -222,7 +222,7 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
   const double middle[3] = { 0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]) };
   q.MinimizeRegularized(middle, e.Position);
   e.Cost = q.Evaluate(e.Position);
-  e.Error = q.Weight() > 0.0 ? std::sqrt(e.Cost / q.Weight()) : 0.0;
+  e.Weight = q.Weight();
   e.Other = other;
   if (spoke)
   {
@@ -249,7 +249,7 @@ double CollapseCostModel::BestEdge(
     }
   }
   c.Cost = best.Cost;
-  c.Error = best.Error;
+  c.Error = best.Error();
   std::copy_n(best.Position, 3, c.Position);
   c.Members[0] = tri[bestEdge];
   c.Members[1] = tri[(bestEdge + 1) % 3];

@@ -5,6 +5,7 @@
 #include "TriangleCollapse.h"
 #include "TriangleMesh.h"
 
+#include <cmath>
 #include <vector>
 
 namespace meshlod
@@ -36,8 +37,9 @@ struct EdgeSolution
 {
   Id Other = InvalidId; // the endpoint that is not the spoke centre (see CostScratch)
   double Cost = 0.0;
-  double Error = 0.0;
+  double Weight = 0.0; // of the merged quadric: Error() is the RMS distance to its planes
   double Position[3] = { 0, 0, 0 };
+  double Error() const { return this->Weight > 0.0 ? std::sqrt(this->Cost / this->Weight) : 0.0; }
 };
 
 /// Per-thread scratch for the evaluations.

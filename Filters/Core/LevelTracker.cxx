@@ -3,8 +3,11 @@
 #include "LevelData.h"
 #include "CollapseMesh.h"
 
+#include "vtkSMPTools.h"
+
 #include <algorithm>
 #include <numeric>
+#include <utility>
 
 namespace meshlod
 {
@@ -63,21 +66,14 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   const Id nv = mesh.GetNumberOfPoints();
   const Id nt = mesh.GetNumberOfTriangles();
 
-  // Live vertices and triangles, numbered in increasing id order.
+  // Live vertices (a live vertex has live triangles) and triangles, numbered in increasing id
+  // order.
   std::vector<Id>& newIndex = this->NewIndex; // kept between snapshots: no fresh pages each time
   newIndex.assign(nv, InvalidId);
-  for (Id t = 0; t < nt; ++t)
-  {
-    if (state.IsAlive(t))
-    {
-      const Id* tri = mesh.Triangle(t);
-      newIndex[tri[0]] = newIndex[tri[1]] = newIndex[tri[2]] = 0;
-    }
-  }
   std::vector<Id> vertices;
   for (Id v = 0; v < nv; ++v)
   {
-    if (newIndex[v] != InvalidId)
+    if (state.Survivor[v] == v && state.TriangleCount(v) > 0)
     {
       newIndex[v] = static_cast<Id>(vertices.size());
       vertices.push_back(v);
@@ -88,10 +84,14 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   level = LevelData();
   level.EstimatedError = estimatedError;
   level.Mesh.Points.resize(3 * static_cast<std::size_t>(count));
-  for (Id i = 0; i < count; ++i)
-  {
-    std::copy_n(mesh.Point(vertices[i]), 3, level.Mesh.Point(i));
-  }
+  vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
+    {
+      std::copy_n(mesh.Point(vertices[i]), 3, level.Mesh.Point(i));
+    }
+  });
+  level.Mesh.Triangles.reserve(3 * static_cast<std::size_t>(state.AliveTriangles));
+  level.LevelZeroTriangle.reserve(state.AliveTriangles);
   for (Id t = 0; t < nt; ++t)
   {
     if (state.IsAlive(t))
@@ -119,32 +119,38 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   }
 
   // Correspondence and collapse order of the previous level's points. Ranks are the order of
-  // the last collapse of each group, renumbered 0, 1, 2, ...
-  std::vector<std::int64_t> sequences;
-  for (const Id v : vertices)
+  // the last collapse of each group, renumbered 0, 1, 2, ...: sort the groups that collapsed by
+  // that collapse, and give every point the rank of the group it ends in.
+  std::vector<std::pair<std::int64_t, Id>> order; // (collapse, new point)
+  for (Id i = 0; i < count; ++i)
   {
-    if (this->GroupSequence[v] >= 0)
+    const std::int64_t sequence = this->GroupSequence[vertices[i]];
+    if (sequence >= 0)
     {
-      sequences.push_back(this->GroupSequence[v]);
+      order.emplace_back(sequence, i);
     }
   }
-  std::sort(sequences.begin(), sequences.end());
+  std::sort(order.begin(), order.end());
+  std::vector<Id> rankOf(count, InvalidId);
+  for (std::size_t r = 0; r < order.size(); ++r)
+  {
+    rankOf[order[r].second] = static_cast<Id>(r);
+  }
   const Id previousCount = static_cast<Id>(this->PreviousVertices.size());
   level.Target.resize(previousCount);
   level.Rank.resize(previousCount);
-  for (Id k = 0; k < previousCount; ++k)
-  {
-    Id root = this->PreviousVertices[k];
-    while (state.Survivor[root] != root)
+  vtkSMPTools::For(0, previousCount, [&](Id begin, Id end) {
+    for (Id k = begin; k < end; ++k)
     {
-      root = state.Survivor[root];
+      Id root = this->PreviousVertices[k];
+      while (state.Survivor[root] != root)
+      {
+        root = state.Survivor[root];
+      }
+      level.Target[k] = newIndex[root];
+      level.Rank[k] = rankOf[newIndex[root]];
     }
-    level.Target[k] = newIndex[root];
-    const std::int64_t sequence = this->GroupSequence[root];
-    level.Rank[k] = sequence < 0
-      ? InvalidId
-      : static_cast<Id>(std::lower_bound(sequences.begin(), sequences.end(), sequence) - sequences.begin());
-  }
+  });
 
   // New groups for the next level.
   for (Id i = 0; i < count; ++i)
