@@ -148,13 +148,13 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   c.Swapped = false;
   const Quadric q = this->State.Quadrics[members[0]] + this->State.Quadrics[members[1]] +
     this->State.Quadrics[members[2]];
+  double centroid[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    centroid[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
+  }
   if (this->Options.Method == CollapseMethod::Quadric)
   {
-    double centroid[3];
-    for (int i = 0; i < 3; ++i)
-    {
-      centroid[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
-    }
     q.MinimizeRegularized(centroid, c.Position);
     c.Cost = q.Evaluate(c.Position);
     c.Error = q.Weight() > 0.0 ? std::sqrt(c.Cost / q.Weight()) : 0.0;
@@ -167,6 +167,16 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
 
   // Curvature method (paper 000): fit, collapse point c + f(0,0) n, weight terms.
   this->FitSurface(members, c, scratch);
+  if (this->State.IsBoundary(members[0]) || this->State.IsBoundary(members[1]) ||
+    this->State.IsBoundary(members[2]))
+  {
+    // Paper 000 collapses only triangles with a complete stencil, none on a boundary; on an
+    // open mesh (an isosurface cut by its volume) that would keep every boundary triangle. Such
+    // a triangle goes to the point minimising its merged planes instead, whose planes through
+    // the boundary edges keep the boundary in place: the fit, blind to the boundary, would pull
+    // it inwards.
+    q.MinimizeRegularized(centroid, c.Position);
+  }
   c.Alpha = ShapeMeasure(p[0], p[1], p[2]);
   // The merged vertex's valence: the triangles around the three vertices, less the ones
   // counted twice or dying (6 for the collapsing triangle's corners, 3 for its neighbours').
@@ -300,6 +310,56 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
 }
 
 //------------------------------------------------------------------------------
+double CollapseCostModel::BalancedHeight(const Id* tri, const double centroid[3],
+  const double normal[3], const SurfaceFitResult& fit) const
+{
+  // The new triangles join the collapse point p = c + h n to the stencil boundary polygon. Over
+  // one of them, (p, a, b) seen in the fit's frame, the mean of the linear triangle is the mean
+  // of its corner heights, and the mean of the quadratic f is the mean of f at the edge
+  // midpoints (exact for quadratics). The h that makes the area-weighted mean difference zero is
+  // linear in h. At h = f(0, 0) (the paper's point, on the surface) the triangles are chords
+  // lying inside a convex surface, which costs error everywhere along them.
+  const auto frame = [&](const double* x, double& u, double& v, double& d) {
+    u = v = d = 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      u += (x[i] - centroid[i]) * fit.U[i];
+      v += (x[i] - centroid[i]) * fit.V[i];
+      d += (x[i] - centroid[i]) * normal[i];
+    }
+  };
+  double weighted = 0.0, total = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    this->State.ForEachTriangle(tri[k], [&](Id s) {
+      const Id* st = this->State.Mesh.Triangle(s);
+      int members = 0, corner = 0;
+      for (int j = 0; j < 3; ++j)
+      {
+        if (st[j] == tri[0] || st[j] == tri[1] || st[j] == tri[2])
+        {
+          ++members;
+          corner = j;
+        }
+      }
+      if (members != 1)
+      {
+        return; // a dying triangle
+      }
+      double ua, va, da, ub, vb, db;
+      frame(this->State.Mesh.Point(st[(corner + 1) % 3]), ua, va, da);
+      frame(this->State.Mesh.Point(st[(corner + 2) % 3]), ub, vb, db);
+      const double area = 0.5 * std::abs(ua * vb - va * ub);
+      const double surface = fit.At(0.5 * ua, 0.5 * va) + fit.At(0.5 * ub, 0.5 * vb) +
+        fit.At(0.5 * (ua + ub), 0.5 * (va + vb));
+      weighted += area * (surface - da - db);
+      total += area;
+    });
+  }
+  return total > 0.0 ? weighted / total : fit.Height;
+}
+
+//------------------------------------------------------------------------------
 void CollapseCostModel::FitSurface(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const
 {
   double centroid[3] = { 0, 0, 0 };
@@ -379,10 +439,17 @@ void CollapseCostModel::FitSurface(const Id* tri, CollapseCandidate& c, CostScra
     fit = FitQuadraticHeightField(
       centroid, c.Normal, points.data(), static_cast<int>(points.size() / 3), scale);
   }
-  // A quadratic fitted to points spread far beyond the triangle can extrapolate wildly at its
-  // centre; the surface cannot be further from the centroid than about the triangle's size.
-  const double height =
-    fit.Valid ? std::max(-scale, std::min(scale, fit.Height)) : 0.0;
+  // The collapse point is on the normal through the centroid (paper 000: at the fitted
+  // surface, c + f(0, 0) n), at the height where the new triangles lie on the fitted surface on
+  // average (see BalancedHeight). A quadratic fitted to points spread far beyond the triangle can
+  // extrapolate wildly at its centre; the surface cannot be further from the centroid than about
+  // the triangle's size.
+  double height = 0.0;
+  if (fit.Valid)
+  {
+    const double balanced = this->BalancedHeight(tri, centroid, c.Normal, fit);
+    height = std::max(-scale, std::min(scale, balanced));
+  }
   c.Kappa = fit.Valid ? fit.AbsoluteCurvature : 0.0;
   for (int i = 0; i < 3; ++i)
   {

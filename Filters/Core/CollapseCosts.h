@@ -3,6 +3,7 @@
 #define meshlod_CollapseCosts_h
 
 #include "TriangleCollapse.h"
+#include "LocalSurfaceFit.h"
 #include "TriangleMesh.h"
 
 #include <cmath>
@@ -105,6 +106,10 @@ private:
   // Edge k of the triangle into c; returns its cost.
   double Edge(const Id* tri, int k, CollapseCandidate& c) const;
   void FitSurface(const Id* tri, CollapseCandidate& candidate, CostScratch& scratch) const;
+  // The height along the normal through the centroid at which the new triangles lie on the
+  // fitted surface on average.
+  double BalancedHeight(const Id* tri, const double centroid[3], const double normal[3],
+    const SurfaceFitResult& fit) const;
 
   const TriangleCollapseOptions& Options;
   const CollapseMesh& State;

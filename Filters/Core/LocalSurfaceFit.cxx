@@ -41,7 +41,12 @@ SurfaceFitResult FitQuadraticHeightField(
   }
   normalMatrix.triangularView<Eigen::Upper>() = normalMatrix.transpose();
   const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solver(normalMatrix);
-  if (solver.info() != Eigen::Success || !(solver.rcond() > 1e-12))
+  // LDLT solves a singular system quietly (zero pivots give zero components), and its rcond()
+  // estimate does not always see it: test the pivots themselves. Points on one line, or too
+  // few distinct ones, leave some of them (nearly) zero.
+  const Eigen::Matrix<double, 6, 1> pivots = solver.vectorD().cwiseAbs();
+  if (solver.info() != Eigen::Success || !(pivots.minCoeff() > 1e-10 * pivots.maxCoeff()) ||
+    !(solver.rcond() > 1e-12))
   {
     return result;
   }
@@ -62,6 +67,18 @@ SurfaceFitResult FitQuadraticHeightField(
   result.Kappa2 = (mean - root) * inverseScale;
   result.AbsoluteCurvature = std::abs(result.Kappa1) + std::abs(result.Kappa2);
   result.Height = k[5] * scale;
+  // Back to world units: in scaled coordinates d/s = k0 (u/s)^2 + ... + k5.
+  result.C[0] = k[0] * inverseScale;
+  result.C[1] = k[1] * inverseScale;
+  result.C[2] = k[2] * inverseScale;
+  result.C[3] = k[3];
+  result.C[4] = k[4];
+  result.C[5] = k[5] * scale;
+  for (int i = 0; i < 3; ++i)
+  {
+    result.U[i] = u[i];
+    result.V[i] = v[i];
+  }
   result.Valid = true;
   return result;
 }

@@ -19,6 +19,15 @@ struct VTKFILTERSMESHLOD_EXPORT SurfaceFitResult
   double Height = 0.0;             // f(0, 0), in world units along the normal
   double AbsoluteCurvature = 0.0;  // |kappa1| + |kappa2| at (0, 0), in 1 / world units
   double Kappa1 = 0.0, Kappa2 = 0.0;
+  /// The frame (u and v axes; n is the given normal) and f's coefficients in world units:
+  /// f(u, v) = C[0] u^2 + C[1] u v + C[2] v^2 + C[3] u + C[4] v + C[5].
+  double U[3] = { 1, 0, 0 }, V[3] = { 0, 1, 0 };
+  double C[6] = { 0, 0, 0, 0, 0, 0 };
+  double At(double u, double v) const
+  {
+    return this->C[0] * u * u + this->C[1] * u * v + this->C[2] * v * v + this->C[3] * u +
+      this->C[4] * v + this->C[5];
+  }
 };
 
 /// Fit f to `count` points (xyz triples). `scale` (e.g. the triangle's mean edge length) makes

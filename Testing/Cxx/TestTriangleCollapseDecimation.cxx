@@ -104,7 +104,7 @@ void TestClosedIsosurface()
   {
     int Method, Schedule, Operator;
     const char* Label;
-    double MaxHausdorffPercentAt10; // measured on this mesh (0.28, 0.31, 0.49, 3.7), ~1.3-2x margin
+    double MaxHausdorffPercentAt10; // measured on this mesh (0.28, 0.31, 0.49, 1.9), ~1.3-2x margin
   };
   const Variant variants[] = {
     { vtkTriangleCollapseDecimation::QUADRIC, vtkTriangleCollapseDecimation::GREEDY,
@@ -114,7 +114,7 @@ void TestClosedIsosurface()
     { vtkTriangleCollapseDecimation::QUADRIC, vtkTriangleCollapseDecimation::INDEPENDENT_SETS,
       vtkTriangleCollapseDecimation::TRIANGLES, "quadric triangles only", 0.7 },
     { vtkTriangleCollapseDecimation::CURVATURE, vtkTriangleCollapseDecimation::INDEPENDENT_SETS,
-      vtkTriangleCollapseDecimation::TRIANGLES, "curvature", 5.0 },
+      vtkTriangleCollapseDecimation::TRIANGLES, "curvature", 2.5 },
   };
   for (const Variant& v : variants)
   {
@@ -165,12 +165,14 @@ void TestGenus()
 }
 
 // An open surface: the boundary stays on the input's boundary, within a small distance.
-void TestOpenSurface()
+void TestOpenSurface(int method)
 {
   vtkSmartPointer<vtkPolyData> sheet = testing::MakeIsosurface(testing::Field::Wavelet, 41);
   vtkNew<vtkTriangleCollapseDecimation> filter;
   filter->SetInputData(sheet);
+  filter->SetMethod(method);
   filter->Update();
+  std::cerr << "open surface, " << filter->GetMethodAsString() << " method\n";
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
   MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 9u);
   MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
@@ -183,14 +185,36 @@ void TestOpenSurface()
     MESHLOD_CHECK_EQ(r.DegenerateTriangles, 0);
     MESHLOD_CHECK_GT(r.BoundaryEdges, 0);
     // Boundary vertices stay within a fraction of the level's typical edge length of the
-    // input boundary (measured: up to 0.23 of it at the coarsest level, far less before).
+    // input boundary. Measured, quadric method: up to 0.23 of it at the coarsest level, far less
+    // before. The curvature method collapses whole triangles, which cut the boundary's corners,
+    // and its weights do not see the boundary: up to 0.46 down to 3% of the input (level 6),
+    // 0.6 to 1.6 at the two coarsest levels (about 100 and 60 triangles), which are left out.
     const double deviation = testing::BoundaryDeviation(sheet, Level(h, i));
     std::cerr << "  boundary deviation level " << i << ": " << deviation / TypicalEdge(Level(h, i))
               << " edge lengths\n";
-    MESHLOD_CHECK_LE(deviation, 0.35 * TypicalEdge(Level(h, i)));
-    MESHLOD_CHECK_LE(deviation, 0.05 * diagonal);
+    if (method == vtkTriangleCollapseDecimation::QUADRIC)
+    {
+      MESHLOD_CHECK_LE(deviation, 0.35 * TypicalEdge(Level(h, i)));
+      MESHLOD_CHECK_LE(deviation, 0.05 * diagonal);
+    }
+    else if (i <= 6)
+    {
+      MESHLOD_CHECK_LE(deviation, 0.6 * TypicalEdge(Level(h, i)));
+      MESHLOD_CHECK_LE(deviation, 0.05 * diagonal);
+    }
   }
 }
+
+// ... with either method.
+void TestOpenSurface()
+{
+  for (const int method :
+    { vtkTriangleCollapseDecimation::QUADRIC, vtkTriangleCollapseDecimation::CURVATURE })
+  {
+    TestOpenSurface(method);
+  }
+}
+
 
 // Point data: floating arrays interpolated, normals unit length, integer arrays keep values
 // that exist in the input.

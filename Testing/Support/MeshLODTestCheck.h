@@ -5,6 +5,7 @@
 #define MeshLODTestCheck_h
 
 #include <cstdlib>
+#include <cmath>
 #include <iostream>
 #include <type_traits>
 
@@ -72,5 +73,7 @@ auto Printable(const T& value)
 #define MESHLOD_CHECK_LT(a, b) MESHLOD_CHECK_OP(a, <, b)
 #define MESHLOD_CHECK_GE(a, b) MESHLOD_CHECK_OP(a, >=, b)
 #define MESHLOD_CHECK_GT(a, b) MESHLOD_CHECK_OP(a, >, b)
+/// |a - b| <= tolerance.
+#define MESHLOD_CHECK_NEAR(a, b, tolerance) MESHLOD_CHECK_LE(std::abs((a) - (b)), tolerance)
 
 #endif
