@@ -8,6 +8,7 @@
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -39,41 +40,51 @@ struct Rows
   double W(vtkIdType q) const { return HasWeights ? this->Plan.Weights[q] : this->Plan.Weight; }
 };
 
-// Three components (points, normals, vectors).
-template <typename RowsT, typename ARange, typename BRange, typename OutRange>
-void Blend3(const RowsT& rows, const ARange& a, const BRange& b, OutRange& out, vtkIdType count)
+// Scale the 3-component tuples [begin, end) back to unit length, in place. Branch-free, so that
+// the compiler turns it into vector square roots and divisions (see the compile options of this
+// file): one scalar square root and division per tuple cost more than the blend itself.
+template <typename T, typename Iterator>
+void Renormalize(Iterator v, vtkIdType begin, vtkIdType end)
 {
-  using OutT = typename OutRange::value_type;
-  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType q = begin; q < end; ++q)
-    {
-      const vtkIdType ia = rows.A(q);
-      const vtkIdType ib = rows.B(ia);
-      const double w = rows.W(q);
-      for (vtkIdType c = 0; c < 3; ++c)
-      {
-        out[3 * q + c] = static_cast<OutT>(
-          (1.0 - w) * static_cast<double>(a[3 * ia + c]) + w * static_cast<double>(b[3 * ib + c]));
-      }
-    }
-  });
+  for (vtkIdType q = begin; q < end; ++q)
+  {
+    const T x = v[3 * q], y = v[3 * q + 1], z = v[3 * q + 2];
+    const T length2 = x * x + y * y + z * z;
+    // A zero vector stays zero: the tiny floor only keeps the division finite.
+    const T scale = T(1) / std::sqrt(length2 > T(1e-30) ? length2 : T(1e-30));
+    v[3 * q] = x * scale;
+    v[3 * q + 1] = y * scale;
+    v[3 * q + 2] = z * scale;
+  }
 }
 
-// Scale 3-component tuples back to unit length, in place: a separate pass over contiguous
-// values, cheaper than doing it inside the gathering blend loop.
-template <typename OutRange>
-void RenormalizeTuples(OutRange& out, vtkIdType count)
+// Three components (points, normals, vectors). With `renormalize`, each block of blended tuples
+// is renormalised while it is still in cache.
+template <typename RowsT, typename ARange, typename BRange, typename OutRange>
+void Blend3(const RowsT& rows, const ARange& a, const BRange& b, OutRange& out, vtkIdType count,
+  bool renormalize)
 {
-  using T = typename OutRange::value_type;
+  using OutT = typename OutRange::value_type;
+  constexpr vtkIdType Block = 512;
   vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType q = begin; q < end; ++q)
+    for (vtkIdType first = begin; first < end; first += Block)
     {
-      const T x = out[3 * q], y = out[3 * q + 1], z = out[3 * q + 2];
-      const T length2 = x * x + y * y + z * z;
-      const T scale = length2 > T(0) ? T(1) / std::sqrt(length2) : T(1);
-      out[3 * q] = x * scale;
-      out[3 * q + 1] = y * scale;
-      out[3 * q + 2] = z * scale;
+      const vtkIdType last = std::min(end, first + Block);
+      for (vtkIdType q = first; q < last; ++q)
+      {
+        const vtkIdType ia = rows.A(q);
+        const vtkIdType ib = rows.B(ia);
+        const double w = rows.W(q);
+        for (vtkIdType c = 0; c < 3; ++c)
+        {
+          out[3 * q + c] = static_cast<OutT>((1.0 - w) * static_cast<double>(a[3 * ia + c]) +
+            w * static_cast<double>(b[3 * ib + c]));
+        }
+      }
+      if (renormalize)
+      {
+        Renormalize<OutT>(out.begin(), first, last);
+      }
     }
   });
 }
@@ -107,11 +118,7 @@ void BlendRows(
   const Rows<HasSource, HasMap, HasWeights> rows{ plan };
   if (nc == 3)
   {
-    Blend3(rows, a, b, out, plan.NumberOfPoints);
-    if (renormalize)
-    {
-      RenormalizeTuples(out, plan.NumberOfPoints);
-    }
+    Blend3(rows, a, b, out, plan.NumberOfPoints, renormalize);
   }
   else
   {
@@ -240,13 +247,58 @@ vtkAbstractArray* Counterpart(vtkPointData* coarse, vtkAbstractArray* a)
 } // namespace
 
 //------------------------------------------------------------------------------
+vtkSmartPointer<vtkAbstractArray> ArrayPool::Take(vtkAbstractArray* like, vtkIdType tuples)
+{
+  // Bounded: a few frames' worth of arrays; beyond that, arrays nobody holds are dropped first.
+  constexpr std::size_t MaximumArrays = 32;
+  for (const vtkSmartPointer<vtkAbstractArray>& array : this->Arrays)
+  {
+    if (array->GetReferenceCount() == 1 && array->GetDataType() == like->GetDataType() &&
+      array->GetArrayType() == like->GetArrayType() && array->IsA(like->GetClassName()) &&
+      array->GetNumberOfComponents() == like->GetNumberOfComponents() &&
+      array->GetNumberOfTuples() == tuples)
+    {
+      array->SetName(like->GetName());
+      array->Modified();
+      return array;
+    }
+  }
+  auto array = vtk::TakeSmartPointer(like->NewInstance());
+  array->SetName(like->GetName());
+  array->SetNumberOfComponents(like->GetNumberOfComponents());
+  array->SetNumberOfTuples(tuples);
+  if (this->Arrays.size() >= MaximumArrays)
+  {
+    const auto idle = std::find_if(this->Arrays.begin(), this->Arrays.end(),
+      [](const vtkSmartPointer<vtkAbstractArray>& a) { return a->GetReferenceCount() == 1; });
+    this->Arrays.erase(idle != this->Arrays.end() ? idle : this->Arrays.begin());
+  }
+  this->Arrays.push_back(array);
+  return array;
+}
+
+namespace
+{
+// An output array shaped like `like`: from the plan's pool, or new.
+vtkSmartPointer<vtkAbstractArray> OutputArray(vtkAbstractArray* like, const BlendPlan& plan)
+{
+  if (plan.Pool)
+  {
+    return plan.Pool->Take(like, plan.NumberOfPoints);
+  }
+  auto out = vtk::TakeSmartPointer(like->NewInstance());
+  out->SetName(like->GetName());
+  out->SetNumberOfComponents(like->GetNumberOfComponents());
+  out->SetNumberOfTuples(plan.NumberOfPoints);
+  return out;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 vtkSmartPointer<vtkDataArray> BlendRealArray(
   vtkDataArray* a, vtkDataArray* b, const BlendPlan& plan, bool renormalize)
 {
-  auto out = vtk::TakeSmartPointer(a->NewInstance());
-  out->SetName(a->GetName());
-  out->SetNumberOfComponents(a->GetNumberOfComponents());
-  out->SetNumberOfTuples(plan.NumberOfPoints);
+  vtkSmartPointer<vtkDataArray> out = vtkDataArray::SafeDownCast(OutputArray(a, plan));
   renormalize = renormalize && a->GetNumberOfComponents() == 3;
   BlendWorker worker{ &plan, out, renormalize };
   using Reals = vtkArrayDispatch::Reals;
@@ -261,10 +313,7 @@ vtkSmartPointer<vtkDataArray> BlendRealArray(
 vtkSmartPointer<vtkAbstractArray> SwitchArray(
   vtkAbstractArray* a, vtkAbstractArray* b, const BlendPlan& plan)
 {
-  auto out = vtk::TakeSmartPointer(a->NewInstance());
-  out->SetName(a->GetName());
-  out->SetNumberOfComponents(a->GetNumberOfComponents());
-  out->SetNumberOfTuples(plan.NumberOfPoints);
+  vtkSmartPointer<vtkAbstractArray> out = OutputArray(a, plan);
   const SwitchRows rows{ plan, b != nullptr };
   auto* da = vtkDataArray::SafeDownCast(a);
   auto* db = vtkDataArray::SafeDownCast(b);

@@ -9,12 +9,29 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <vector>
+
 class vtkAbstractArray;
 class vtkDataArray;
 class vtkPointData;
 
 namespace meshlod
 {
+/// Output arrays recycled from one update to the next. An array handed out before is handed
+/// out again (same value type, layout, components and size: no new allocation, its pages
+/// already mapped) once nothing but the pool holds it, i.e. once the output that carried it has
+/// been cleared and nobody downstream kept it. Fresh arrays of many megabytes on every frame
+/// cost more in page faults than the blend itself.
+class VTKFILTERSMESHLOD_EXPORT ArrayPool
+{
+public:
+  /// An array of `like`'s class with its number of components and `tuples` tuples.
+  vtkSmartPointer<vtkAbstractArray> Take(vtkAbstractArray* like, vtkIdType tuples);
+
+private:
+  std::vector<vtkSmartPointer<vtkAbstractArray>> Arrays;
+};
+
 struct BlendPlan
 {
   vtkIdType NumberOfPoints = 0;    // output points
@@ -22,6 +39,7 @@ struct BlendPlan
   const Id* Map = nullptr;         // finer-level point -> row of the coarser arrays; null: same
   const double* Weights = nullptr; // per output point; null: `Weight` for every point
   double Weight = 0.0;
+  ArrayPool* Pool = nullptr;       // where output arrays come from; null: new arrays
 
   double WeightOf(vtkIdType q) const { return this->Weights ? this->Weights[q] : this->Weight; }
 };

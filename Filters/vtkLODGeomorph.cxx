@@ -55,6 +55,10 @@ struct LevelCache
 {
   vtkPolyData* Poly = nullptr;
   std::vector<Id> TargetIds; // MorphTargetId, with morph data
+  // With morph data: the next level's point data at this level's points (each point's values
+  // where it goes, gathered once), so that every frame blends two arrays row by row instead of
+  // gathering from the next level at random. Kept for the level last blended only.
+  vtkSmartPointer<vtkPointData> TargetData;
 
   // Triangles of the level (exact count, nearest vertices, dropping degenerate triangles).
   bool TrianglesRead = false;
@@ -325,6 +329,10 @@ void DispatchPoints(vtkDataArray* points, Worker& worker)
 
 struct vtkLODGeomorph::Internals
 {
+  // The output arrays of the last update, reused by the next one once the output lets go of
+  // them (see meshlod::ArrayPool).
+  meshlod::ArrayPool Pool;
+
   // What the caches were built for.
   vtkMultiBlockDataSet* Input = nullptr;
   vtkMTimeType InputTime = 0;
@@ -340,6 +348,9 @@ struct vtkLODGeomorph::Internals
   bool EnsureSchedule(vtkLODGeomorph* self, int level);
   bool EnsureCorrespondence(vtkLODGeomorph* self, int level);
 
+  // LevelCache::TargetData of the level, gathered on first use (and dropped for every other
+  // level: one level's worth of memory).
+  vtkPointData* TargetData(int level);
   void ProduceLevel(int level, vtkPolyData* output);
   bool ProducePartialCollapse(vtkLODGeomorph* self, int level, double t, vtkPolyData* output);
   bool ProduceNearestBlend(vtkLODGeomorph* self, int level, double t, vtkPolyData* output);
@@ -471,6 +482,29 @@ bool vtkLODGeomorph::Internals::EnsureCorrespondence(vtkLODGeomorph* self, int l
 }
 
 //------------------------------------------------------------------------------
+vtkPointData* vtkLODGeomorph::Internals::TargetData(int level)
+{
+  LevelCache& cache = this->Levels[level];
+  if (!cache.TargetData)
+  {
+    for (LevelCache& other : this->Levels)
+    {
+      other.TargetData = nullptr;
+    }
+    // A blend at weight 1 through the correspondence is the gather: each row takes the next
+    // level's values at its target exactly (arrays the next level lacks keep this level's).
+    meshlod::BlendPlan gather;
+    gather.NumberOfPoints = cache.Poly->GetNumberOfPoints();
+    gather.Map = cache.TargetIds.data();
+    gather.Weight = 1.0;
+    cache.TargetData = vtkSmartPointer<vtkPointData>::New();
+    meshlod::BlendPointData(cache.Poly->GetPointData(),
+      this->Levels[level + 1].Poly->GetPointData(), gather, cache.TargetData);
+  }
+  return cache.TargetData;
+}
+
+//------------------------------------------------------------------------------
 void vtkLODGeomorph::Internals::ProduceLevel(int level, vtkPolyData* output)
 {
   vtkPolyData* poly = this->Levels[level].Poly;
@@ -499,16 +533,15 @@ bool vtkLODGeomorph::Internals::ProducePartialCollapse(
   }
   // Paper: p(t) = p + t (c - p), written (1 - t) p + t c so that t = 0 and 1 are exact.
   meshlod::BlendPlan geometry;
+  geometry.Pool = &this->Pool;
   geometry.NumberOfPoints = n;
   geometry.Weight = t;
   vtkDataArray* target = poly->GetPointData()->GetArray(meshlod::names::MorphTarget);
   vtkSmartPointer<vtkDataArray> points =
     meshlod::BlendRealArray(poly->GetPoints()->GetData(), target, geometry, false);
   output->SetPoints(PointsFrom(points));
-  meshlod::BlendPlan data = geometry;
-  data.Map = cache.TargetIds.data();
-  meshlod::BlendPointData(poly->GetPointData(), this->Levels[level + 1].Poly->GetPointData(), data,
-    output->GetPointData());
+  meshlod::BlendPointData(
+    poly->GetPointData(), this->TargetData(level), geometry, output->GetPointData());
 
   output->SetVerts(poly->GetVerts());
   output->SetLines(poly->GetLines());
@@ -574,6 +607,7 @@ bool vtkLODGeomorph::Internals::ProduceNearestBlend(
   }
   // Paper step 3: P = t P_coarse + (1 - t) P_fine.
   meshlod::BlendPlan plan;
+  plan.Pool = &this->Pool;
   plan.NumberOfPoints = n;
   plan.Map = cache.Partner.data();
   plan.Weight = t;
@@ -757,6 +791,7 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
   LevelCache& cache = this->Levels[level];
   vtkPolyData* poly = cache.Poly;
   meshlod::BlendPlan plan;
+  plan.Pool = &this->Pool;
   plan.NumberOfPoints = m;
   plan.Source = exact.Source.data();
   plan.Weights = weights.data();
