@@ -72,8 +72,15 @@ Method TriangleCollapse(const std::string& name, const std::string& settings,
 void RegisterMeshLODMethods(std::vector<Method>& methods)
 {
   methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation",
-    "defaults: quadric method, greedy schedule, triangles and edges, 8 levels",
+    "defaults: quadric method, greedy schedule in parallel rounds (PartitionedGreedy), "
+    "triangles and edges, 8 levels",
     [](vtkTriangleCollapseDecimation*) {}));
+  Method strict = TriangleCollapse("vtkTriangleCollapseDecimation strict greedy",
+    "quadric method, greedy schedule with PartitionedGreedy off (one collapse after the other, "
+    "the order of paper 002), triangles and edges, 8 levels; one-thread row only",
+    [](vtkTriangleCollapseDecimation* d) { d->PartitionedGreedyOff(); });
+  strict.Parallel = false;
+  methods.push_back(strict);
   methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation independent sets",
     "quadric method, IndependentSets schedule (LevelFraction 0.025), triangles and edges, 8 levels",
     [](vtkTriangleCollapseDecimation* d) { d->SetScheduleToIndependentSets(); }));
