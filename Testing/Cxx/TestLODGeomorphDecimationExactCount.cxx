@@ -4,7 +4,8 @@
 // below (a closed surface loses triangles two at a time), and every output is a closed,
 // manifold, consistently oriented mesh of the input's genus without degenerate or repeated
 // triangles. (TestLODGeomorphDecimation checks a sample of the counts with InspectMesh; this
-// one checks them all, with the flat topology of Core/TriangleMesh.h to stay quick.)
+// one checks them all, with the flat topology of Core/TriangleMesh.h to stay quick; and every
+// 11th count on a mesh large enough for the greedy order's parallel rounds.)
 //
 // The counts in the middle of a collapse cluster (the points sharing one CollapseRank) are the
 // delicate ones: joining the cluster's points in a careless order passes through meshes with a
@@ -88,7 +89,8 @@ std::string ClosedMeshProblems(vtkPolyData* poly, std::int64_t euler)
   return problems;
 }
 
-void TestEveryCount(vtkPolyData* surface, int schedule, int op, const char* label)
+void TestEveryCount(
+  vtkPolyData* surface, int schedule, int op, const char* label, vtkIdType stride = 1)
 {
   vtkNew<vtkTriangleCollapseDecimation> decimate;
   decimate->SetInputData(surface);
@@ -106,7 +108,7 @@ void TestEveryCount(vtkPolyData* surface, int schedule, int op, const char* labe
   const vtkIdType coarsest = Level(h, n - 1)->GetNumberOfPolys();
   const vtkIdType finest = Level(h, 0)->GetNumberOfPolys();
   int wrongCount = 0, invalid = 0;
-  for (vtkIdType count = coarsest; count <= finest; ++count)
+  for (vtkIdType count = coarsest; count <= finest; count += stride)
   {
     geomorph->SetTargetNumberOfTriangles(count);
     geomorph->Update();
@@ -121,7 +123,8 @@ void TestEveryCount(vtkPolyData* surface, int schedule, int op, const char* labe
                 << geomorph->GetActualLevelOfDetail() << "):" << problems << "\n";
     }
   }
-  std::cerr << label << ": " << finest - coarsest + 1 << " counts, " << invalid << " invalid\n";
+  std::cerr << label << ": " << (finest - coarsest) / stride + 1 << " counts, " << invalid
+            << " invalid\n";
   MESHLOD_CHECK_EQ(wrongCount, 0);
   MESHLOD_CHECK_EQ(invalid, 0);
 }
@@ -138,5 +141,11 @@ int TestLODGeomorphDecimationExactCount(int, char*[])
     vtkTriangleCollapseDecimation::TRIANGLES, "greedy, triangles only");
   TestEveryCount(surface, vtkTriangleCollapseDecimation::INDEPENDENT_SETS,
     vtkTriangleCollapseDecimation::TRIANGLES, "independent sets, triangles only");
+  // Large enough for the greedy order's parallel rounds (collapse numbers interleaved across
+  // cells): every 11th count (odd and even ones alike).
+  vtkSmartPointer<vtkPolyData> larger = testing::MakeIsosurface(testing::Field::Metaballs,
+    testing::ResolutionForTriangles(testing::Field::Metaballs, 40000));
+  TestEveryCount(larger, vtkTriangleCollapseDecimation::GREEDY,
+    vtkTriangleCollapseDecimation::TRIANGLES_AND_EDGES, "parallel greedy rounds", 11);
   return testing::Result();
 }
