@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace meshlod
 {
@@ -50,8 +51,9 @@ void Renormalize(Iterator v, vtkIdType begin, vtkIdType end)
   {
     const T x = v[3 * q], y = v[3 * q + 1], z = v[3 * q + 2];
     const T length2 = x * x + y * y + z * z;
-    // A zero vector stays zero: the tiny floor only keeps the division finite.
-    const T scale = T(1) / std::sqrt(length2 > T(1e-30) ? length2 : T(1e-30));
+    // A zero vector stays zero: the floor only keeps the division finite.
+    constexpr T floor = std::numeric_limits<T>::min();
+    const T scale = T(1) / std::sqrt(length2 > floor ? length2 : floor);
     v[3 * q] = x * scale;
     v[3 * q + 1] = y * scale;
     v[3 * q + 2] = z * scale;

@@ -498,8 +498,19 @@ vtkPointData* vtkLODGeomorph::Internals::TargetData(int level)
     gather.Map = cache.TargetIds.data();
     gather.Weight = 1.0;
     cache.TargetData = vtkSmartPointer<vtkPointData>::New();
-    meshlod::BlendPointData(cache.Poly->GetPointData(),
-      this->Levels[level + 1].Poly->GetPointData(), gather, cache.TargetData);
+    vtkPointData* next = this->Levels[level + 1].Poly->GetPointData();
+    meshlod::BlendPointData(cache.Poly->GetPointData(), next, gather, cache.TargetData);
+    // Arrays the next level lacks keep this level's values: leave them out, so that frames
+    // share them instead of blending them with copies of themselves.
+    for (int i = cache.TargetData->GetNumberOfArrays() - 1; i >= 0; --i)
+    {
+      vtkAbstractArray* array = cache.TargetData->GetAbstractArray(i);
+      vtkAbstractArray* there = next->GetAbstractArray(array->GetName());
+      if (!there || there->GetNumberOfComponents() != array->GetNumberOfComponents())
+      {
+        cache.TargetData->RemoveArray(i);
+      }
+    }
   }
   return cache.TargetData;
 }

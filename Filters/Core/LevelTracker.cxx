@@ -148,7 +148,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
         root = state.Survivor[root];
       }
       level.Target[k] = newIndex[root];
-      level.Rank[k] = rankOf[newIndex[root]];
+      level.Rank[k] = newIndex[root] == InvalidId ? InvalidId : rankOf[newIndex[root]];
     }
   });
 

@@ -101,6 +101,18 @@ struct CellGrid
       longest = std::max(longest, bounds[2 * i + 1] - bounds[2 * i]);
     }
     size = std::min(size, 0.5 * longest);
+    if (!(size > 0.0) || !std::isfinite(size))
+    {
+      // Every point at one place (or a box of no size): one cell, which leaves the round to
+      // the serial loop.
+      for (int i = 0; i < 3; ++i)
+      {
+        this->Dims[i] = 1;
+        this->Origin[i] = bounds[2 * i];
+      }
+      this->Size = 1.0;
+      return;
+    }
     for (;;)
     {
       std::int64_t cells = 1;
@@ -142,6 +154,12 @@ struct CellGrid
 //------------------------------------------------------------------------------
 TriangleCollapseResult Collapser::RunPartitionedGreedy()
 {
+  if (this->Options.Method != CollapseMethod::Quadric)
+  {
+    // The curvature method's fits and re-weighting reach beyond a collapse's star, which the
+    // cells do not keep apart.
+    return this->RunGreedy();
+  }
   this->EvaluateAll();
   int round = 0;
   while (!this->Finished())

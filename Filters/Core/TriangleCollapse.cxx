@@ -14,11 +14,8 @@ TriangleCollapseResult RunTriangleCollapse(TriangleMesh mesh, TriangleTopology t
   {
     return collapser.RunIndependentSets();
   }
-  // The curvature method re-weights a ring beyond each collapse, which the blocks of the
-  // partitioned run do not keep apart.
-  return options.PartitionedGreedy && options.Method == CollapseMethod::Quadric
-    ? collapser.RunPartitionedGreedy()
-    : collapser.RunGreedy();
+  // (The partitioned run falls back to the serial one for the curvature method.)
+  return options.PartitionedGreedy ? collapser.RunPartitionedGreedy() : collapser.RunGreedy();
 }
 
 } // namespace meshlod

@@ -374,6 +374,33 @@ void TestCoincidentPoints()
   }
 }
 
+// A closed mesh whose points are all at one place (every triangle has zero area), large enough
+// for the greedy order's parallel rounds: the grid has no size to cut, and the run must still
+// end, with valid levels.
+void TestAllPointsCoincident()
+{
+  vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(5); // 20480 triangles
+  for (vtkIdType p = 0; p < sphere->GetNumberOfPoints(); ++p)
+  {
+    sphere->GetPoints()->SetPoint(p, 1.0, 2.0, 3.0);
+  }
+  for (const bool partitioned : { true, false })
+  {
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->SetInputData(sphere);
+    filter->SetPartitionedGreedy(partitioned);
+    filter->SetNumberOfLevels(2);
+    filter->Update();
+    vtkMultiBlockDataSet* h = filter->GetHierarchy();
+    MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
+    MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
+    const testing::MeshReport r = testing::InspectMesh(Level(h, h->GetNumberOfBlocks() - 1));
+    MESHLOD_CHECK_LE(r.Triangles, 205);
+    MESHLOD_CHECK_EQ(r.NonManifoldEdges, 0);
+    MESHLOD_CHECK_EQ(r.EulerCharacteristic, 2);
+  }
+}
+
 // Same output for the sequential backend and the default (threaded) one.
 void TestThreadIndependence()
 {
@@ -614,6 +641,7 @@ int TestTriangleCollapseDecimation(int, char*[])
 {
   TestSingleCollapse();
   TestCoincidentPoints();
+  TestAllPointsCoincident();
   TestClosedIsosurface();
   TestGenus();
   TestOpenSurface();
