@@ -53,8 +53,9 @@
  *
  * Synthesis. Triangles are re-indexed to the representatives, degenerate and duplicate
  * triangles removed (of two with the same three points, the first is kept), orientation kept.
- * A kept triangle whose normal opposes the input surface around its three clusters marks the
- * clusters that changed as not mergeable and the level is cut again. Vertex clustering may
+ * A kept triangle whose normal opposes the input surface around its three clusters, and an edge
+ * that three or more kept triangles share (clusters that folded the surface onto itself), mark
+ * the clusters that changed as not mergeable and the level is cut again. Vertex clustering may
  * change topology: a part thinner than a cluster can shrink to an edge or a single flap (whose
  * edges are then boundary edges); a cluster whose triangles all vanish sends its points to the
  * nearest neighbouring cluster.

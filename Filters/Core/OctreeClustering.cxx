@@ -202,6 +202,9 @@ struct OctreeClustering::Internals
   Id ReindexTriangles(Synthesis& s) const;
   void MarkDuplicates(Synthesis& s) const;
   Id MarkFolds(Synthesis& s);
+  Id MarkPinches(Synthesis& s);
+  // Mark the changed clusters among `clusters` as not mergeable; returns how many were.
+  Id MarkChanged(Synthesis& s, const std::vector<Id>& clusters);
   Id TryLevel(double epsilon, ClusterLevel& level);
   void Finalize(Synthesis& s, ClusterLevel& level) const;
   void Commit(const ClusterLevel& level);
@@ -1035,23 +1038,91 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
         folded[j] = Dot(surface, after) > 0.0 ? 0 : 1;
       }
     });
-  Id marked = 0;
+  std::vector<Id> marks; // the clusters of the folded triangles
   for (Id j = 0; j < kept; ++j)
   {
-    for (int c = 0; c < 3 && folded[j]; ++c)
+    if (folded[j])
     {
-      const Id k = s.Triangles[3 * j + c];
-      const Id node = s.Cut[k];
-      if (s.Changed[k] && node >= this->NV &&
-        this->State[node - this->NV] != NodeState::Inadmissible)
-      {
-        this->State[node - this->NV] = NodeState::Inadmissible;
-        this->UpdateThreshold(node - this->NV);
-        ++marked;
-      }
+      marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
+    }
+  }
+  return this->MarkChanged(s, marks);
+}
+
+//------------------------------------------------------------------------------
+Id OctreeClustering::Internals::MarkChanged(Synthesis& s, const std::vector<Id>& clusters)
+{
+  Id marked = 0;
+  for (const Id k : clusters)
+  {
+    const Id node = s.Cut[k];
+    if (s.Changed[k] && node >= this->NV &&
+      this->State[node - this->NV] != NodeState::Inadmissible)
+    {
+      this->State[node - this->NV] = NodeState::Inadmissible;
+      this->UpdateThreshold(node - this->NV);
+      ++marked;
     }
   }
   return marked;
+}
+
+//------------------------------------------------------------------------------
+// Pinches: an edge that three or more kept triangles share, where one of them has a changed
+// cluster (clusters that merged folded part of the surface onto itself). Like folds, the changed
+// clusters of the triangles on such an edge are marked as not mergeable. Only the edges of
+// triangles at a changed cluster can have gained a triangle; all triangles are counted on them.
+Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
+{
+  const Id kept = static_cast<Id>(s.From.size());
+  using Edge = std::pair<Id, Id>;
+  auto edgeOf = [&](Id j, int c) {
+    const Id a = s.Triangles[3 * j + c], b = s.Triangles[3 * j + (c + 1) % 3];
+    return Edge(std::min(a, b), std::max(a, b));
+  };
+  std::vector<Edge> watched;
+  for (Id j = 0; j < kept; ++j)
+  {
+    const Id* tri = s.Triangles.data() + 3 * j;
+    if (!s.Duplicate[j] && (s.Changed[tri[0]] || s.Changed[tri[1]] || s.Changed[tri[2]]))
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        watched.push_back(edgeOf(j, c));
+      }
+    }
+  }
+  std::sort(watched.begin(), watched.end());
+  watched.erase(std::unique(watched.begin(), watched.end()), watched.end());
+  std::vector<std::pair<Edge, Id>> uses; // (watched edge, triangle)
+  for (Id j = 0; j < kept; ++j)
+  {
+    for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
+    {
+      const Edge e = edgeOf(j, c);
+      if (std::binary_search(watched.begin(), watched.end(), e))
+      {
+        uses.emplace_back(e, j);
+      }
+    }
+  }
+  std::sort(uses.begin(), uses.end());
+  std::vector<Id> marks; // the clusters of the triangles on shared edges
+  for (std::size_t i = 0; i < uses.size();)
+  {
+    std::size_t end = i;
+    while (end < uses.size() && uses[end].first == uses[i].first)
+    {
+      ++end;
+    }
+    for (std::size_t u = i; end - i > 2 && u < end; ++u)
+    {
+      const Id j = uses[u].second;
+      marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
+    }
+    i = end;
+  }
+  return this->MarkChanged(s, marks);
 }
 
 //------------------------------------------------------------------------------
@@ -1266,7 +1337,8 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
     this->AssignClusters(s);
     this->ReindexTriangles(s);
     this->MarkDuplicates(s);
-    const Id marked = pass < this->Options.FlipPasses ? this->MarkFolds(s) : 0;
+    const Id marked =
+      pass < this->Options.FlipPasses ? this->MarkFolds(s) + this->MarkPinches(s) : 0;
     if (marked == 0)
     {
       break;

@@ -73,8 +73,9 @@ struct VTKFILTERSMESHLOD_EXPORT OctreeClusteringOptions
   double BoundaryWeight = 1.0;
   /// Eigenvalues below this fraction of the largest are treated as zero when placing.
   double PlacementTolerance = 1e-3;
-  /// How many times a level is cut again to remove flipped triangles.
-  int FlipPasses = 4;
+  /// How many times a level is cut again to remove flipped triangles and pinched edges (each
+  /// pass refuses the clusters that made them; a rough surface can need a dozen).
+  int FlipPasses = 16;
 };
 
 /// One level as produced by OctreeClustering; point ids refer to this level, "previous" ids to

@@ -566,6 +566,42 @@ void TestNonManifold()
 }
 
 //------------------------------------------------------------------------------
+// A rough plane (a grid with height noise of 15% of its edges): clusters would fold it onto
+// itself, leaving edges of three or four triangles. Such clusters are refused like those that
+// flip triangles: every level stays manifold.
+void TestRoughPlane()
+{
+  vtkSmartPointer<vtkPolyData> grid = testing::MakeGrid(150, 150);
+  std::uint32_t state = 12345;
+  for (vtkIdType p = 0; p < grid->GetNumberOfPoints(); ++p)
+  {
+    state = state * 1664525u + 1013904223u; // a fixed pseudo-random sequence
+    double x[3];
+    grid->GetPoint(p, x);
+    x[2] = 0.15 * (static_cast<double>(state >> 8) / 16777216.0 - 0.5);
+    grid->GetPoints()->SetPoint(p, x);
+  }
+  vtkNew<vtkVertexClusterOctree> cluster;
+  cluster->SetInputData(grid);
+  cluster->SetLevelModeToTargetTriangleCounts();
+  cluster->AddTargetTriangleCount(20000);
+  cluster->AddTargetTriangleCount(4500);
+  cluster->Update();
+  vtkMultiBlockDataSet* h = cluster->GetHierarchy();
+  MESHLOD_CHECK_GE(h->GetNumberOfBlocks(), 2u);
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    const testing::MeshReport r = testing::InspectMesh(Level(h, i));
+    std::cerr << "rough plane level " << i << ": " << r.Triangles << " triangles, "
+              << r.NonManifoldEdges << " non-manifold edges\n";
+    MESHLOD_CHECK_LT(r.Triangles, 45000);
+    MESHLOD_CHECK_EQ(r.NonManifoldEdges, 0);
+    MESHLOD_CHECK_EQ(r.NonManifoldVertices, 0);
+    MESHLOD_CHECK_EQ(r.DegenerateTriangles, 0);
+    MESHLOD_CHECK_EQ(r.DuplicateTriangles, 0);
+  }
+}
+
 void TestSettingsAndErrors()
 {
   vtkNew<vtkTest::ErrorObserver> observer;
@@ -728,6 +764,7 @@ int TestVertexClusterOctree(int, char*[])
   TestUnreachableCount();
   TestBoundaries();
   TestNonManifold();
+  TestRoughPlane();
   TestCellLimits();
   TestSettingsAndErrors();
   return meshlod::testing::Result();
