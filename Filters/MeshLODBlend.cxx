@@ -384,4 +384,34 @@ void BlendPointData(
   }
 }
 
+//------------------------------------------------------------------------------
+void GatherPointData(vtkPointData* fine, vtkPointData* coarse, const Id* map,
+  vtkIdType numberOfPoints, vtkPointData* out)
+{
+  // A blend at weight 1 through the map is the gather: exactly the coarser values.
+  BlendPlan gather;
+  gather.NumberOfPoints = numberOfPoints;
+  gather.Map = map;
+  gather.Weight = 1.0;
+  out->Initialize();
+  for (int i = 0; i < fine->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* a = fine->GetAbstractArray(i);
+    vtkAbstractArray* b = IsMorphArray(a->GetName()) ? nullptr : Counterpart(coarse, a);
+    if (!b)
+    {
+      continue;
+    }
+    if (IsReal(a))
+    {
+      out->AddArray(BlendRealArray(vtkDataArray::SafeDownCast(a), vtkDataArray::SafeDownCast(b),
+        gather, a == fine->GetNormals()));
+    }
+    else
+    {
+      out->AddArray(SwitchArray(a, b, gather));
+    }
+  }
+}
+
 } // namespace meshlod

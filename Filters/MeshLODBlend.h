@@ -62,6 +62,14 @@ VTKFILTERSMESHLOD_EXPORT vtkSmartPointer<vtkAbstractArray> SwitchArray(
 VTKFILTERSMESHLOD_EXPORT void BlendPointData(
   vtkPointData* fine, vtkPointData* coarse, const BlendPlan& plan, vtkPointData* out);
 
+/// For every array of `fine` (but the morph arrays) that has a counterpart in `coarse` (as
+/// BlendPointData pairs them), that counterpart's rows map[q], q < numberOfPoints, gathered
+/// into `out` under the same name: each point's values where it goes. Arrays without a
+/// counterpart are left out. Normals are renormalised, like BlendPointData's at weight 1.
+VTKFILTERSMESHLOD_EXPORT void GatherPointData(
+  vtkPointData* fine, vtkPointData* coarse, const Id* map, vtkIdType numberOfPoints,
+  vtkPointData* out);
+
 } // namespace meshlod
 
 #endif

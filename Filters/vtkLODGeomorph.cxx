@@ -491,26 +491,10 @@ vtkPointData* vtkLODGeomorph::Internals::TargetData(int level)
     {
       other.TargetData = nullptr;
     }
-    // A blend at weight 1 through the correspondence is the gather: each row takes the next
-    // level's values at its target exactly (arrays the next level lacks keep this level's).
-    meshlod::BlendPlan gather;
-    gather.NumberOfPoints = cache.Poly->GetNumberOfPoints();
-    gather.Map = cache.TargetIds.data();
-    gather.Weight = 1.0;
     cache.TargetData = vtkSmartPointer<vtkPointData>::New();
-    vtkPointData* next = this->Levels[level + 1].Poly->GetPointData();
-    meshlod::BlendPointData(cache.Poly->GetPointData(), next, gather, cache.TargetData);
-    // Arrays the next level lacks keep this level's values: leave them out, so that frames
-    // share them instead of blending them with copies of themselves.
-    for (int i = cache.TargetData->GetNumberOfArrays() - 1; i >= 0; --i)
-    {
-      vtkAbstractArray* array = cache.TargetData->GetAbstractArray(i);
-      vtkAbstractArray* there = next->GetAbstractArray(array->GetName());
-      if (!there || there->GetNumberOfComponents() != array->GetNumberOfComponents())
-      {
-        cache.TargetData->RemoveArray(i);
-      }
-    }
+    meshlod::GatherPointData(cache.Poly->GetPointData(),
+      this->Levels[level + 1].Poly->GetPointData(), cache.TargetIds.data(),
+      cache.Poly->GetNumberOfPoints(), cache.TargetData);
   }
   return cache.TargetData;
 }
