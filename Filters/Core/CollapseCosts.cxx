@@ -166,9 +166,10 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   }
 
   // Curvature method (paper 000): fit, collapse point c + f(0,0) n, weight terms.
-  this->FitSurface(members, c, scratch);
-  if (this->State.IsBoundary(members[0]) || this->State.IsBoundary(members[1]) ||
-    this->State.IsBoundary(members[2]))
+  const bool boundary = this->State.IsBoundary(members[0]) ||
+    this->State.IsBoundary(members[1]) || this->State.IsBoundary(members[2]);
+  this->FitSurface(members, c, scratch, !boundary);
+  if (boundary)
   {
     // Paper 000 collapses only triangles with a complete stencil, none on a boundary; on an
     // open mesh (an isosurface cut by its volume) that would keep every boundary triangle. Such
@@ -181,11 +182,9 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   // The merged vertex's valence: the triangles around the three vertices, less the ones
   // counted twice or dying (6 for the collapsing triangle's corners, 3 for its neighbours').
   int triangles = 0;
-  bool boundary = false;
   for (int k = 0; k < 3; ++k)
   {
     triangles += this->State.TriangleCount(members[k]);
-    boundary = boundary || this->State.IsBoundary(members[k]);
   }
   const int valence = std::max(0, triangles - 9 + (boundary ? 1 : 0));
   c.ValenceTerm = std::abs(valence - 6) / ValenceNormalization;
@@ -360,7 +359,8 @@ double CollapseCostModel::BalancedHeight(const Id* tri, const double centroid[3]
 }
 
 //------------------------------------------------------------------------------
-void CollapseCostModel::FitSurface(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const
+void CollapseCostModel::FitSurface(
+  const Id* tri, CollapseCandidate& c, CostScratch& scratch, bool place) const
 {
   double centroid[3] = { 0, 0, 0 };
   double scale = 0.0;
@@ -445,7 +445,7 @@ void CollapseCostModel::FitSurface(const Id* tri, CollapseCandidate& c, CostScra
   // extrapolate wildly at its centre; the surface cannot be further from the centroid than about
   // the triangle's size.
   double height = 0.0;
-  if (fit.Valid)
+  if (fit.Valid && place)
   {
     const double balanced = this->BalancedHeight(tri, centroid, c.Normal, fit);
     height = std::max(-scale, std::min(scale, balanced));

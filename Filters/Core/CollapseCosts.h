@@ -105,7 +105,10 @@ private:
   void SolveEdge(Id a, Id b, EdgeSolution& solution, CostScratch* scratch) const;
   // Edge k of the triangle into c; returns its cost.
   double Edge(const Id* tri, int k, CollapseCandidate& c) const;
-  void FitSurface(const Id* tri, CollapseCandidate& candidate, CostScratch& scratch) const;
+  // Curvature method: the fit's curvature into the candidate and, with `place`, the collapse
+  // point on the normal through the centroid (see BalancedHeight).
+  void FitSurface(
+    const Id* tri, CollapseCandidate& candidate, CostScratch& scratch, bool place) const;
   // The height along the normal through the centroid at which the new triangles lie on the
   // fitted surface on average.
   double BalancedHeight(const Id* tri, const double centroid[3], const double normal[3],
