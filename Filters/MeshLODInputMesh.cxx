@@ -346,7 +346,17 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
                  << " duplicate triangles.");
   }
 
-  // Compact away dropped triangles and unused points, keeping the maps to the source.
+  // Compact away dropped triangles and unused points, keeping the maps to the source. Most
+  // inputs have neither: then no copy is made (it would be the largest allocation here).
+  if (result.MergedPoints == 0 && result.DuplicateTriangles == 0 &&
+    result.Topology.CountVertices(VertexKind::Unused) == 0)
+  {
+    result.UnusedPoints = 0;
+    result.SourcePointIds.resize(numberOfPoints);
+    std::iota(result.SourcePointIds.begin(), result.SourcePointIds.end(), 0);
+    result.SameAsInput = !changed && result.DegenerateTriangles == 0;
+    return mesh.GetNumberOfTriangles() > 0 ? InputStatus::Valid : InputStatus::Empty;
+  }
   TriangleMesh compact;
   CompactionMaps maps;
   CompactMesh(mesh, compact, maps);

@@ -444,6 +444,8 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   options.MaximumPointsPerCell = this->MaximumPointsPerCell;
   options.RepresentativeIterations = this->RepresentativeIterations;
   options.BoundaryWeight = this->BoundaryWeight;
+  // The clustering asks the topology only which edges are boundaries.
+  in.Topology.KeepBoundaryFlagsOnly();
   meshlod::OctreeClustering clustering(in.Mesh, in.Topology, options);
   clustering.BuildTree();
   this->UpdateProgress(0.4);

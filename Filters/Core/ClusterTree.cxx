@@ -280,7 +280,7 @@ void ClusterTree::Builder::MergeGroup(const HalfEdge* items,
     const Id t = static_cast<Id>(items[i].Item / 3);
     const int k = static_cast<int>(items[i].Item % 3);
     const Id* tri = mesh.Triangle(t);
-    const bool boundary = topology.EdgeNeighbors[3 * static_cast<size_t>(t) + k] == BoundaryEdge;
+    const bool boundary = topology.IsBoundaryEdge(t, k);
     int deep, shallow;
     this->DesignatedEdges(tri, deep, shallow);
     if (k != deep && k != shallow && !boundary)
@@ -441,7 +441,7 @@ void ClusterTree::VertexQuadric(Id v, Quadric& q, double normal[3]) const
     const int c = CornerOf(tri, v);
     for (const int e : { c, (c + 2) % 3 })
     {
-      if (this->Topology->EdgeNeighbors[3 * static_cast<size_t>(t) + e] == BoundaryEdge)
+      if (this->Topology->IsBoundaryEdge(t, e))
       {
         Quadric edge;
         BoundaryEdgeQuadric(p[e], p[(e + 1) % 3], n, this->Options.BoundaryWeight, edge);
@@ -512,7 +512,7 @@ void ClusterTree::RelatedQuadric(Id node,
         const int e = j == 0 ? c : (c + 2) % 3;
         const int from = inside[e] ? e : (e + 1) % 3;
         boundary[j] = from == c &&
-          this->Topology->EdgeNeighbors[3 * static_cast<size_t>(t) + e] == BoundaryEdge;
+          this->Topology->IsBoundaryEdge(t, e);
       }
       if (firstInside != c && !boundary[0] && !boundary[1])
       {

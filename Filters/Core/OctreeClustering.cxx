@@ -112,6 +112,14 @@ struct Synthesis
   std::vector<Id> From;         // kept triangle -> previous triangle
   std::vector<unsigned char> Duplicate;
   std::vector<unsigned char> Changed; // cluster is not exactly one previous point
+
+  /// Whether kept triangle j may have folded or pinched: not a duplicate, with a changed cluster.
+  bool Involved(Id j) const
+  {
+    const Id* tri = this->Triangles.data() + 3 * j;
+    return !this->Duplicate[j] &&
+      (this->Changed[tri[0]] || this->Changed[tri[1]] || this->Changed[tri[2]]);
+  }
 };
 } // namespace
 
@@ -981,16 +989,11 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
 {
   const Id kept = static_cast<Id>(s.From.size());
   const Id clusters = static_cast<Id>(s.Cut.size());
-  auto involved = [&](Id j)
-  {
-    const Id* tri = s.Triangles.data() + 3 * j;
-    return !s.Duplicate[j] && (s.Changed[tri[0]] || s.Changed[tri[1]] || s.Changed[tri[2]]);
-  };
   // Surface normals only for the clusters of triangles that can have folded.
   std::vector<unsigned char> needed(clusters, 0);
   for (Id j = 0; j < kept; ++j)
   {
-    if (involved(j))
+    if (s.Involved(j))
     {
       for (int c = 0; c < 3; ++c)
       {
@@ -1018,7 +1021,7 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
     {
       for (Id j = begin; j < end; ++j)
       {
-        if (!involved(j))
+        if (!s.Involved(j))
         {
           continue;
         }
@@ -1070,57 +1073,80 @@ Id OctreeClustering::Internals::MarkChanged(Synthesis& s, const std::vector<Id>&
 //------------------------------------------------------------------------------
 // Pinches: an edge that three or more kept triangles share, where one of them has a changed
 // cluster (clusters that merged folded part of the surface onto itself). Like folds, the changed
-// clusters of the triangles on such an edge are marked as not mergeable. Only the edges of
-// triangles at a changed cluster can have gained a triangle; all triangles are counted on them.
+// clusters of the triangles on such an edge are marked as not mergeable. The edges are grouped
+// by their smaller cluster (a counting sort, as for duplicates), so that each edge's triangles
+// are found among the few edges of one cluster.
 Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
 {
   const Id kept = static_cast<Id>(s.From.size());
-  using Edge = std::pair<Id, Id>;
-  auto edgeOf = [&](Id j, int c) {
-    const Id a = s.Triangles[3 * j + c], b = s.Triangles[3 * j + (c + 1) % 3];
-    return Edge(std::min(a, b), std::max(a, b));
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  std::vector<Id> offsets(static_cast<size_t>(clusters) + 1, 0);
+  auto forEachEdge = [&](auto visit)
+  {
+    for (Id j = 0; j < kept; ++j)
+    {
+      for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
+      {
+        const Id a = s.Triangles[3 * j + c], b = s.Triangles[3 * j + (c + 1) % 3];
+        visit(std::min(a, b), std::max(a, b), j);
+      }
+    }
   };
-  std::vector<Edge> watched;
-  for (Id j = 0; j < kept; ++j)
+  forEachEdge([&](Id low, Id, Id) { ++offsets[low + 1]; });
+  for (Id k = 0; k < clusters; ++k)
   {
-    const Id* tri = s.Triangles.data() + 3 * j;
-    if (!s.Duplicate[j] && (s.Changed[tri[0]] || s.Changed[tri[1]] || s.Changed[tri[2]]))
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        watched.push_back(edgeOf(j, c));
-      }
-    }
+    offsets[k + 1] += offsets[k];
   }
-  std::sort(watched.begin(), watched.end());
-  watched.erase(std::unique(watched.begin(), watched.end()), watched.end());
-  std::vector<std::pair<Edge, Id>> uses; // (watched edge, triangle)
-  for (Id j = 0; j < kept; ++j)
+  std::vector<Id> high(offsets[clusters]), triangle(offsets[clusters]);
   {
-    for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
-    {
-      const Edge e = edgeOf(j, c);
-      if (std::binary_search(watched.begin(), watched.end(), e))
+    std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
+    forEachEdge(
+      [&](Id low, Id other, Id j)
       {
-        uses.emplace_back(e, j);
-      }
-    }
+        high[cursor[low]] = other;
+        triangle[cursor[low]++] = j;
+      });
   }
-  std::sort(uses.begin(), uses.end());
-  std::vector<Id> marks; // the clusters of the triangles on shared edges
-  for (std::size_t i = 0; i < uses.size();)
+  // pinched[x]: entry x is on an edge with three or more triangles, one of them involved.
+  std::vector<unsigned char> pinched(high.size(), 0);
+  vtkSMPTools::For(0,
+    clusters,
+    [&](Id begin, Id end)
+    {
+      for (Id k = begin; k < end; ++k)
+      {
+        const Id last = offsets[k + 1];
+        for (Id x = offsets[k]; x < last; ++x)
+        {
+          if (std::find(high.begin() + offsets[k], high.begin() + x, high[x]) != high.begin() + x)
+          {
+            continue; // the edge was decided at its first entry
+          }
+          int uses = 0;
+          bool watched = false;
+          for (Id y = x; y < last; ++y)
+          {
+            if (high[y] == high[x])
+            {
+              ++uses;
+              watched = watched || s.Involved(triangle[y]);
+            }
+          }
+          for (Id y = x; uses > 2 && watched && y < last; ++y)
+          {
+            pinched[y] = pinched[y] || high[y] == high[x];
+          }
+        }
+      }
+    });
+  std::vector<Id> marks; // the clusters of the triangles on pinched edges
+  for (size_t x = 0; x < pinched.size(); ++x)
   {
-    std::size_t end = i;
-    while (end < uses.size() && uses[end].first == uses[i].first)
+    if (pinched[x])
     {
-      ++end;
-    }
-    for (std::size_t u = i; end - i > 2 && u < end; ++u)
-    {
-      const Id j = uses[u].second;
+      const Id j = triangle[x];
       marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
     }
-    i = end;
   }
   return this->MarkChanged(s, marks);
 }

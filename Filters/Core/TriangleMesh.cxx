@@ -127,6 +127,7 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
   const Id nv = mesh.GetNumberOfPoints();
   this->VertexTriangles.Build(mesh);
   this->EdgeNeighbors.assign(3 * static_cast<size_t>(nt), BoundaryEdge);
+  std::vector<std::uint8_t>().swap(this->BoundaryFlags);
 
   // Edge neighbours: for edge (a, b) of t, the other triangles in a's row that contain b.
   const VertexTriangleAdjacency& adj = this->VertexTriangles;
@@ -199,6 +200,24 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
         : (boundaryEdges > 0 ? VertexKind::Boundary : VertexKind::Interior);
     }
   });
+}
+
+//------------------------------------------------------------------------------
+void TriangleTopology::KeepBoundaryFlagsOnly()
+{
+  const Id nt = static_cast<Id>(this->EdgeNeighbors.size() / 3);
+  this->BoundaryFlags.assign(nt, 0);
+  for (Id t = 0; t < nt; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (this->EdgeNeighbors[3 * static_cast<std::size_t>(t) + k] == BoundaryEdge)
+      {
+        this->BoundaryFlags[t] |= static_cast<std::uint8_t>(1u << k);
+      }
+    }
+  }
+  std::vector<Id>().swap(this->EdgeNeighbors);
 }
 
 //------------------------------------------------------------------------------

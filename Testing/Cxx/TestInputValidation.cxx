@@ -55,6 +55,11 @@ void TestCleanMeshIsShared(Reader& reader)
   MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 8);
   MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfPoints(), 6);
   MESHLOD_CHECK_EQ(result.Topology.EulerCharacteristic(result.Mesh), 2);
+  MESHLOD_CHECK_EQ(result.SourcePointIds.size(), 6u); // identity maps, nothing compacted
+  MESHLOD_CHECK_EQ(result.SourcePointIds[5], 5);
+  MESHLOD_CHECK_EQ(result.SourceCellIds.size(), 8u);
+  MESHLOD_CHECK_EQ(result.SourceCellIds[7], 7);
+  MESHLOD_CHECK_EQ(result.UnusedPoints, 0);
   MESHLOD_CHECK(!reader.Observer->GetError());
   MESHLOD_CHECK(!reader.Observer->GetWarning());
 }

@@ -8,6 +8,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace
@@ -155,6 +156,30 @@ void TestHole()
   MESHLOD_CHECK_EQ(edges.Boundary, 24); // 16 outside, 8 around the hole
   MESHLOD_CHECK_EQ(edges.Manifold, 24);
   MESHLOD_CHECK_EQ(topo.EulerCharacteristic(mesh), 0); // an annulus
+
+  // The compact boundary flags answer IsBoundaryEdge exactly as the edge neighbours did.
+  std::vector<bool> before;
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      before.push_back(topo.IsBoundaryEdge(t, k));
+    }
+  }
+  MESHLOD_CHECK_EQ(std::count(before.begin(), before.end(), true), 24);
+  topo.KeepBoundaryFlagsOnly();
+  MESHLOD_CHECK(topo.EdgeNeighbors.empty());
+  MESHLOD_CHECK_EQ(static_cast<Id>(topo.BoundaryFlags.size()), mesh.GetNumberOfTriangles());
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      MESHLOD_CHECK_EQ(topo.IsBoundaryEdge(t, k), before[3 * t + k]);
+    }
+  }
+  topo.Build(mesh); // a rebuild restores the neighbours
+  MESHLOD_CHECK_EQ(topo.EdgeNeighbors.size(), before.size());
+  MESHLOD_CHECK(topo.BoundaryFlags.empty());
 }
 
 void TestCompaction()
