@@ -21,9 +21,12 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkTypeInt32Array.h"
 
 #include <cmath>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace meshlod
 {
@@ -213,6 +216,12 @@ void SetLevelFieldData(vtkPolyData* poly, int level, double estimatedError)
   fd->AddArray(error);
 }
 
+template <typename T>
+void Release(std::vector<T>& values)
+{
+  std::vector<T>().swap(values);
+}
+
 void SetDoubleField(vtkPolyData* poly, const char* name, double value)
 {
   vtkNew<vtkDoubleArray> array;
@@ -285,7 +294,7 @@ void HierarchyBuilder::SetLevelZero(const InputMesh& input)
 }
 
 //------------------------------------------------------------------------------
-void HierarchyBuilder::AppendLevel(const LevelData& level)
+void HierarchyBuilder::AppendLevel(LevelData&& level)
 {
   vtkPolyData* previous = this->Impl->Levels.back();
   vtkPolyData* level0 = this->Impl->Levels.front();
@@ -294,20 +303,27 @@ void HierarchyBuilder::AppendLevel(const LevelData& level)
 
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(MakePoints(level.Mesh, level0->GetPoints()->GetDataType()));
+  Release(level.Mesh.Points);
   poly->SetPolys(MakeTriangleCells(level.Mesh.Triangles.data(), level.Mesh.GetNumberOfTriangles()));
+  Release(level.Mesh.Triangles);
   static const char* const morphNames[] = { names::MorphTarget, names::MorphTargetId,
     names::CollapseRank };
   InterpolatePointData(
     previous->GetPointData(), level.Sources, numberOfPoints, poly->GetPointData(), morphNames, 3);
+  Release(level.Sources.Offsets);
+  Release(level.Sources.Parents);
+  Release(level.Sources.Weights);
   CopySubset(level0->GetCellData(), ToIdList(level.LevelZeroTriangle), poly->GetCellData());
+  Release(level.LevelZeroTriangle);
   SetLevelFieldData(poly, index, level.EstimatedError);
 
-  // Morph arrays on the previous level.
+  // Morph arrays on the previous level: ids and ranks in 32 bits, like the module's ids (a
+  // quarter of a level's memory would otherwise go to these two arrays).
   const vtkIdType previousPoints = previous->GetNumberOfPoints();
-  vtkNew<vtkIdTypeArray> targetId;
+  vtkNew<vtkTypeInt32Array> targetId;
   targetId->SetName(names::MorphTargetId);
   targetId->SetNumberOfValues(previousPoints);
-  vtkNew<vtkIdTypeArray> rank;
+  vtkNew<vtkTypeInt32Array> rank;
   rank->SetName(names::CollapseRank);
   rank->SetNumberOfValues(previousPoints);
   vtkSmartPointer<vtkDataArray> target =
@@ -327,6 +343,8 @@ void HierarchyBuilder::AppendLevel(const LevelData& level)
       target->SetTuple(p, x);
     }
   });
+  Release(level.Target);
+  Release(level.Rank);
   // The previous level may share its point data object with the input: give it its own.
   vtkNew<vtkPointData> previousData;
   previousData->ShallowCopy(previous->GetPointData());

@@ -70,7 +70,9 @@ public:
   void SetLevelZero(const InputMesh& input);
 
   /// Append the next level: builds its polydata and adds the morph arrays to the level before.
-  void AppendLevel(const LevelData& level);
+  /// Consumes `level`: each of its arrays is released once converted, so that a level's plain
+  /// arrays and its VTK arrays are not all alive at the peak of memory.
+  void AppendLevel(LevelData&& level);
 
   /// Number of levels so far (level 0 included).
   int GetNumberOfLevels() const;

@@ -156,7 +156,7 @@ int vtkTriangleCollapseDecimation::RequestData(
   meshlod::HierarchyBuilder builder;
   builder.SetLevelZero(mesh);
   meshlod::TriangleCollapseCallbacks callbacks;
-  callbacks.EmitLevel = [&](meshlod::LevelData& level) { builder.AppendLevel(level); };
+  callbacks.EmitLevel = [&](meshlod::LevelData& level) { builder.AppendLevel(std::move(level)); };
   callbacks.Progress = [this](double fraction) {
     this->UpdateProgress(CollapseStart + (CollapseEnd - CollapseStart) * fraction);
     return !this->GetAbortExecute();

@@ -79,7 +79,8 @@ struct TriangleCollapseCallbacks
 {
   /// Called on the calling thread with the fraction done; returns false to abort.
   std::function<bool(double)> Progress;
-  /// Receives each level as soon as it is complete.
+  /// Receives each level as soon as it is complete; it may take the level's arrays (the engine
+  /// does not use them afterwards).
   std::function<void(LevelData&)> EmitLevel;
 };
 

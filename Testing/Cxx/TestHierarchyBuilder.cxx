@@ -69,7 +69,7 @@ int TestHierarchyBuilder(int, char*[])
   level.Target = { 0, 1, 2, 3, 1, 4 };
   level.Rank = { -1, 0, -1, -1, 0, -1 };
   level.EstimatedError = 0.25;
-  builder.AppendLevel(level);
+  builder.AppendLevel(std::move(level));
   builder.MeasureLevelErrors();
 
   vtkNew<vtkMultiBlockDataSet> hierarchy;

@@ -229,7 +229,7 @@ vtkSmartPointer<vtkMultiBlockDataSet> MakeGridHierarchy()
       level.LevelZeroTriangle.push_back(t);
     }
   }
-  builder.AppendLevel(level);
+  builder.AppendLevel(std::move(level));
   auto hierarchy = vtkSmartPointer<vtkMultiBlockDataSet>::New();
   builder.Finish(hierarchy);
   return hierarchy;

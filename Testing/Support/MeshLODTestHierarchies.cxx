@@ -274,9 +274,9 @@ vtkSmartPointer<vtkMultiBlockDataSet> MakeCollapseHierarchy(
       break;
     }
     LevelData level = ApplyCollapses(current, collapses, levelZeroTriangle);
-    builder.AppendLevel(level);
-    current = std::move(level.Mesh);
-    levelZeroTriangle = std::move(level.LevelZeroTriangle);
+    current = level.Mesh; // AppendLevel consumes the level
+    levelZeroTriangle = level.LevelZeroTriangle;
+    builder.AppendLevel(std::move(level));
     topology.Build(current);
   }
   if (options.MeasureErrors)
