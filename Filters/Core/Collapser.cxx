@@ -145,6 +145,41 @@ Legality Collapser::Check(Id t, Star& star, CollapseCandidate& c, CostScratch& s
   return star.Foreign ? Legality::Foreign : Legality::Illegal;
 }
 
+// A triangle collapse removes four triangles, an edge collapse two (one on a boundary): with
+// the cheapest legal edge of the triangle taken instead whenever the triangle would pass the
+// target, the greedy schedule lands a level within one triangle of its target unless no edge
+// of that triangle may collapse.
+void Collapser::LandOnTarget(Id t, std::int64_t needed, Star& star, CollapseCandidate& c) const
+{
+  if (static_cast<std::int64_t>(star.Dying.size()) <= needed || c.MemberCount != 3 ||
+    c.Swapped || this->Options.Method != CollapseMethod::Quadric ||
+    this->Options.Operator != CollapseOperator::TrianglesAndEdges)
+  {
+    return;
+  }
+  // The triangle's edges, cheapest first (ties: the first); the first legal one goes.
+  CollapseCandidate edges[3];
+  int order[3] = { 0, 1, 2 };
+  CostScratch unused;
+  for (int k = 0; k < 3; ++k)
+  {
+    if (!this->Model.EvaluateChoice(t, k, edges[k], unused))
+    {
+      edges[k].Cost = InfiniteCost;
+    }
+  }
+  std::stable_sort(order, order + 3, [&](int a, int b) { return edges[a].Cost < edges[b].Cost; });
+  for (const int k : order)
+  {
+    if (edges[k].Cost < InfiniteCost && this->Legal(star, edges[k]) == Legality::Legal)
+    {
+      c = edges[k];
+      return;
+    }
+  }
+  this->Legal(star, c); // the triangle's star again
+}
+
 Legality Collapser::Legal(Star& star, const CollapseCandidate& c) const
 {
   // The star-shape test of paper 000 projects on the collapsing triangle's plane; an edge

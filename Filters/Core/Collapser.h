@@ -170,6 +170,10 @@ private:
   Legality CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
   Legality Legal(Star& star, const CollapseCandidate& c) const;
   bool TrySwap(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
+  // When a legal triangle collapse would remove more than `needed` triangles (the rest to a
+  // level's target), take the triangle's cheapest edge instead when that is legal (star and c
+  // then describe the edge).
+  void LandOnTarget(Id t, std::int64_t needed, Star& star, CollapseCandidate& c) const;
 
   // Emit levels whose target is reached; returns false on abort.
   bool AfterProgress();

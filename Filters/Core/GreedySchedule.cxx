@@ -77,6 +77,10 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
       this->Lot.Park(t, this->Clock);
       continue;
     }
+    if (!this->Finished())
+    {
+      this->LandOnTarget(t, this->State.AliveTriangles - this->CurrentTarget(), star, c);
+    }
     if (!this->ErrorAllows(c.Error))
     {
       return StepsEnd::Stopped;

@@ -325,7 +325,8 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
   }
 
   // 3. Every cell's greedy loop, in parallel. A cell may remove its share of the budget (in
-  // proportion to its candidates), and up to 3 triangles more with its last collapse.
+  // proportion to its candidates), and up to 3 triangles more with its last collapse (1 in the
+  // serial round, which lands on a level).
   this->HeapPositions.resize(this->State.Mesh.GetNumberOfTriangles(), InvalidId);
   const Id cellsBusy = static_cast<Id>(busy.size());
   std::vector<CellOutcome> outcomes(cellsBusy);
@@ -361,6 +362,10 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
         {
           this->Lot.Park(t, now, &out.Parked);
           continue;
+        }
+        if (!parallel)
+        {
+          this->LandOnTarget(t, quota - out.Removed, star, c); // the serial round's quota is the gap
         }
         if (!this->ErrorAllows(c.Error))
         {

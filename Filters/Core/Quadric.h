@@ -71,10 +71,12 @@ struct VTKFILTERSMESHLOD_EXPORT Quadric
   double RmsDistance(const double v[3]) const;
 
   /// The minimiser found by one regularised 3x3 Cholesky solve, (A + eps I) y = -(A o + b) with
-  /// eps = relativeTolerance * trace(A) and result o + y. Along eigenvectors whose eigenvalue
-  /// is well above eps this is the exact minimiser; along (nearly) null directions the point
-  /// stays near `origin` (typically the centroid of the collapsing vertices), so on a flat
-  /// patch it does not slide along the patch and on a crease it slides only along the crease.
+  /// eps = relativeTolerance * trace(A) and result o + y, refined twice on the same factors
+  /// (see Quadric.cxx). Along eigenvectors whose eigenvalue is well above eps this is the exact
+  /// minimiser (to rounding, also between nearly parallel planes); along (nearly) null
+  /// directions the point stays near `origin` (typically the centroid of the collapsing
+  /// vertices), so on a flat patch it does not slide along the patch and on a crease it slides
+  /// only along the crease.
   /// It behaves like MinimizeQuadric's truncated pseudo-inverse at a fraction of the cost,
   /// which matters where every candidate collapse is costed.
   void MinimizeRegularized(const double origin[3],
