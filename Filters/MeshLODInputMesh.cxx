@@ -119,54 +119,98 @@ vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdT
   return dropped;
 }
 
-// Merge points with equal coordinates among the vertices of boundary edges. Returns the number
-// of points merged away; triangles are re-indexed to the lowest id of each coincident group.
-vtkIdType MergeCoincidentBoundaryPoints(TriangleMesh& mesh, const TriangleTopology& topology)
+// Merge points that coincide up to rounding (at most SeamTolerance of the bounding diagonal
+// apart) among the vertices of boundary and non-manifold edges: a triangle soup (an STL file)
+// or a duplicated seam (a parametric surface whose seam points differ in the last bits and are
+// joined by zero-area triangles) becomes one surface. Near-equal points are found as neighbours
+// in three lexicographic orders (x y z, y z x, z x y), which catches every pair that differs in
+// one coordinate only, as rounding makes them. Returns the number of points merged away;
+// triangles are re-indexed to the lowest id of each group.
+constexpr double SeamTolerance = 1e-12;
+
+vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology)
 {
-  std::vector<unsigned char> onBoundary(mesh.GetNumberOfPoints(), 0);
-  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      if (topology.EdgeNeighbors[3 * static_cast<size_t>(t) + k] == BoundaryEdge)
-      {
-        onBoundary[mesh.Triangle(t)[k]] = 1;
-        onBoundary[mesh.Triangle(t)[(k + 1) % 3]] = 1;
-      }
-    }
-  }
+  const Id nv = mesh.GetNumberOfPoints();
   std::vector<Id> candidates;
-  for (Id v = 0; v < mesh.GetNumberOfPoints(); ++v)
+  for (Id v = 0; v < nv; ++v)
   {
-    if (onBoundary[v])
+    if (topology.VertexKinds[v] == VertexKind::Boundary ||
+      topology.VertexKinds[v] == VertexKind::NonManifold)
     {
       candidates.push_back(v);
     }
   }
-  auto less = [&](Id a, Id b) {
-    const double* pa = mesh.Point(a);
-    const double* pb = mesh.Point(b);
-    return std::lexicographical_compare(pa, pa + 3, pb, pb + 3) || (std::equal(pa, pa + 3, pb) && a < b);
-  };
-  std::sort(candidates.begin(), candidates.end(), less);
-
-  std::vector<Id> remap(mesh.GetNumberOfPoints());
-  std::iota(remap.begin(), remap.end(), 0);
-  vtkIdType merged = 0;
-  for (size_t i = 1; i < candidates.size(); ++i)
+  if (candidates.size() < 2)
   {
-    const double* prev = mesh.Point(candidates[i - 1]);
-    if (std::equal(prev, prev + 3, mesh.Point(candidates[i])))
+    return 0;
+  }
+  double low[3], high[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    low[i] = high[i] = mesh.Point(0)[i];
+  }
+  for (Id v = 1; v < nv; ++v)
+  {
+    for (int i = 0; i < 3; ++i)
     {
-      remap[candidates[i]] = remap[candidates[i - 1]];
-      ++merged;
+      low[i] = std::min(low[i], mesh.Point(v)[i]);
+      high[i] = std::max(high[i], mesh.Point(v)[i]);
     }
+  }
+  const double tolerance = SeamTolerance *
+    std::sqrt((high[0] - low[0]) * (high[0] - low[0]) + (high[1] - low[1]) * (high[1] - low[1]) +
+      (high[2] - low[2]) * (high[2] - low[2]));
+
+  // Union-find over the vertices; a group's root is its lowest id.
+  std::vector<Id> root(nv);
+  std::iota(root.begin(), root.end(), 0);
+  auto find = [&](Id v) {
+    while (root[v] != v)
+    {
+      root[v] = root[root[v]];
+      v = root[v];
+    }
+    return v;
+  };
+  for (int first = 0; first < 3; ++first)
+  {
+    auto less = [&](Id a, Id b) {
+      const double* pa = mesh.Point(a);
+      const double* pb = mesh.Point(b);
+      for (int k = 0; k < 3; ++k)
+      {
+        const int i = (first + k) % 3;
+        if (pa[i] != pb[i])
+        {
+          return pa[i] < pb[i];
+        }
+      }
+      return a < b;
+    };
+    std::sort(candidates.begin(), candidates.end(), less);
+    for (size_t j = 1; j < candidates.size(); ++j)
+    {
+      const double* pa = mesh.Point(candidates[j - 1]);
+      const double* pb = mesh.Point(candidates[j]);
+      const double d2 = (pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+        (pa[2] - pb[2]) * (pa[2] - pb[2]);
+      if (d2 <= tolerance * tolerance)
+      {
+        const Id a = find(candidates[j - 1]), b = find(candidates[j]);
+        root[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  }
+  vtkIdType merged = 0;
+  for (const Id v : candidates)
+  {
+    merged += find(v) != v ? 1 : 0;
   }
   if (merged > 0)
   {
     for (Id& v : mesh.Triangles)
     {
-      v = remap[v];
+      v = find(v);
     }
   }
   return merged;
@@ -331,10 +375,11 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   result.DegenerateTriangles = DropDegenerateTriangles(mesh.Triangles, result.SourceCellIds);
   result.Topology.Build(mesh);
 
-  result.MergedPoints = MergeCoincidentBoundaryPoints(mesh, result.Topology);
+  result.MergedPoints = MergeSeamPoints(mesh, result.Topology);
   if (result.MergedPoints > 0)
   {
-    // Stitching can make triangles degenerate (a sliver between two coincident points).
+    // Stitching makes the triangles between merged points degenerate (a sliver between two
+    // coincident points).
     result.DegenerateTriangles += DropDegenerateTriangles(mesh.Triangles, result.SourceCellIds);
     result.Topology.Build(mesh);
   }

@@ -10,9 +10,11 @@
 // - More than 2^31 - 1 points or triangles: an error (the core uses 32-bit ids).
 // - Triangles that repeat a point id are dropped; a triangle with the same three points as an
 //   earlier one is dropped (both with a warning giving the count).
-// - Points with exactly equal coordinates that lie on boundary edges are merged (this stitches
-//   triangle soups such as STL files). Coincident points inside closed regions are left alone:
-//   merging them would create a non-manifold vertex. Points used by no triangle are dropped.
+// - Points on boundary or non-manifold edges that coincide up to rounding (at most 1e-12 of the
+//   bounding diagonal apart) are merged: this stitches triangle soups such as STL files and
+//   seams duplicated by rounding (as parametric sources make them). Coincident points inside
+//   closed manifold regions are left alone: merging them would create a non-manifold vertex.
+//   Points used by no triangle are dropped.
 // - Non-manifold edges (more than two triangles) and vertices (several fans) are kept and
 //   reported in the topology; the algorithms lock them (they never move or merge).
 #ifndef MeshLODInputMesh_h

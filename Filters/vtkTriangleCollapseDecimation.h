@@ -95,8 +95,9 @@
  *
  * Input: triangles (polygons and strips are triangulated first; vertices and lines are
  * ignored with a warning). Empty input gives an empty output. NaN or infinite coordinates are
- * an error. Points with equal coordinates on boundary edges are merged; non-manifold vertices
- * are kept but locked.
+ * an error. Points on boundary or non-manifold edges that coincide up to rounding (1e-12 of the
+ * bounding diagonal) are merged, which stitches triangle soups and duplicated seams;
+ * non-manifold vertices that remain are kept but locked.
  *
  * The data-parallel parts (initial weights, the greedy rounds' cells, re-weighting and legality
  * checks of a pass, collapsing an independent set, output arrays) run with vtkSMPTools; the
