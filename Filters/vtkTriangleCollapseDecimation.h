@@ -68,9 +68,9 @@
  *   around what changed.
  * Either way, output levels are snapshots taken when the triangle count reaches each level's
  * target; the collapses between two levels are composed. On the benchmark meshes both reach
- * about the same RMS error per triangle, Greedy the lower Hausdorff distance at 1%
- * (Benchmarks/RESULTS.md); Greedy is the default because it is also the faster of the two, on
- * one thread and on two.
+ * about the same error per triangle (RMS within 2%, Hausdorff distances within the few tens of
+ * percent by which a maximum varies between runs; Benchmarks/RESULTS.md); Greedy is the
+ * default because it is about twice as fast, on one thread and on two.
  *
  * Levels: by default NumberOfLevels levels follow level 0 with triangle counts spaced
  * geometrically down to (1 - TargetReduction) times the input's (8 levels to 1% gives 56%, 32%,
