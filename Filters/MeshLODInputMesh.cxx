@@ -144,22 +144,7 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology)
   {
     return 0;
   }
-  double low[3], high[3];
-  for (int i = 0; i < 3; ++i)
-  {
-    low[i] = high[i] = mesh.Point(0)[i];
-  }
-  for (Id v = 1; v < nv; ++v)
-  {
-    for (int i = 0; i < 3; ++i)
-    {
-      low[i] = std::min(low[i], mesh.Point(v)[i]);
-      high[i] = std::max(high[i], mesh.Point(v)[i]);
-    }
-  }
-  const double tolerance = SeamTolerance *
-    std::sqrt((high[0] - low[0]) * (high[0] - low[0]) + (high[1] - low[1]) * (high[1] - low[1]) +
-      (high[2] - low[2]) * (high[2] - low[2]));
+  const double tolerance = SeamTolerance * mesh.BoundingDiagonal();
 
   // Union-find over the vertices; a group's root is its lowest id.
   std::vector<Id> root(nv);

@@ -39,26 +39,6 @@ struct LevelRequest
   vtkIdType Count = 0;
 };
 
-double BoundingDiagonal(const meshlod::TriangleMesh& mesh)
-{
-  double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
-  double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  for (Id v = 0; v < mesh.GetNumberOfPoints(); ++v)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      lo[c] = std::min(lo[c], mesh.Point(v)[c]);
-      hi[c] = std::max(hi[c], mesh.Point(v)[c]);
-    }
-  }
-  double d2 = 0.0;
-  for (int c = 0; c < 3; ++c)
-  {
-    d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
-  }
-  return std::sqrt(d2);
-}
-
 // Area-weighted point normals of a mesh (unit length; zero where every triangle is degenerate).
 std::vector<float> PointNormals(const meshlod::TriangleMesh& mesh)
 {
@@ -405,7 +385,7 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
     }
   }
 
-  const double unit = this->RelativeUnits ? BoundingDiagonal(in.Mesh) : 1.0;
+  const double unit = this->RelativeUnits ? in.Mesh.BoundingDiagonal() : 1.0;
   std::vector<LevelRequest> requests;
   switch (this->LevelMode)
   {

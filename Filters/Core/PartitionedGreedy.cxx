@@ -325,8 +325,9 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
   }
 
   // 3. Every cell's greedy loop, in parallel. A cell may remove its share of the budget (in
-  // proportion to its candidates), and up to 3 triangles more with its last collapse (1 in the
-  // serial round, which lands on a level).
+  // proportion to its candidates), and up to 3 triangles more with its last collapse (in the
+  // serial round, which lands on a level, 1 unless no edge of that last triangle may collapse:
+  // LandOnTarget).
   this->HeapPositions.resize(this->State.Mesh.GetNumberOfTriangles(), InvalidId);
   const Id cellsBusy = static_cast<Id>(busy.size());
   std::vector<CellOutcome> outcomes(cellsBusy);

@@ -3,6 +3,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace meshlod
 {
@@ -200,6 +201,35 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
         : (boundaryEdges > 0 ? VertexKind::Boundary : VertexKind::Interior);
     }
   });
+}
+
+//------------------------------------------------------------------------------
+double TriangleMesh::BoundingDiagonal() const
+{
+  const Id nv = this->GetNumberOfPoints();
+  if (nv == 0)
+  {
+    return 0.0;
+  }
+  double lo[3], hi[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    lo[c] = hi[c] = this->Point(0)[c];
+  }
+  for (Id v = 1; v < nv; ++v)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = std::min(lo[c], this->Point(v)[c]);
+      hi[c] = std::max(hi[c], this->Point(v)[c]);
+    }
+  }
+  double d2 = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
+  }
+  return std::sqrt(d2);
 }
 
 //------------------------------------------------------------------------------

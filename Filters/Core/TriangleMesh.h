@@ -35,6 +35,9 @@ struct VTKFILTERSMESHLOD_EXPORT TriangleMesh
 
   /// (p1 - p0) x (p2 - p0) of triangle t: its normal, twice its area in length.
   void AreaVector(Id t, double n[3]) const;
+
+  /// Length of the diagonal of the points' axis-aligned bounding box (0 without points).
+  double BoundingDiagonal() const;
 };
 
 /// Vertex -> incident triangles, as offsets into one flat list (compressed rows). The triangles
