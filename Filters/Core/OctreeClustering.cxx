@@ -200,7 +200,7 @@ struct OctreeClustering::Internals
   // --- cuts ------------------------------------------------------------------------------------
   void ComputeActivation(bool guess = false);
   void CollectCut(double epsilon, std::vector<Id>& cut) const;
-  void CutAt(double epsilon, std::vector<Id>& cut);
+  void CutAt(double epsilon, std::vector<Id>& cut, bool update = false);
   double EpsilonForCount(Id target) const;
   std::int64_t EstimateAt(double epsilon) const;
   double SearchEpsilon(Id target, Id tolerance);
@@ -553,13 +553,19 @@ void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cu
 //------------------------------------------------------------------------------
 // The cut at `epsilon` with every cluster evaluated in full. An evaluation can only raise a
 // node's threshold: a cluster that fails is replaced by the topmost nodes below it that qualify,
-// which are evaluated in turn.
-void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut)
+// which are evaluated in turn. With `update`, `cut` is the cut at the same epsilon before some of
+// its nodes were marked inadmissible: only those are replaced, which gives the same cut as
+// starting afresh (the nodes above a cut node do not qualify, marked or not) without a pass
+// over the whole tree.
+void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bool update)
 {
-  this->ComputeActivation();
-  this->CollectCut(epsilon, cut);
+  if (!update)
+  {
+    this->ComputeActivation();
+    this->CollectCut(epsilon, cut);
+  }
   vtkSMPThreadLocal<EvaluationScratch> scratch;
-  std::vector<Id> pending, kept, stack;
+  std::vector<Id> pending, failed, kept, stack;
   auto queue = [&](Id node)
   {
     if (node >= this->NV && this->State[node - this->NV] == NodeState::NotEvaluated)
@@ -569,9 +575,38 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut)
       this->RepSlot[i] = static_cast<Id>(this->Reps.size() / SlotSize);
       this->Reps.resize(this->Reps.size() + SlotSize);
     }
-    else
+    else if (node < this->NV || this->Thr[node - this->NV] <= epsilon)
     {
       kept.push_back(node);
+    }
+    else
+    {
+      failed.push_back(node); // evaluated before, since marked inadmissible (update only)
+    }
+  };
+  // Replace a node that does not qualify by the topmost qualifying nodes below it.
+  auto descend = [&](Id node, std::vector<Id>& into)
+  {
+    stack.assign(1, node);
+    while (!stack.empty())
+    {
+      const Id parent = stack.back();
+      stack.pop_back();
+      // The children tile the parent's range of the depth-first order.
+      const Id end = this->Tree.Position(parent) + this->Tree.Count(parent);
+      for (Id pos = this->Tree.Position(parent); pos < end;)
+      {
+        const Id child = this->Tree.ChildAt(parent, pos);
+        pos += this->Tree.Count(child);
+        if (child < this->NV || this->Thr[child - this->NV] <= epsilon)
+        {
+          into.push_back(child);
+        }
+        else
+        {
+          stack.push_back(child);
+        }
+      }
     }
   };
   std::vector<Id> candidates;
@@ -579,11 +614,12 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut)
   for (;;)
   {
     pending.clear();
+    failed.clear();
     for (const Id node : candidates)
     {
       queue(node);
     }
-    if (pending.empty())
+    if (pending.empty() && failed.empty())
     {
       break;
     }
@@ -615,30 +651,15 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut)
       if (this->Thr[node - this->NV] <= epsilon)
       {
         kept.push_back(node);
-        continue;
       }
-      // Descend to the topmost qualifying nodes below.
-      stack.assign(1, node);
-      while (!stack.empty())
+      else
       {
-        const Id parent = stack.back();
-        stack.pop_back();
-        // The children tile the parent's range of the depth-first order.
-        const Id end = this->Tree.Position(parent) + this->Tree.Count(parent);
-        for (Id pos = this->Tree.Position(parent); pos < end;)
-        {
-          const Id child = this->Tree.ChildAt(parent, pos);
-          pos += this->Tree.Count(child);
-          if (child < this->NV || this->Thr[child - this->NV] <= epsilon)
-          {
-            candidates.push_back(child);
-          }
-          else
-          {
-            stack.push_back(child);
-          }
-        }
+        descend(node, candidates);
       }
+    }
+    for (const Id node : failed)
+    {
+      descend(node, candidates);
     }
   }
   cut.swap(kept);
@@ -1359,7 +1380,7 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
   Synthesis s;
   for (int pass = 0;; ++pass)
   {
-    this->CutAt(epsilon, s.Cut);
+    this->CutAt(epsilon, s.Cut, pass > 0); // later passes replace only the marked clusters
     this->AssignClusters(s);
     this->ReindexTriangles(s);
     this->MarkDuplicates(s);
