@@ -14,12 +14,14 @@ VTK_SMP_BACKEND_IN_USE=Sequential "$build/bin/MeshLODBenchmark" \
   --command "Benchmarks/run-benchmarks.sh${*:+ $*}" \
   "$@"
 
-# vtkLODGeomorph's cost per frame, and the colour figure of vtkVertexClusterOctree's texture
-# baking (computed and asserted by its CTest test), appended to the same report.
+# vtkLODGeomorph's cost per frame, the colour figure of vtkVertexClusterOctree's texture
+# baking (computed and asserted by its CTest test) and the quality on meshes other than
+# isosurfaces, appended to the same report.
 {
   echo
-  echo "The two sections below are appended by the same command: GeomorphBenchmark"
-  echo "(Benchmarks/GeomorphBenchmark.cxx) and the test TestVertexClusterOctreeTexture."
+  echo "The three sections below are appended by the same command: GeomorphBenchmark"
+  echo "(Benchmarks/GeomorphBenchmark.cxx), the test TestVertexClusterOctreeTexture and"
+  echo "OtherMeshesBenchmark (Benchmarks/OtherMeshesBenchmark.cxx)."
   echo
   "$build/bin/GeomorphBenchmark"
   echo
@@ -34,5 +36,14 @@ VTK_SMP_BACKEND_IN_USE=Sequential "$build/bin/MeshLODBenchmark" \
   echo '```'
   "$build/bin/vtkFiltersMeshLODCxxTests" TestVertexClusterOctreeTexture | grep "mean colour error" | sed 's/^ *//'
   echo '```'
+  echo
+  echo "## Beyond isosurfaces"
+  echo
+  echo "vtkTriangleCollapseDecimation (defaults, 8 levels to 1%; the level nearest each target) and"
+  echo "vtkQuadricDecimation at the same triangle count, on meshes made by VTK's sources"
+  echo "(Benchmarks/OtherMeshesBenchmark.cxx; distances as above, in % of the diagonal; on the"
+  echo "faceted cylinder both are at the rounding of float coordinates, about 3e-6 %):"
+  echo
+  "$build/bin/OtherMeshesBenchmark"
 } >> "$repo/Benchmarks/RESULTS.md"
 echo "Wrote $repo/Benchmarks/RESULTS.md"
