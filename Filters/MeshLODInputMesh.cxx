@@ -212,11 +212,19 @@ vtkIdType DropDuplicateTriangles(
     {
       const Id* tri = mesh.Triangle(t);
       const VertexTriangleAdjacency& adj = topology.VertexTriangles;
-      for (Id i = adj.Begin(tri[0]); i < adj.End(tri[0]); ++i)
+      // Scanned from the corner with the fewest triangles (a fan's centre would make this
+      // quadratic).
+      int k = 0;
+      for (int c = 1; c < 3; ++c)
+      {
+        k = adj.Count(tri[c]) < adj.Count(tri[k]) ? c : k;
+      }
+      const Id u = tri[(k + 1) % 3], w = tri[(k + 2) % 3];
+      for (Id i = adj.Begin(tri[k]); i < adj.End(tri[k]); ++i)
       {
         const Id other = adj.Triangles[i];
         const Id* o = mesh.Triangle(other);
-        if (other < t && CornerOf(o, tri[1]) >= 0 && CornerOf(o, tri[2]) >= 0)
+        if (other < t && CornerOf(o, u) >= 0 && CornerOf(o, w) >= 0)
         {
           duplicate[t] = 1;
           break;

@@ -1118,54 +1118,50 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
   {
     offsets[k + 1] += offsets[k];
   }
-  std::vector<Id> high(offsets[clusters]), triangle(offsets[clusters]);
+  // Each entry packs the larger cluster (high bits) and the triangle, so that sorting a
+  // cluster's entries brings the triangles of each of its edges together (n log n even around a
+  // vertex with very many triangles).
+  std::vector<std::uint64_t> entries(offsets[clusters]);
   {
     std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
-    forEachEdge(
-      [&](Id low, Id other, Id j)
-      {
-        high[cursor[low]] = other;
-        triangle[cursor[low]++] = j;
-      });
+    forEachEdge([&](Id low, Id other, Id j) {
+      entries[cursor[low]++] =
+        (static_cast<std::uint64_t>(other) << 32) | static_cast<std::uint32_t>(j);
+    });
   }
+  auto triangleOf = [&](std::size_t x) { return static_cast<Id>(entries[x] & 0xffffffffu); };
   // pinched[x]: entry x is on an edge with three or more triangles, one of them involved.
-  std::vector<unsigned char> pinched(high.size(), 0);
+  std::vector<unsigned char> pinched(entries.size(), 0);
   vtkSMPTools::For(0,
     clusters,
     [&](Id begin, Id end)
     {
       for (Id k = begin; k < end; ++k)
       {
-        const Id last = offsets[k + 1];
-        for (Id x = offsets[k]; x < last; ++x)
+        const std::size_t first = offsets[k], last = offsets[k + 1];
+        std::sort(entries.begin() + first, entries.begin() + last);
+        for (std::size_t x = first; x < last;)
         {
-          if (std::find(high.begin() + offsets[k], high.begin() + x, high[x]) != high.begin() + x)
-          {
-            continue; // the edge was decided at its first entry
-          }
-          int uses = 0;
+          std::size_t y = x;
           bool watched = false;
-          for (Id y = x; y < last; ++y)
+          for (; y < last && (entries[y] >> 32) == (entries[x] >> 32); ++y)
           {
-            if (high[y] == high[x])
-            {
-              ++uses;
-              watched = watched || s.Involved(triangle[y]);
-            }
+            watched = watched || s.Involved(triangleOf(y));
           }
-          for (Id y = x; uses > 2 && watched && y < last; ++y)
+          if (y - x > 2 && watched)
           {
-            pinched[y] = pinched[y] || high[y] == high[x];
+            std::fill(pinched.begin() + x, pinched.begin() + y, 1);
           }
+          x = y;
         }
       }
     });
   std::vector<Id> marks; // the clusters of the triangles on pinched edges
-  for (size_t x = 0; x < pinched.size(); ++x)
+  for (std::size_t x = 0; x < pinched.size(); ++x)
   {
     if (pinched[x])
     {
-      const Id j = triangle[x];
+      const Id j = triangleOf(x);
       marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
     }
   }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace meshlod
 {
@@ -142,8 +143,14 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
       }
       for (int k = 0; k < 3; ++k)
       {
-        const Id a = tri[k];
-        const Id b = tri[(k + 1) % 3];
+        // The triangles with both ends: scanned from the end with fewer triangles, so that a
+        // vertex with very many (the centre of a fan) costs nothing extra.
+        Id a = tri[k];
+        Id b = tri[(k + 1) % 3];
+        if (adj.Count(b) < adj.Count(a))
+        {
+          std::swap(a, b);
+        }
         Id found = BoundaryEdge;
         for (Id i = adj.Begin(a); i < adj.End(a); ++i)
         {
@@ -273,6 +280,10 @@ Id TriangleTopology::Valence(const TriangleMesh& mesh, Id v) const
 int TriangleTopology::TrianglesOnEdge(
   const TriangleMesh& mesh, Id a, Id b, Id* out, int maxCount) const
 {
+  if (this->VertexTriangles.Count(b) < this->VertexTriangles.Count(a))
+  {
+    std::swap(a, b); // scan the shorter row; both list their triangles in increasing order
+  }
   int count = 0;
   for (Id i = this->VertexTriangles.Begin(a); i < this->VertexTriangles.End(a); ++i)
   {

@@ -602,6 +602,32 @@ void TestRoughPlane()
   }
 }
 
+// A fan of 50,000 triangles around one point: levels at their counts, valid and nested. (Input
+// validation used to scan the centre's triangles once per triangle: quadratic in the valence.)
+void TestHighValenceFan()
+{
+  vtkSmartPointer<vtkPolyData> fan = testing::MakeFan(50000);
+  vtkNew<vtkVertexClusterOctree> cluster;
+  cluster->SetInputData(fan);
+  cluster->SetLevelModeToTargetTriangleCounts();
+  cluster->AddTargetTriangleCount(5000);
+  cluster->AddTargetTriangleCount(500);
+  cluster->Update();
+  vtkMultiBlockDataSet* h = cluster->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
+  MESHLOD_CHECK(CheckHierarchyLayout(h, true).empty());
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    const testing::MeshReport r = testing::InspectMesh(Level(h, i));
+    const vtkIdType target = i == 1 ? 5000 : 500;
+    MESHLOD_CHECK_LE(std::abs(r.Triangles - target), std::max<vtkIdType>(2, target / 500));
+    MESHLOD_CHECK_EQ(r.NonManifoldEdges, 0);
+    MESHLOD_CHECK_EQ(r.DegenerateTriangles, 0);
+    MESHLOD_CHECK_EQ(r.DuplicateTriangles, 0);
+  }
+  CheckTriangles(h);
+}
+
 void TestSettingsAndErrors()
 {
   vtkNew<vtkTest::ErrorObserver> observer;
@@ -765,6 +791,7 @@ int TestVertexClusterOctree(int, char*[])
   TestBoundaries();
   TestNonManifold();
   TestRoughPlane();
+  TestHighValenceFan();
   TestCellLimits();
   TestSettingsAndErrors();
   return meshlod::testing::Result();

@@ -4,6 +4,7 @@
 #include "vtkFlyingEdges3D.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -200,6 +201,22 @@ vtkSmartPointer<vtkPolyData> MakeGrid(int nx, int ny)
       const long long a = j * (nx + 1) + i, b = a + 1, c = a + nx + 2, d = a + nx + 1;
       triangles.insert(triangles.end(), { a, b, c, a, c, d });
     }
+  }
+  return MakePolyData(points, triangles);
+}
+
+vtkSmartPointer<vtkPolyData> MakeFan(int n)
+{
+  std::vector<double> points = { 0.0, 0.0, 0.3 };
+  for (int i = 0; i < n; ++i)
+  {
+    const double a = 2.0 * vtkMath::Pi() * i / n;
+    points.insert(points.end(), { std::cos(a), std::sin(a), 0.05 * std::sin(7.0 * a) });
+  }
+  std::vector<long long> triangles;
+  for (int i = 0; i < n; ++i)
+  {
+    triangles.insert(triangles.end(), { 0, 1 + i, 1 + (i + 1) % n });
   }
   return MakePolyData(points, triangles);
 }

@@ -54,6 +54,9 @@ vtkSmartPointer<vtkPolyData> MakeNonManifoldEdge();
 vtkSmartPointer<vtkPolyData> MakeBowTie();
 /// A 4x4 grid with the 2x2 middle squares removed (a hole: two boundary loops).
 vtkSmartPointer<vtkPolyData> MakeGridWithHole();
+/// A wavy disk of n triangles around one centre point (valence n): an open fan, as a
+/// triangulated polygon or a cylinder's cap makes it.
+vtkSmartPointer<vtkPolyData> MakeFan(int n);
 /// A closed surface from a flat list of points and triangles.
 vtkSmartPointer<vtkPolyData> MakePolyData(
   const std::vector<double>& points, const std::vector<long long>& triangles);
