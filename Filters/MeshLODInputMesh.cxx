@@ -201,6 +201,79 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology)
   return merged;
 }
 
+// Flip triangles so that each orientable part (triangles joined by manifold edges) has one
+// orientation, the one most of its triangles already have: an inconsistently oriented input (an
+// STL export, a merged soup) otherwise refuses most collapses, whose link test follows the
+// triangles' winding. A part that is not orientable (a Moebius band) is left as it is. Returns
+// the number of triangles flipped; the topology must then be rebuilt.
+vtkIdType OrientConsistently(TriangleMesh& mesh, const TriangleTopology& topology)
+{
+  if (topology.IsConsistentlyOriented(mesh))
+  {
+    return 0;
+  }
+  const Id nt = mesh.GetNumberOfTriangles();
+  std::vector<signed char> flip(nt, -1); // -1: not reached; else relative to the part's seed
+  std::vector<Id> part, stack;
+  vtkIdType flipped = 0;
+  for (Id seed = 0; seed < nt; ++seed)
+  {
+    if (flip[seed] >= 0 || mesh.Triangle(seed)[0] == InvalidId)
+    {
+      continue;
+    }
+    part.clear();
+    bool orientable = true;
+    flip[seed] = 0;
+    stack.assign(1, seed);
+    while (!stack.empty())
+    {
+      const Id t = stack.back();
+      stack.pop_back();
+      part.push_back(t);
+      const Id* tri = mesh.Triangle(t);
+      for (int k = 0; k < 3; ++k)
+      {
+        const Id nb = topology.EdgeNeighbors[3 * static_cast<size_t>(t) + k];
+        if (nb < 0 || mesh.Triangle(nb)[0] == InvalidId)
+        {
+          continue;
+        }
+        // t runs a -> b on this edge; a consistent neighbour runs b -> a.
+        const Id* ntri = mesh.Triangle(nb);
+        const bool consistent = ntri[(CornerOf(ntri, tri[(k + 1) % 3]) + 1) % 3] == tri[k];
+        const signed char wanted = static_cast<signed char>(flip[t] ^ (consistent ? 0 : 1));
+        if (flip[nb] < 0)
+        {
+          flip[nb] = wanted;
+          stack.push_back(nb);
+        }
+        else if (flip[nb] != wanted)
+        {
+          orientable = false;
+        }
+      }
+    }
+    if (!orientable)
+    {
+      continue;
+    }
+    const std::size_t relative = static_cast<std::size_t>(
+      std::count_if(part.begin(), part.end(), [&](Id t) { return flip[t] == 1; }));
+    const signed char keep = relative * 2 > part.size() ? 1 : 0; // the majority stays as it is
+    for (const Id t : part)
+    {
+      if (flip[t] != keep)
+      {
+        Id* tri = mesh.Triangle(t);
+        std::swap(tri[1], tri[2]);
+        ++flipped;
+      }
+    }
+  }
+  return flipped;
+}
+
 // Mark triangles that have the same three vertices as a triangle with a lower id.
 vtkIdType DropDuplicateTriangles(
   TriangleMesh& mesh, const TriangleTopology& topology, std::vector<vtkIdType>& cellIds)
@@ -382,6 +455,16 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
     vtkWarningWithObjectMacro(caller,
       "Dropped " << result.DegenerateTriangles << " degenerate and " << result.DuplicateTriangles
                  << " duplicate triangles.");
+  }
+  result.FlippedTriangles = OrientConsistently(mesh, result.Topology);
+  if (result.FlippedTriangles > 0)
+  {
+    vtkWarningWithObjectMacro(caller,
+      "Flipped " << result.FlippedTriangles
+                 << " triangles so that each connected part is consistently oriented (each part "
+                    "keeps the orientation most of its triangles had).");
+    changed = true;
+    result.Topology.Build(mesh);
   }
 
   // Compact away dropped triangles and unused points, keeping the maps to the source. Most

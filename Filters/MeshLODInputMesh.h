@@ -15,6 +15,9 @@
 //   seams duplicated by rounding (as parametric sources make them). Coincident points inside
 //   closed manifold regions are left alone: merging them would create a non-manifold vertex.
 //   Points used by no triangle are dropped.
+// - Triangles whose orientation disagrees with their part's (the triangles joined by manifold
+//   edges) are flipped, each orientable part keeping the orientation most of its triangles had
+//   (with a warning giving the count); a non-orientable part is left as it is.
 // - Non-manifold edges (more than two triangles) and vertices (several fans) are kept and
 //   reported in the topology; the algorithms lock them (they never move or merge).
 #ifndef MeshLODInputMesh_h
@@ -51,6 +54,7 @@ struct VTKFILTERSMESHLOD_EXPORT InputMesh
   vtkIdType MergedPoints = 0;
   vtkIdType DegenerateTriangles = 0;
   vtkIdType DuplicateTriangles = 0;
+  vtkIdType FlippedTriangles = 0; // re-oriented for a consistent orientation
   vtkIdType UnusedPoints = 0;
 };
 

@@ -97,7 +97,10 @@
  * ignored with a warning). Empty input gives an empty output. NaN or infinite coordinates are
  * an error. Points on boundary or non-manifold edges that coincide up to rounding (1e-12 of the
  * bounding diagonal) are merged, which stitches triangle soups and duplicated seams;
- * non-manifold vertices that remain are kept but locked.
+ * triangles wound against the rest of their connected part are flipped (each orientable part
+ * keeps the orientation most of its triangles have; a warning gives the count); non-manifold
+ * vertices that remain are kept but locked. The computation runs about the centre of the
+ * bounding box, so meshes far from the origin lose no accuracy.
  *
  * The data-parallel parts (initial weights, the greedy rounds' cells, re-weighting and legality
  * checks of a pass, collapsing an independent set, output arrays) run with vtkSMPTools; the

@@ -64,9 +64,10 @@
  * gives an empty output without error; polygons and strips are triangulated; vertex and line
  * cells are ignored with a warning; NaN or infinite points are an error (no output);
  * points on boundary or non-manifold edges that coincide up to rounding (1e-12 of the bounding
- * diagonal) are stitched. Non-manifold vertices (several fans, or on an
- * edge with more than two triangles) are locked: they never move or merge, so clustering does
- * not make the non-manifold configuration worse.
+ * diagonal) are stitched; triangles wound against the rest of their connected part are
+ * flipped (each orientable part keeps its majority orientation). Non-manifold vertices (several
+ * fans, or on an edge with more than two triangles) are locked: they never move or merge, so
+ * clustering does not make the non-manifold configuration worse.
  * Optional input (port 1): a vtkImageData texture (unsigned char RGB or RGBA scalars) for an
  * input with texture coordinates.
  *

@@ -14,6 +14,26 @@ namespace
 {
 // Rows are rebuilt once this fraction of the triangles alive at the last rebuild has died.
 constexpr double RebuildAfterDying = 0.5;
+
+// Moves the points so that their bounding box is centred on the origin; centre gets the shift.
+void TranslateToCentre(TriangleMesh& mesh, double centre[3])
+{
+  const Id nv = mesh.GetNumberOfPoints();
+  for (int c = 0; c < 3; ++c)
+  {
+    double lo = nv > 0 ? mesh.Point(0)[c] : 0.0, hi = lo;
+    for (Id v = 1; v < nv; ++v)
+    {
+      lo = std::min(lo, mesh.Point(v)[c]);
+      hi = std::max(hi, mesh.Point(v)[c]);
+    }
+    centre[c] = 0.5 * (lo + hi);
+  }
+  for (std::size_t i = 0; i < mesh.Points.size(); ++i)
+  {
+    mesh.Points[i] -= centre[i % 3];
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -23,6 +43,10 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   , Callbacks(callbacks)
   , Model(options, State, Tracker, OriginalPoints)
 {
+  // The engine works about the centre of the bounding box: a quadric's constant term grows
+  // with the square of the distance to the origin, and far from it (a mesh in world or map
+  // coordinates) its evaluation cancels away the error it measures. Levels are moved back.
+  TranslateToCentre(mesh, this->Centre);
   const bool curvature = options.Method == CollapseMethod::Curvature;
   if (curvature)
   {
@@ -284,6 +308,11 @@ void Collapser::EmitLevel()
 {
   LevelData level;
   this->Tracker.Snapshot(this->State, this->LevelError(), level);
+  const std::size_t coordinates = level.Mesh.Points.size();
+  for (std::size_t i = 0; i < coordinates; ++i)
+  {
+    level.Mesh.Points[i] += this->Centre[i % 3];
+  }
   this->LastEmitted = this->State.AliveTriangles;
   ++this->Result.LevelsEmitted;
   if (this->Callbacks.EmitLevel)

@@ -6,6 +6,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkIntArray.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -234,6 +235,47 @@ void TestUnusedPointsDropped(Reader& reader)
   MESHLOD_CHECK_EQ(result.SourcePointIds[12], 13);
   MESHLOD_CHECK(!result.SameAsInput);
 }
+// Two triangles of an octahedron wound the wrong way are flipped back (the majority wins), with
+// a warning; a Moebius band, which has no consistent orientation, is left as it is.
+void TestOrientationMadeConsistent(Reader& reader)
+{
+  InputMesh result;
+  vtkSmartPointer<vtkPolyData> octahedron = testing::MakePolyData(
+    { 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1 },
+    { 0, 4, 2, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 5, 0, 1, 2, 5, 3, 1, 5, 0, 3, 5 });
+  MESHLOD_CHECK(reader.Read(octahedron, result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.FlippedTriangles, 2);
+  MESHLOD_CHECK(result.Topology.IsConsistentlyOriented(result.Mesh));
+  MESHLOD_CHECK(!result.SameAsInput);
+  MESHLOD_CHECK(reader.Observer->GetWarning());
+  MESHLOD_CHECK_EQ(result.Mesh.Triangle(0)[1], 2); // (0, 4, 2) became (0, 2, 4)
+  MESHLOD_CHECK_EQ(result.Mesh.Triangle(1)[1], 1); // the majority's winding is kept
+
+  // A Moebius band of 8 quads: the strip closes with a half twist.
+  std::vector<double> points;
+  const int n = 8;
+  for (int i = 0; i < n; ++i)
+  {
+    const double a = 2.0 * vtkMath::Pi() * i / n;
+    for (const double s : { -0.3, 0.3 })
+    {
+      const double r = 1.0 + s * std::cos(0.5 * a);
+      points.insert(points.end(), { r * std::cos(a), r * std::sin(a), s * std::sin(0.5 * a) });
+    }
+  }
+  std::vector<long long> triangles;
+  for (int i = 0; i < n; ++i)
+  {
+    const long long a = 2 * i, b = 2 * i + 1;
+    // The last quad joins the band's ends with its sides exchanged (the half twist).
+    const long long c = i + 1 < n ? 2 * i + 3 : 0, d = i + 1 < n ? 2 * i + 2 : 1;
+    triangles.insert(triangles.end(), { a, b, c, a, c, d });
+  }
+  MESHLOD_CHECK(reader.Read(testing::MakePolyData(points, triangles), result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.FlippedTriangles, 0);
+  MESHLOD_CHECK(!result.Topology.IsConsistentlyOriented(result.Mesh));
+  MESHLOD_CHECK_EQ(result.Topology.CountEdges(result.Mesh).Boundary, 2 * n);
+}
 } // namespace
 
 int TestInputValidation(int, char*[])
@@ -248,5 +290,6 @@ int TestInputValidation(int, char*[])
   TestDegenerateAndDuplicateDropped(reader);
   TestNonManifoldKept(reader);
   TestUnusedPointsDropped(reader);
+  TestOrientationMadeConsistent(reader);
   return meshlod::testing::Result();
 }
