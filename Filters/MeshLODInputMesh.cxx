@@ -149,14 +149,6 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology)
   // Union-find over the vertices; a group's root is its lowest id.
   std::vector<Id> root(nv);
   std::iota(root.begin(), root.end(), 0);
-  auto find = [&](Id v) {
-    while (root[v] != v)
-    {
-      root[v] = root[root[v]];
-      v = root[v];
-    }
-    return v;
-  };
   for (int first = 0; first < 3; ++first)
   {
     auto less = [&](Id a, Id b) {
@@ -181,7 +173,7 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology)
         (pa[2] - pb[2]) * (pa[2] - pb[2]);
       if (d2 <= tolerance * tolerance)
       {
-        const Id a = find(candidates[j - 1]), b = find(candidates[j]);
+        const Id a = FindRoot(root, candidates[j - 1]), b = FindRoot(root, candidates[j]);
         root[std::max(a, b)] = std::min(a, b);
       }
     }
@@ -189,13 +181,13 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology)
   vtkIdType merged = 0;
   for (const Id v : candidates)
   {
-    merged += find(v) != v ? 1 : 0;
+    merged += FindRoot(root, v) != v ? 1 : 0;
   }
   if (merged > 0)
   {
     for (Id& v : mesh.Triangles)
     {
-      v = find(v);
+      v = FindRoot(root, v);
     }
   }
   return merged;

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numeric>
 #include <unordered_map>
 
@@ -132,15 +131,7 @@ struct ClusterTree::Builder
     this->NewNode.assign(nv, InvalidId);
   }
 
-  Id Find(Id v)
-  {
-    while (this->UF[v] != v)
-    {
-      this->UF[v] = this->UF[this->UF[v]];
-      v = this->UF[v];
-    }
-    return v;
-  }
+  Id Find(Id v) { return FindRoot(this->UF, v); }
 
   void Attach(Id child, Id parent, NodeStore& store);
   void DesignatedEdges(const Id* tri, int& deep, int& shallow) const;
@@ -357,19 +348,8 @@ void ClusterTree::CellBox(Id v, int depth, double low[3], double extent[3]) cons
 //------------------------------------------------------------------------------
 void ClusterTree::ComputeFrame()
 {
-  const TriangleMesh& mesh = *this->Mesh;
-  double lo[3] = { std::numeric_limits<double>::max(),
-    std::numeric_limits<double>::max(),
-    std::numeric_limits<double>::max() };
-  double hi[3] = { -lo[0], -lo[1], -lo[2] };
-  for (Id v = 0; v < this->NV; ++v)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      lo[c] = std::min(lo[c], mesh.Point(v)[c]);
-      hi[c] = std::max(hi[c], mesh.Point(v)[c]);
-    }
-  }
+  double lo[3], hi[3];
+  this->Mesh->GetBounds(lo, hi);
   double size = 0.0;
   for (int c = 0; c < 3; ++c)
   {

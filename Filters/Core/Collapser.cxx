@@ -18,16 +18,11 @@ constexpr double RebuildAfterDying = 0.5;
 // Moves the points so that their bounding box is centred on the origin; centre gets the shift.
 void TranslateToCentre(TriangleMesh& mesh, double centre[3])
 {
-  const Id nv = mesh.GetNumberOfPoints();
+  double lo[3], hi[3];
+  mesh.GetBounds(lo, hi);
   for (int c = 0; c < 3; ++c)
   {
-    double lo = nv > 0 ? mesh.Point(0)[c] : 0.0, hi = lo;
-    for (Id v = 1; v < nv; ++v)
-    {
-      lo = std::min(lo, mesh.Point(v)[c]);
-      hi = std::max(hi, mesh.Point(v)[c]);
-    }
-    centre[c] = 0.5 * (lo + hi);
+    centre[c] = 0.5 * (lo[c] + hi[c]);
   }
   for (std::size_t i = 0; i < mesh.Points.size(); ++i)
   {

@@ -28,15 +28,6 @@ void HigherNeighbors(
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
-Id Find(std::vector<Id>& parent, Id p)
-{
-  while (parent[p] != p)
-  {
-    parent[p] = parent[parent[p]];
-    p = parent[p];
-  }
-  return p;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -91,8 +82,8 @@ Id MergeAlongEdges(const EdgeList& edges, const std::uint8_t* merge, Id numberOf
     {
       continue;
     }
-    const Id ra = Find(representative, edges.Ends[2 * e]);
-    const Id rb = Find(representative, edges.Ends[2 * e + 1]);
+    const Id ra = FindRoot(representative, edges.Ends[2 * e]);
+    const Id rb = FindRoot(representative, edges.Ends[2 * e + 1]);
     if (ra != rb)
     {
       representative[std::max(ra, rb)] = std::min(ra, rb);
@@ -101,7 +92,7 @@ Id MergeAlongEdges(const EdgeList& edges, const std::uint8_t* merge, Id numberOf
   }
   for (Id p = 0; p < numberOfPoints; ++p)
   {
-    representative[p] = Find(representative, p);
+    representative[p] = FindRoot(representative, p);
   }
   return merged;
 }

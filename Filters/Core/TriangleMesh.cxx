@@ -211,17 +211,12 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
 }
 
 //------------------------------------------------------------------------------
-double TriangleMesh::BoundingDiagonal() const
+void TriangleMesh::GetBounds(double lo[3], double hi[3]) const
 {
   const Id nv = this->GetNumberOfPoints();
-  if (nv == 0)
-  {
-    return 0.0;
-  }
-  double lo[3], hi[3];
   for (int c = 0; c < 3; ++c)
   {
-    lo[c] = hi[c] = this->Point(0)[c];
+    lo[c] = hi[c] = nv > 0 ? this->Point(0)[c] : 0.0;
   }
   for (Id v = 1; v < nv; ++v)
   {
@@ -231,6 +226,13 @@ double TriangleMesh::BoundingDiagonal() const
       hi[c] = std::max(hi[c], this->Point(v)[c]);
     }
   }
+}
+
+//------------------------------------------------------------------------------
+double TriangleMesh::BoundingDiagonal() const
+{
+  double lo[3], hi[3];
+  this->GetBounds(lo, hi);
   double d2 = 0.0;
   for (int c = 0; c < 3; ++c)
   {

@@ -36,9 +36,24 @@ struct VTKFILTERSMESHLOD_EXPORT TriangleMesh
   /// (p1 - p0) x (p2 - p0) of triangle t: its normal, twice its area in length.
   void AreaVector(Id t, double n[3]) const;
 
+  /// Lowest and highest coordinates of the points (all 0 without points).
+  void GetBounds(double lo[3], double hi[3]) const;
+
   /// Length of the diagonal of the points' axis-aligned bounding box (0 without points).
   double BoundingDiagonal() const;
 };
+
+/// Root of v in a union-find forest stored as parent links (a root is its own parent), halving
+/// the path on the way.
+inline Id FindRoot(std::vector<Id>& parent, Id v)
+{
+  while (parent[v] != v)
+  {
+    parent[v] = parent[parent[v]];
+    v = parent[v];
+  }
+  return v;
+}
 
 /// Vertex -> incident triangles, as offsets into one flat list (compressed rows). The triangles
 /// of each vertex are listed in increasing id order, which makes every later pass deterministic.
