@@ -1,5 +1,7 @@
 #include "MeshLODInputMesh.h"
 
+#include "MeshLODInputArrays.h"
+
 #include "vtkAOSDataArrayTemplate.h"
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
@@ -97,6 +99,34 @@ void CopyTriangles(ArrayT* connectivity, std::vector<Id>& triangles)
   });
 }
 
+// The first cell of `cells` that refers to a point id outside [0, numberOfPoints), or -1.
+vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
+{
+  if (cells == nullptr || cells->GetNumberOfCells() == 0)
+  {
+    return -1;
+  }
+  double range[2];
+  cells->GetConnectivityArray()->GetRange(range, 0);
+  if (range[0] >= 0.0 && range[1] < static_cast<double>(numberOfPoints))
+  {
+    return -1;
+  }
+  for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+  {
+    for (vtkIdType i = cells->GetOffsetsArray()->GetComponent(c, 0);
+         i < cells->GetOffsetsArray()->GetComponent(c + 1, 0); ++i)
+    {
+      const double id = cells->GetConnectivityArray()->GetComponent(i, 0);
+      if (id < 0.0 || id >= static_cast<double>(numberOfPoints))
+      {
+        return c;
+      }
+    }
+  }
+  return -1;
+}
+
 // Drop triangles that repeat a vertex id; returns how many were dropped.
 vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdType>& cellIds)
 {
@@ -125,11 +155,15 @@ vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdT
 // joined by zero-area triangles) becomes one surface. Near-equal points are found as neighbours
 // in three lexicographic orders (x y z, y z x, z x y), which catches every pair that differs in
 // one coordinate only, as rounding makes them. Returns the number of points merged away;
-// triangles are re-indexed to the lowest id of each group.
+// triangles are re-indexed to the lowest id of each group. Points whose point data differ
+// (`agree` is false) stay apart; `keptApart` counts the points left apart from a twin.
 constexpr double SeamTolerance = 1e-12;
 
-vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology)
+vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
+  const PointDataAgreement& agree, vtkIdType& keptApart)
 {
+  keptApart = 0;
+  std::vector<unsigned char> apart;
   const Id nv = mesh.GetNumberOfPoints();
   std::vector<Id> candidates;
   for (Id v = 0; v < nv; ++v)
@@ -174,10 +208,21 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology)
       if (d2 <= tolerance * tolerance)
       {
         const Id a = FindRoot(root, candidates[j - 1]), b = FindRoot(root, candidates[j]);
+        if (a == b)
+        {
+          continue;
+        }
+        if (!agree(candidates[j - 1], candidates[j]))
+        {
+          apart.resize(nv, 0);
+          apart[candidates[j - 1]] = apart[candidates[j]] = 1;
+          continue;
+        }
         root[std::max(a, b)] = std::min(a, b);
       }
     }
   }
+  keptApart = std::count(apart.begin(), apart.end(), 1);
   vtkIdType merged = 0;
   for (const Id v : candidates)
   {
@@ -350,6 +395,26 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
     return InputStatus::Empty;
   }
 
+  // Every point id in range (a bad id would read and write past the end of every array).
+  const vtkIdType numberOfInputPoints = input->GetNumberOfPoints();
+  for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
+  {
+    const vtkIdType badCell = FirstCellWithBadId(cells, numberOfInputPoints);
+    if (badCell >= 0)
+    {
+      const char* kind = cells == input->GetPolys() ? "Polygon " : "Triangle strip ";
+      vtkErrorWithObjectMacro(caller,
+        << kind << badCell << " refers to a point id outside [0, " << numberOfInputPoints
+          << "); no output is produced.");
+      return InputStatus::Invalid;
+    }
+  }
+  // Arrays with the wrong number of tuples are left out (see DropMismatchedArrays); from here
+  // on `input` is the checked dataset, `original` the one given.
+  vtkPolyData* original = input;
+  const vtkSmartPointer<vtkPolyData> checked = DropMismatchedArrays(input, caller);
+  input = checked;
+
   result.IgnoredVerts = input->GetNumberOfVerts();
   result.IgnoredLines = input->GetNumberOfLines();
   if (result.IgnoredVerts > 0 || result.IgnoredLines > 0)
@@ -429,11 +494,21 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   result.SourceCellIds.resize(numberOfTriangles);
   std::iota(result.SourceCellIds.begin(), result.SourceCellIds.end(), firstPolyCellId);
 
-  bool changed = result.Source != input;
+  bool changed = result.Source != original;
   result.DegenerateTriangles = DropDegenerateTriangles(mesh.Triangles, result.SourceCellIds);
   result.Topology.Build(mesh);
 
-  result.MergedPoints = MergeSeamPoints(mesh, result.Topology);
+  vtkIdType keptApart = 0;
+  result.MergedPoints = MergeSeamPoints(
+    mesh, result.Topology, PointDataAgreement(result.Source->GetPointData()), keptApart);
+  if (keptApart > 0)
+  {
+    vtkWarningWithObjectMacro(caller,
+      "Did not stitch " << keptApart
+                        << " points on open boundaries to the points they coincide with: their "
+                           "point data differ (an attribute seam, such as split normals or a "
+                           "texture's wrap), so the surface stays open there.");
+  }
   if (result.MergedPoints > 0)
   {
     // Stitching makes the triangles between merged points degenerate (a sliver between two

@@ -6,14 +6,19 @@
 // - Polygons with more than three points and triangle strips are triangulated with
 //   vtkTriangleFilter (cell data is copied to each resulting triangle).
 // - Vertices and lines are ignored, with a warning.
-// - NaN or infinite coordinates: an error naming the first bad point, no output.
+// - NaN or infinite coordinates: an error naming the first bad point, no output. A point id
+//   outside [0, number of points) in a polygon or strip: an error naming the cell, no output.
+// - Point- or cell-data arrays whose tuple count is not the number of points or cells are
+//   ignored, with a warning naming them (reading past their end would give garbage).
 // - More than 2^31 - 1 points or triangles: an error (the core uses 32-bit ids).
 // - Triangles that repeat a point id are dropped; a triangle with the same three points as an
 //   earlier one is dropped (both with a warning giving the count).
 // - Points on boundary or non-manifold edges that coincide up to rounding (at most 1e-12 of the
-//   bounding diagonal apart) are merged: this stitches triangle soups such as STL files and
-//   seams duplicated by rounding (as parametric sources make them). Coincident points inside
+//   bounding diagonal apart) and carry the same point data (MeshLODInputArrays.h) are merged:
+//   this stitches triangle soups such as STL files and seams duplicated by rounding (as
+//   parametric sources make them). Coincident points inside
 //   closed manifold regions are left alone: merging them would create a non-manifold vertex.
+//   Coincident points whose point data differ are an attribute seam and stay apart (warning).
 //   Points used by no triangle are dropped.
 // - Triangles whose orientation disagrees with their part's (the triangles joined by manifold
 //   edges) are flipped, each orientable part keeping the orientation most of its triangles had

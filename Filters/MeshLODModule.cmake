@@ -31,6 +31,7 @@ set(meshlod_private_headers
   Filters/Core/TriangleMesh.h
   Filters/MeshLODBlend.h
   Filters/MeshLODHierarchy.h
+  Filters/MeshLODInputArrays.h
   Filters/MeshLODInputMesh.h
   Filters/MeshLODNearestCorrespondence.h
   Filters/MeshLODTextureBaking.h)
@@ -54,6 +55,7 @@ set(meshlod_sources
   Filters/Core/TriangleMesh.cxx
   Filters/MeshLODBlend.cxx
   Filters/MeshLODHierarchy.cxx
+  Filters/MeshLODInputArrays.cxx
   Filters/MeshLODInputMesh.cxx
   Filters/MeshLODNearestCorrespondence.cxx
   Filters/MeshLODSurfaceDistance.cxx

@@ -62,9 +62,11 @@
  *
  * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input
  * gives an empty output without error; polygons and strips are triangulated; vertex and line
- * cells are ignored with a warning; NaN or infinite points are an error (no output);
- * points on boundary or non-manifold edges that coincide up to rounding (1e-12 of the bounding
- * diagonal) are stitched; triangles wound against the rest of their connected part are
+ * cells are ignored with a warning; NaN or infinite points and point ids out of range are an
+ * error (no output); arrays whose tuple count is not the number of points or cells are ignored
+ * with a warning; points on boundary or non-manifold edges that coincide up to rounding (1e-12
+ * of the bounding diagonal) and carry the same point data are stitched (an attribute seam stays
+ * open, with a warning); triangles wound against the rest of their connected part are
  * flipped (each orientable part keeps its majority orientation). Non-manifold vertices (several
  * fans, or on an edge with more than two triangles) are locked: they never move or merge, so
  * clustering does not make the non-manifold configuration worse.

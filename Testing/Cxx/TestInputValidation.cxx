@@ -5,9 +5,12 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkCubeSource.h"
+#include "vtkFloatArray.h"
 #include "vtkIntArray.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTestErrorObserver.h"
@@ -276,6 +279,94 @@ void TestOrientationMadeConsistent(Reader& reader)
   MESHLOD_CHECK(!result.Topology.IsConsistentlyOriented(result.Mesh));
   MESHLOD_CHECK_EQ(result.Topology.CountEdges(result.Mesh).Boundary, 2 * n);
 }
+// A point id out of range is refused (it used to corrupt the heap while building the
+// vertex -> triangle rows), in polygons and in strips.
+void TestBadPointIdsRefused(Reader& reader)
+{
+  for (const vtkIdType bad : { vtkIdType(6), vtkIdType(-1) })
+  {
+    vtkSmartPointer<vtkPolyData> mesh = testing::MakeOctahedron();
+    vtkIdType n;
+    const vtkIdType* ids;
+    mesh->GetPolys()->GetCellAtId(2, n, ids);
+    const vtkIdType replaced[3] = { ids[0], bad, ids[2] };
+    mesh->GetPolys()->ReplaceCellAtId(2, 3, replaced);
+    InputMesh result;
+    MESHLOD_CHECK(reader.Read(mesh, result) == InputStatus::Invalid);
+    MESHLOD_CHECK(reader.Observer->GetErrorMessage().find("Polygon 2") != std::string::npos);
+    MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 0);
+  }
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeOctahedron();
+  vtkNew<vtkCellArray> strips;
+  const vtkIdType strip[4] = { 0, 1, 2, 9 };
+  strips->InsertNextCell(4, strip);
+  mesh->SetStrips(strips);
+  InputMesh result;
+  MESHLOD_CHECK(reader.Read(mesh, result) == InputStatus::Invalid);
+  MESHLOD_CHECK(reader.Observer->GetErrorMessage().find("Triangle strip 0") != std::string::npos);
+}
+
+// Arrays with a tuple count other than the number of points or cells are left out with a
+// warning naming them (levels used to carry garbage read past their end); the input keeps them.
+void TestMismatchedArraysIgnored(Reader& reader)
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeOctahedron();
+  vtkNew<vtkFloatArray> shortPoints;
+  shortPoints->SetName("ShortPointArray");
+  shortPoints->SetNumberOfTuples(3);
+  shortPoints->Fill(1.0f);
+  mesh->GetPointData()->AddArray(shortPoints);
+  vtkNew<vtkFloatArray> good;
+  good->SetName("Good");
+  good->SetNumberOfTuples(6);
+  good->Fill(2.0f);
+  mesh->GetPointData()->AddArray(good);
+  vtkNew<vtkFloatArray> longCells;
+  longCells->SetName("LongCellArray");
+  longCells->SetNumberOfTuples(20);
+  longCells->Fill(3.0f);
+  mesh->GetCellData()->AddArray(longCells);
+  InputMesh result;
+  MESHLOD_CHECK(reader.Read(mesh, result) == InputStatus::Valid);
+  MESHLOD_CHECK(!reader.Observer->GetError());
+  MESHLOD_CHECK(reader.Observer->GetWarningMessage().find("LongCellArray") != std::string::npos);
+  MESHLOD_CHECK(result.Source->GetPointData()->GetArray("ShortPointArray") == nullptr);
+  MESHLOD_CHECK(result.Source->GetCellData()->GetArray("LongCellArray") == nullptr);
+  MESHLOD_CHECK(result.Source->GetPointData()->GetArray("Good") != nullptr);
+  MESHLOD_CHECK(!result.SameAsInput);
+  MESHLOD_CHECK(mesh->GetPointData()->GetArray("ShortPointArray") != nullptr);
+  MESHLOD_CHECK(mesh->GetCellData()->GetArray("LongCellArray") != nullptr);
+}
+
+// vtkCubeSource has 24 points, four per face, with the face's normal: the 3 coincident points
+// at each corner differ in their normals, an attribute seam, and are not stitched (stitching
+// them gave level 0 normals perpendicular to their faces). Without the normals, the same
+// corners are stitched into a closed cube.
+void TestAttributeSeamKept(Reader& reader)
+{
+  vtkNew<vtkCubeSource> cube;
+  cube->Update();
+  InputMesh result;
+  MESHLOD_CHECK(reader.Read(cube->GetOutput(), result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.MergedPoints, 0);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfPoints(), 24);
+  MESHLOD_CHECK(reader.Observer->GetWarningMessage().find("Did not stitch 24 points") !=
+    std::string::npos);
+
+  vtkNew<vtkPolyData> bare;
+  bare->SetPoints(cube->GetOutput()->GetPoints());
+  bare->SetPolys(cube->GetOutput()->GetPolys());
+  bare->GetPointData()->AddArray(cube->GetOutput()->GetPointData()->GetArray("TCoords"));
+  MESHLOD_CHECK(reader.Read(bare, result) == InputStatus::Valid);
+  // The texture coordinates of a corner's points differ for most corners: the seam stays.
+  MESHLOD_CHECK_GE(result.Mesh.GetNumberOfPoints(), 16);
+
+  bare->GetPointData()->Initialize();
+  MESHLOD_CHECK(reader.Read(bare, result) == InputStatus::Valid);
+  MESHLOD_CHECK_EQ(result.MergedPoints, 16);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfPoints(), 8);
+  MESHLOD_CHECK_EQ(result.Topology.CountEdges(result.Mesh).Boundary, 0);
+}
 } // namespace
 
 int TestInputValidation(int, char*[])
@@ -286,6 +377,9 @@ int TestInputValidation(int, char*[])
   TestQuadsAndStripsAreTriangulated(reader);
   TestVertsAndLinesIgnored(reader);
   TestNonFiniteRefused(reader);
+  TestBadPointIdsRefused(reader);
+  TestMismatchedArraysIgnored(reader);
+  TestAttributeSeamKept(reader);
   TestTriangleSoupIsStitched(reader);
   TestDegenerateAndDuplicateDropped(reader);
   TestNonManifoldKept(reader);

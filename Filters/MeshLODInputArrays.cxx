@@ -1,0 +1,126 @@
+#include "MeshLODInputArrays.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace meshlod
+{
+namespace
+{
+// Indices of the arrays of `data` whose tuple count is not `count`, in increasing order.
+std::vector<int> MismatchedArrays(vtkFieldData* data, vtkIdType count)
+{
+  std::vector<int> indices;
+  for (int i = 0; i < data->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* array = data->GetAbstractArray(i);
+    if (array != nullptr && array->GetNumberOfTuples() != count)
+    {
+      indices.push_back(i);
+    }
+  }
+  return indices;
+}
+
+// The arrays' names for a message (an unnamed array by its index), then remove them.
+std::string RemoveArrays(vtkFieldData* data, const std::vector<int>& indices)
+{
+  std::ostringstream names;
+  for (size_t i = 0; i < indices.size(); ++i)
+  {
+    const char* name = data->GetAbstractArray(indices[i])->GetName();
+    names << (i ? ", " : "");
+    if (name)
+    {
+      names << '"' << name << '"';
+    }
+    else
+    {
+      names << "unnamed array " << indices[i];
+    }
+  }
+  for (auto i = indices.rbegin(); i != indices.rend(); ++i)
+  {
+    data->RemoveArray(*i); // highest index first: the others keep theirs
+  }
+  return names.str();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> DropMismatchedArrays(vtkPolyData* input, vtkAlgorithm* caller)
+{
+  const std::vector<int> points =
+    MismatchedArrays(input->GetPointData(), input->GetNumberOfPoints());
+  const std::vector<int> cells = MismatchedArrays(input->GetCellData(), input->GetNumberOfCells());
+  if (points.empty() && cells.empty())
+  {
+    return input;
+  }
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->ShallowCopy(input);
+  // A shallow copy shares the arrays but has field data of its own, so removing is safe.
+  if (!points.empty())
+  {
+    vtkWarningWithObjectMacro(caller,
+      "Ignoring point-data arrays whose number of tuples is not the number of points ("
+        << input->GetNumberOfPoints() << "): " << RemoveArrays(copy->GetPointData(), points)
+        << ".");
+  }
+  if (!cells.empty())
+  {
+    vtkWarningWithObjectMacro(caller,
+      "Ignoring cell-data arrays whose number of tuples is not the number of cells ("
+        << input->GetNumberOfCells() << "): " << RemoveArrays(copy->GetCellData(), cells)
+        << ".");
+  }
+  return copy;
+}
+
+//------------------------------------------------------------------------------
+PointDataAgreement::PointDataAgreement(vtkPointData* pointData)
+{
+  for (int i = 0; i < pointData->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* array = pointData->GetArray(i);
+    if (array == nullptr || array == pointData->GetGlobalIds() ||
+      array == pointData->GetPedigreeIds())
+    {
+      continue;
+    }
+    this->Arrays.push_back(array);
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+    {
+      double range[2];
+      array->GetRange(range, c);
+      this->Tolerances.push_back(1e-6 * (range[1] - range[0]));
+    }
+  }
+}
+
+bool PointDataAgreement::operator()(Id a, Id b) const
+{
+  size_t k = 0;
+  for (vtkDataArray* array : this->Arrays)
+  {
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c, ++k)
+    {
+      const double difference = array->GetComponent(a, c) - array->GetComponent(b, c);
+      // Written so that NaN values (which never agree with anything) keep the points apart.
+      if (!(std::abs(difference) <= this->Tolerances[k]))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+} // namespace meshlod

@@ -1,0 +1,39 @@
+// Input validation of the data arrays (see MeshLODInputMesh.h for the whole policy).
+#ifndef MeshLODInputArrays_h
+#define MeshLODInputArrays_h
+
+#include "Core/TriangleMesh.h"
+#include "vtkSmartPointer.h"
+
+#include <vector>
+
+class vtkAlgorithm;
+class vtkDataArray;
+class vtkPointData;
+class vtkPolyData;
+
+namespace meshlod
+{
+/// The input itself when every point-data array has one tuple per point and every cell-data
+/// array one per cell; otherwise a shallow copy without the arrays that do not (reading past
+/// their end would give garbage), with a warning naming them.
+vtkSmartPointer<vtkPolyData> DropMismatchedArrays(vtkPolyData* input, vtkAlgorithm* caller);
+
+/// Whether points id `a` and `b` carry the same point data: every array but the global and
+/// pedigree ids (twins differ there by construction), each component within 1e-6 of its range
+/// (exact for integers in practice). Coincident points whose data differ are an attribute seam
+/// (a cube's split normals, a texture's wrap): merging them would lose it.
+class PointDataAgreement
+{
+public:
+  explicit PointDataAgreement(vtkPointData* pointData);
+  bool operator()(Id a, Id b) const;
+
+private:
+  std::vector<vtkDataArray*> Arrays;
+  std::vector<double> Tolerances; // per array, per component
+};
+
+} // namespace meshlod
+
+#endif
