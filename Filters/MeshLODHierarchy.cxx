@@ -294,6 +294,28 @@ void HierarchyBuilder::SetLevelZero(const InputMesh& input)
 }
 
 //------------------------------------------------------------------------------
+void HierarchyBuilder::SetEmptyLevelZero(vtkPolyData* input)
+{
+  this->Impl->Levels.clear();
+  auto level0 = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  if (input != nullptr && input->GetPoints() != nullptr)
+  {
+    points->SetDataType(input->GetPoints()->GetDataType());
+  }
+  level0->SetPoints(points);
+  vtkNew<vtkCellArray> polys;
+  level0->SetPolys(polys);
+  if (input != nullptr)
+  {
+    level0->GetPointData()->CopyAllocate(input->GetPointData(), 0);
+    level0->GetCellData()->CopyAllocate(input->GetCellData(), 0);
+  }
+  SetLevelFieldData(level0, 0, 0.0);
+  this->Impl->Levels.push_back(level0);
+}
+
+//------------------------------------------------------------------------------
 void HierarchyBuilder::AppendLevel(LevelData&& level)
 {
   vtkPolyData* previous = this->Impl->Levels.back();

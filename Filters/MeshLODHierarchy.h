@@ -69,6 +69,12 @@ public:
   /// input needed no cleaning.
   void SetLevelZero(const InputMesh& input);
 
+  /// Level 0 of an empty input (no points or no polygons): no points and no cells, the
+  /// input's point- and cell-data arrays without tuples, and the level field data. The
+  /// hierarchy of an empty input is this one level, so that a downstream vtkLODGeomorph
+  /// produces an empty mesh too instead of reporting a hierarchy without levels.
+  void SetEmptyLevelZero(vtkPolyData* input);
+
   /// Append the next level: builds its polydata and adds the morph arrays to the level before.
   /// Consumes `level`: each of its arrays is released once converted, so that a level's plain
   /// arrays and its VTK arrays are not all alive at the peak of memory.

@@ -34,6 +34,7 @@ set(meshlod_private_headers
   Filters/MeshLODInputArrays.h
   Filters/MeshLODInputMesh.h
   Filters/MeshLODNearestCorrespondence.h
+  Filters/MeshLODSettings.h
   Filters/MeshLODTextureBaking.h)
 
 set(meshlod_sources

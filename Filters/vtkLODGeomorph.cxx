@@ -6,6 +6,7 @@
 #include "MeshLODHierarchy.h"
 #include "MeshLODInputMesh.h"
 #include "MeshLODNearestCorrespondence.h"
+#include "MeshLODSettings.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -865,9 +866,9 @@ int vtkLODGeomorph::RequestInformation(vtkInformation* vtkNotUsed(request),
   }
   auto* input = vtkMultiBlockDataSet::SafeDownCast(this->GetInputDataObject(0, 0));
   const int levels = input ? static_cast<int>(input->GetNumberOfBlocks()) : 0;
-  if (levels == 0)
+  if (levels == 0 || !meshlod::SettingsAreNumbers(this, { { "TimeScale", this->TimeScale } }))
   {
-    return 1;
+    return 1; // no time steps (RequestData reports the problem)
   }
   std::vector<double> times(levels);
   for (int i = 0; i < levels; ++i)
@@ -923,13 +924,25 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
     this->NumberOfLevels = 0;
     return 1;
   }
+  const bool pipelineTime =
+    this->UsePipelineTime && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  if (!meshlod::SettingsAreNumbers(this,
+        { { "LevelOfDetail", this->LevelOfDetail }, { "TimeScale", this->TimeScale },
+          { "CollapseFraction", this->CollapseFraction },
+          { "MergeTolerance", this->MergeTolerance },
+          { "The requested time (UPDATE_TIME_STEP)",
+            pipelineTime ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+                         : 0.0 } }))
+  {
+    return 1; // an empty output
+  }
   const int n = static_cast<int>(impl.Levels.size());
   this->NumberOfLevels = n;
   this->ActualCorrespondence = impl.Mode;
 
   // 2. The level of detail: the pipeline time, or the explicit setting.
   double lod = this->LevelOfDetail;
-  if (this->UsePipelineTime && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  if (pipelineTime)
   {
     const double time = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
     lod = std::min(std::max(time / this->TimeScale, 0.0), static_cast<double>(n - 1));

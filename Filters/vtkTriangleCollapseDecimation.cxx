@@ -4,6 +4,7 @@
 #include "Core/TriangleCollapse.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODInputMesh.h"
+#include "MeshLODSettings.h"
 
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -85,6 +86,16 @@ int vtkTriangleCollapseDecimation::RequestData(
   this->ActualReduction = 0.0;
 
   // Settings first.
+  if (!meshlod::SettingsAreNumbers(this,
+        { { "TriangleCostFactor", this->TriangleCostFactor },
+          { "TargetReduction", this->TargetReduction }, { "LevelFraction", this->LevelFraction },
+          { "MaximumError", this->MaximumError }, { "CurvatureWeight", this->CurvatureWeight },
+          { "AngleWeight", this->AngleWeight }, { "ValenceWeight", this->ValenceWeight },
+          { "BoundaryWeight", this->BoundaryWeight },
+          { "MaximumNormalDeviation", this->MaximumNormalDeviation } }))
+  {
+    return 0;
+  }
   if (this->Method == CURVATURE &&
     std::abs(this->CurvatureWeight + this->AngleWeight + this->ValenceWeight - 1.0) > 1e-6)
   {
@@ -120,6 +131,11 @@ int vtkTriangleCollapseDecimation::RequestData(
   }
   if (status == meshlod::InputStatus::Empty)
   {
+    // One empty level, not none: see HierarchyBuilder::SetEmptyLevelZero.
+    meshlod::HierarchyBuilder empty;
+    empty.SetEmptyLevelZero(input);
+    this->NumberOfLevelsProduced = 1;
+    empty.Finish(output);
     return 1;
   }
   this->UpdateProgress(CollapseStart);

@@ -4,6 +4,7 @@
 #include "Core/TextureAtlas.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODInputMesh.h"
+#include "MeshLODSettings.h"
 #include "MeshLODTextureBaking.h"
 
 #include "vtkAlgorithmOutput.h"
@@ -273,6 +274,13 @@ int vtkVertexClusterOctree::FillOutputPortInformation(int, vtkInformation* info)
 //------------------------------------------------------------------------------
 bool vtkVertexClusterOctree::CheckSettings()
 {
+  if (!meshlod::SettingsAreNumbers(this,
+        { { "Epsilon", this->Epsilon }, { "EpsilonFactor", this->EpsilonFactor },
+          { "MaximumCellSize", this->MaximumCellSize },
+          { "BoundaryWeight", this->BoundaryWeight } }))
+  {
+    return false;
+  }
   if (this->LevelMode == EPSILON_LIST)
   {
     if (this->EpsilonValues.empty())
@@ -343,6 +351,10 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   }
   if (status == meshlod::InputStatus::Empty)
   {
+    // One empty level, not none: see HierarchyBuilder::SetEmptyLevelZero.
+    meshlod::HierarchyBuilder empty;
+    empty.SetEmptyLevelZero(input);
+    empty.Finish(output);
     return 1;
   }
 

@@ -61,7 +61,7 @@
  * nearest neighbouring cluster.
  *
  * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input
- * gives an empty output without error; polygons and strips are triangulated; vertex and line
+ * gives a hierarchy of one empty level, without error; polygons and strips are triangulated; vertex and line
  * cells are ignored with a warning; NaN or infinite points and point ids out of range are an
  * error (no output); arrays whose tuple count is not the number of points or cells are ignored
  * with a warning; points on boundary or non-manifold edges that coincide up to rounding (1e-12

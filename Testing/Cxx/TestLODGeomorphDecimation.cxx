@@ -24,10 +24,12 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTestErrorObserver.h"
 
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -312,6 +314,46 @@ void TestVariant(vtkPolyData* surface, const Variant& variant)
   CheckExactCount(decimate, h);
   MESHLOD_CHECK_EQ(decimationRuns, 1);
 }
+
+// An empty input (an isosurface empty at some iso-value) flows through the pipeline silently:
+// a hierarchy of one empty level, an empty geomorph. NaN for the level of detail or the time
+// is an error and an empty output (it used to index a level with a garbage integer).
+void TestEmptyAndNaN(vtkPolyData* surface)
+{
+  vtkNew<vtkTest::ErrorObserver> observer;
+  vtkNew<vtkTriangleCollapseDecimation> decimate;
+  vtkNew<vtkLODGeomorph> geomorph;
+  geomorph->SetInputConnection(decimate->GetOutputPort());
+  for (vtkAlgorithm* a : { static_cast<vtkAlgorithm*>(decimate), static_cast<vtkAlgorithm*>(geomorph) })
+  {
+    a->AddObserver(vtkCommand::ErrorEvent, observer);
+    a->AddObserver(vtkCommand::WarningEvent, observer);
+    a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+  }
+  vtkNew<vtkPolyData> empty;
+  decimate->SetInputData(empty);
+  geomorph->UpdateTimeStep(0.5);
+  MESHLOD_CHECK(!observer->GetError());
+  MESHLOD_CHECK(!observer->GetWarning());
+  MESHLOD_CHECK_EQ(geomorph->GetOutput()->GetNumberOfPoints(), 0);
+
+  decimate->SetInputData(surface);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  geomorph->UpdateTimeStep(nan);
+  MESHLOD_CHECK(observer->GetErrorMessage().find("UPDATE_TIME_STEP) is NaN") != std::string::npos);
+  MESHLOD_CHECK_EQ(geomorph->GetOutput()->GetNumberOfPoints(), 0);
+  observer->Clear();
+  geomorph->UsePipelineTimeOff();
+  geomorph->SetLevelOfDetail(nan);
+  geomorph->Update();
+  MESHLOD_CHECK(observer->GetErrorMessage().find("LevelOfDetail is NaN") != std::string::npos);
+  MESHLOD_CHECK_EQ(geomorph->GetOutput()->GetNumberOfPoints(), 0);
+  observer->Clear();
+  geomorph->SetLevelOfDetail(1.5);
+  geomorph->Update();
+  MESHLOD_CHECK(!observer->GetError());
+  MESHLOD_CHECK_GT(geomorph->GetOutput()->GetNumberOfPoints(), 0);
+}
 } // namespace
 
 int TestLODGeomorphDecimation(int, char*[])
@@ -334,5 +376,6 @@ int TestLODGeomorphDecimation(int, char*[])
   {
     TestVariant(surface, variant);
   }
+  TestEmptyAndNaN(surface);
   return testing::Result();
 }

@@ -515,11 +515,25 @@ void TestErrorsAndAbort()
 {
   vtkNew<vtkTest::ErrorObserver> observer;
   {
+    // Empty input: one empty level (a vtkLODGeomorph downstream then gives an empty mesh).
     vtkNew<vtkTriangleCollapseDecimation> filter;
     vtkNew<vtkPolyData> empty;
     filter->SetInputData(empty);
     filter->Update();
+    MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 1u);
+    MESHLOD_CHECK_EQ(Level(filter->GetHierarchy(), 0)->GetNumberOfPoints(), 0);
+  }
+  {
+    // NaN settings pass vtkSetClampMacro; they are an error naming the setting.
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->SetInputData(testing::MakeIcosphere(2));
+    filter->SetTargetReduction(std::numeric_limits<double>::quiet_NaN());
+    filter->Update();
+    MESHLOD_CHECK(observer->GetErrorMessage().find("TargetReduction is NaN") != std::string::npos);
     MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
+    observer->Clear();
   }
   {
     vtkNew<vtkTriangleCollapseDecimation> filter;

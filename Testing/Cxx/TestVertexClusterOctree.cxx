@@ -636,13 +636,24 @@ void TestSettingsAndErrors()
   filter->AddObserver(vtkCommand::WarningEvent, observer);
   filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
 
-  // Empty input: empty output, no message.
+  // Empty input: one empty level, no message.
   vtkNew<vtkPolyData> empty;
   filter->SetInputData(empty);
   filter->Update();
   MESHLOD_CHECK(!observer->GetError());
   MESHLOD_CHECK(!observer->GetWarning());
+  MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 1u);
+  MESHLOD_CHECK_EQ(Level(filter->GetHierarchy(), 0)->GetNumberOfPoints(), 0);
+
+  // NaN settings: an error naming the setting, no output (vtkSetClampMacro lets NaN through;
+  // an epsilon of NaN crashed while assigning clusters).
+  filter->SetInputData(testing::MakeGrid(4, 4));
+  filter->SetEpsilon(std::numeric_limits<double>::quiet_NaN());
+  filter->Update();
+  MESHLOD_CHECK(observer->GetErrorMessage().find("Epsilon is NaN") != std::string::npos);
   MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
+  observer->Clear();
+  filter->SetEpsilon(0.0);
 
   // NaN point: an error, no output.
   vtkSmartPointer<vtkPolyData> bad = testing::MakeGrid(2, 2);
