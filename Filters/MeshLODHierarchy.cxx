@@ -237,6 +237,20 @@ std::string LevelBlockName(int level)
   return "Level " + std::to_string(level);
 }
 
+void WarnAboutReservedNames(vtkPolyData* input, vtkObject* caller)
+{
+  for (const char* name : { names::MorphTarget, names::MorphTargetId, names::CollapseRank })
+  {
+    if (input != nullptr && input->GetPointData()->GetAbstractArray(name) != nullptr)
+    {
+      vtkWarningWithObjectMacro(caller,
+        "The input's point-data array \"" << name << "\" is replaced on the levels by the "
+                                            "hierarchy's own array of that name; rename it to "
+                                            "keep it.");
+    }
+  }
+}
+
 struct HierarchyBuilder::Internals
 {
   std::vector<vtkSmartPointer<vtkPolyData>> Levels;

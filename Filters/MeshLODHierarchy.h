@@ -14,10 +14,10 @@
 //   algorithm's own estimate in world units), and, when measured, MeasuredHausdorff and
 //   MeasuredRMS (double, world units, surface distance to level 0 by MeshLODSurfaceDistance).
 // Every level except the coarsest also carries the correspondence to the next level:
-// - MorphTargetId (vtkIdType): the point of level i+1 this point becomes. Chaining it maps any
+// - MorphTargetId (32-bit int): the point of level i+1 this point becomes. Chaining it maps any
 //   point of level 0 to its point in any coarser level.
 // - MorphTarget (3 components, the points' type): the position of that point.
-// - CollapseRank (vtkIdType): the order in which the point moves when only part of the
+// - CollapseRank (32-bit int): the order in which the point moves when only part of the
 //   transition i -> i+1 is applied (points sharing a rank move together, as one collapse);
 //   -1 when the point keeps its position and merges with nothing.
 #ifndef MeshLODHierarchy_h
@@ -34,6 +34,7 @@
 class vtkAlgorithm;
 class vtkInformation;
 class vtkMultiBlockDataSet;
+class vtkObject;
 class vtkPolyData;
 
 namespace meshlod
@@ -54,6 +55,11 @@ constexpr const char* MeasuredRMS = "MeasuredRMS";
 } // namespace names
 
 VTKFILTERSMESHLOD_EXPORT std::string LevelBlockName(int level);
+
+/// Warn on `caller` when the input has point-data arrays named like the hierarchy's own
+/// (MorphTarget, MorphTargetId, CollapseRank): the levels carry the filter's arrays under those
+/// names instead.
+VTKFILTERSMESHLOD_EXPORT void WarnAboutReservedNames(vtkPolyData* input, vtkObject* caller);
 
 /// Builds the output multiblock level by level, so that the algorithm can free its own copy of
 /// a level as soon as it is handed over.

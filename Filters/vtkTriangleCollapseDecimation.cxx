@@ -13,6 +13,7 @@
 #include "vtkPolyData.h"
 
 #include <cmath>
+#include <sstream>
 #include <utility>
 
 vtkStandardNewMacro(vtkTriangleCollapseDecimation);
@@ -138,6 +139,7 @@ int vtkTriangleCollapseDecimation::RequestData(
     empty.Finish(output);
     return 1;
   }
+  meshlod::WarnAboutReservedNames(input, this);
   this->UpdateProgress(CollapseStart);
 
   meshlod::TriangleCollapseOptions options;
@@ -184,15 +186,28 @@ int vtkTriangleCollapseDecimation::RequestData(
   {
     return 1; // aborted: the output stays empty
   }
-  if (result.LevelsEmitted < static_cast<int>(options.LevelTargets.size()))
+  // A run that stops early emits the coarsest mesh it reached as a level of its own (see
+  // Collapser::FinishRun), so the level count alone does not tell a missed target: the last
+  // level must also be within one collapse (3 triangles) of the coarsest target.
+  const std::int64_t coarsestTarget = options.LevelTargets.back();
+  if (result.LevelsEmitted < static_cast<int>(options.LevelTargets.size()) ||
+    result.FinalTriangles > coarsestTarget + 3)
   {
-    vtkWarningMacro("Produced " << result.LevelsEmitted << " of "
-                                << options.LevelTargets.size()
-                                << " levels: the coarsest reaches " << result.FinalTriangles
-                                << " triangles ("
-                                << (this->MaximumError > 0.0 ? "MaximumError reached"
-                                                             : "no legal collapse left")
-                                << ").");
+    std::ostringstream levels;
+    if (result.LevelsEmitted < static_cast<int>(options.LevelTargets.size()))
+    {
+      levels << "Produced " << result.LevelsEmitted << " of " << options.LevelTargets.size()
+             << " levels: the coarsest";
+    }
+    else
+    {
+      levels << "The coarsest level";
+    }
+    vtkWarningMacro(<< levels.str() << " has " << result.FinalTriangles
+                    << " triangles, short of its target of " << coarsestTarget << " ("
+                    << (this->MaximumError > 0.0 ? "MaximumError reached"
+                                                 : "no legal collapse left")
+                    << ").");
   }
   if (this->ComputeLevelError)
   {

@@ -211,18 +211,28 @@ double vtkVertexClusterOctree::GetLevelEpsilon(int level) const
 //------------------------------------------------------------------------------
 // The search meets a count within 0.2%; a level off by more than 2% of the count is reported
 // with its likely cause (see the class documentation).
-void vtkVertexClusterOctree::WarnIfCountMissed(int level, vtkIdType asked, vtkIdType reached)
+void vtkVertexClusterOctree::WarnIfCountMissed(
+  int level, vtkIdType asked, vtkIdType reached, vtkIdType previous)
 {
   if (std::abs(reached - asked) <= std::max<vtkIdType>(2, asked / 50))
   {
     return;
   }
-  if (reached < asked)
+  if (asked >= previous)
+  {
+    vtkWarningMacro("Level " << level << ": asked for " << asked
+                             << " triangles, at least the " << previous << " of level "
+                             << level - 1 << " (a level never refines); it has " << reached
+                             << ".");
+  }
+  else if (reached < asked)
   {
     vtkWarningMacro("Level " << level << ": asked for " << asked << " triangles, reached "
-                             << reached << ": the clusters merged at the smallest epsilon "
-                                           "already have zero error (e.g. exactly flat "
-                                           "regions); set MaximumCellSize to keep more.");
+                             << reached
+                             << ": the smallest epsilon that merges enough merges more at once "
+                                "(levels cut one octree, so counts move in steps of whole "
+                                "clusters; regions of zero error, such as exactly flat ones, "
+                                "merge together); a smaller MaximumCellSize keeps more.");
   }
   else
   {
@@ -357,6 +367,7 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
     empty.Finish(output);
     return 1;
   }
+  meshlod::WarnAboutReservedNames(input, this);
 
   // The colour source for baking: the input texture at its texture coordinates, else a colour
   // array.
@@ -469,7 +480,8 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
     if (requests[i].ByCount)
     {
       this->WarnIfCountMissed(static_cast<int>(i + 1), requests[i].Count,
-        static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()));
+        static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()),
+        builder.GetLevel(builder.GetNumberOfLevels() - 1)->GetNumberOfPolys());
     }
 
     meshlod::TextureAtlas atlas;

@@ -39,12 +39,13 @@
  * - EpsilonList: one level per AddEpsilonValue() value (increasing);
  * - TargetTriangleCounts: one level per AddTargetTriangleCount() value (decreasing), epsilon
  *   found by a search; the count is met within 0.2% (or 2 triangles) where the cluster tree
- *   allows. Two cases it does not, each reported by a warning naming the count reached: a
- *   count below what collapsing every mergeable cluster gives (clusters that would flip
- *   triangles, non-manifold vertices and separate components stop the merging), and a count
- *   above what the smallest positive epsilon gives, when many clusters have exactly zero error
- *   (an exactly flat region collapses to a few triangles at any epsilon: bound the clusters
- *   with MaximumCellSize to keep more).
+ *   allows, and a miss by more than 2% (or 2 triangles) is reported by a warning naming the
+ *   count reached and why: a count below what collapsing every mergeable cluster gives
+ *   (clusters that would flip triangles, non-manifold vertices and separate components stop
+ *   the merging); a count between two that consecutive epsilons give (levels cut one cluster
+ *   tree, so counts move in steps of whole clusters; many clusters of exactly zero error, as in
+ *   an exactly flat region, merge at any epsilon: bound the clusters with MaximumCellSize to
+ *   keep more); a count at or above the previous level's (a level never refines).
  * With RelativeUnits on (default) epsilon values and MaximumCellSize are fractions of the
  * input's bounding-box diagonal, otherwise world units. Levels nest: every cluster of a coarser
  * level is a union of clusters of the finer one (a coarser level cuts the same cluster tree
@@ -338,7 +339,7 @@ private:
   void operator=(const vtkVertexClusterOctree&) = delete;
 
   bool CheckSettings();
-  void WarnIfCountMissed(int level, vtkIdType asked, vtkIdType reached);
+  void WarnIfCountMissed(int level, vtkIdType asked, vtkIdType reached, vtkIdType previous);
 };
 
 #endif

@@ -1460,6 +1460,20 @@ bool OctreeClustering::MakeLevel(double epsilon, ClusterLevel& level)
 bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLevel& level)
 {
   Internals& impl = *this->Impl;
+  if (targetTriangles >= impl.PreviousTriangles())
+  {
+    // A level never refines: asked for at least what the current level has, it is the current
+    // level again. At the input, even epsilon 0 would merge clusters of zero error (an exactly
+    // flat region): a negative epsilon merges nothing.
+    const double epsilon = impl.AtInput() ? -1.0 : impl.CurrentEpsilon;
+    if (impl.TryLevel(epsilon, level) == 0)
+    {
+      return false;
+    }
+    level.Epsilon = std::max(0.0, epsilon); // the next searches start from it
+    impl.Commit(level);
+    return true;
+  }
   const Id tolerance = std::max<Id>(2, targetTriangles / 500);
   // The estimate NT - (triangles that degenerate in collapsed nodes) ignores duplicates: aim off
   // by the difference a trial level shows, a few times.

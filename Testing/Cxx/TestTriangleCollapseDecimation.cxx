@@ -30,6 +30,7 @@
 #include "vtkPolyData.h"
 #include "vtkQuadricDecimation.h"
 #include "vtkSMPTools.h"
+#include "vtkSuperquadricSource.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkTriangleFilter.h"
 
@@ -536,6 +537,22 @@ void TestErrorsAndAbort()
     observer->Clear();
   }
   {
+    // An input array named like a hierarchy array is replaced on the levels: a warning says so.
+    vtkSmartPointer<vtkPolyData> mesh = testing::MakeIcosphere(2);
+    vtkNew<vtkIntArray> mine;
+    mine->SetName(names::MorphTargetId);
+    mine->SetNumberOfTuples(mesh->GetNumberOfPoints());
+    mine->Fill(7);
+    mesh->GetPointData()->AddArray(mine);
+    vtkNew<vtkTest::ErrorObserver> warnings;
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->AddObserver(vtkCommand::WarningEvent, warnings);
+    filter->SetInputData(mesh);
+    filter->Update();
+    MESHLOD_CHECK(warnings->GetWarningMessage().find("\"MorphTargetId\" is replaced") !=
+      std::string::npos);
+  }
+  {
     vtkNew<vtkTriangleCollapseDecimation> filter;
     filter->AddObserver(vtkCommand::ErrorEvent, observer);
     filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
@@ -572,6 +589,30 @@ void TestErrorsAndAbort()
     filter->Update();
     MESHLOD_CHECK(observer->GetError());
     MESHLOD_CHECK(observer->GetErrorMessage().find("increase") != std::string::npos);
+  }
+  {
+    // A last level short of its target is reported even though the run emits the mesh it
+    // reached as a level (the level count is then complete): a torus whose seam stays open
+    // (its texture coordinates wrap), triangle collapses only.
+    vtkNew<vtkSuperquadricSource> torus;
+    torus->SetThetaResolution(32);
+    torus->SetPhiResolution(32);
+    torus->ToroidalOn();
+    vtkNew<vtkTriangleFilter> triangles;
+    triangles->SetInputConnection(torus->GetOutputPort());
+    vtkNew<vtkTest::ErrorObserver> warnings;
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->AddObserver(vtkCommand::WarningEvent, warnings);
+    filter->SetInputConnection(triangles->GetOutputPort());
+    filter->SetOperatorToTriangles();
+    filter->SetNumberOfLevels(4);
+    filter->Update();
+    const vtkIdType coarsest =
+      Level(filter->GetHierarchy(), filter->GetHierarchy()->GetNumberOfBlocks() - 1)
+        ->GetNumberOfPolys();
+    MESHLOD_CHECK_GT(coarsest, 2048 / 100 + 3);
+    MESHLOD_CHECK(warnings->GetWarningMessage().find("short of its target of 20") !=
+      std::string::npos);
   }
   {
     // Abort at the first progress report: the output stays empty, no error.

@@ -381,6 +381,19 @@ void TestUnreachableCount()
                   "asked for 200 triangles, reached " + std::to_string(reached)) !=
     std::string::npos);
 
+  // More than the input has: the level is the input's count, and the warning says why.
+  observer->Clear();
+  filter->RemoveAllTargetTriangleCounts();
+  filter->AddTargetTriangleCount(5000);
+  filter->AddTargetTriangleCount(2);
+  filter->Update();
+  MESHLOD_CHECK_EQ(Level(filter->GetHierarchy(), 1)->GetNumberOfPolys(), 2 * 32 * 32);
+  MESHLOD_CHECK(observer->GetWarningMessage().find("at least the 2048 of level 0") !=
+    std::string::npos);
+  MESHLOD_CHECK_LE(Level(filter->GetHierarchy(), 2)->GetNumberOfPolys(), 4); // then merges again
+  filter->RemoveAllTargetTriangleCounts();
+  filter->AddTargetTriangleCount(200);
+
   observer->Clear();
   filter->SetMaximumCellSize(0.1); // of the diagonal (45 units): cells of at most 4.5 units
   filter->Update();
