@@ -25,6 +25,7 @@ set(meshlod_private_headers
   Filters/Core/LevelTracker.h
   Filters/Core/LocalSurfaceFit.h
   Filters/Core/OctreeClustering.h
+  Filters/Core/OctreeClusteringInternals.h
   Filters/Core/Quadric.h
   Filters/Core/TextureAtlas.h
   Filters/Core/TriangleCollapse.h
@@ -49,6 +50,9 @@ set(meshlod_sources
   Filters/Core/LevelTracker.cxx
   Filters/Core/LocalSurfaceFit.cxx
   Filters/Core/OctreeClustering.cxx
+  Filters/Core/OctreeCuts.cxx
+  Filters/Core/OctreeNodes.cxx
+  Filters/Core/OctreeSynthesis.cxx
   Filters/Core/PartitionedGreedy.cxx
   Filters/Core/Quadric.cxx
   Filters/Core/TextureAtlas.cxx

@@ -1,0 +1,228 @@
+// Private to the octree clustering (OctreeClustering.h): the state shared by its sources,
+// - OctreeNodes.cxx: evaluating a node (representative, error, admissibility; paper 001 §2-3);
+// - OctreeCuts.cxx: the cut of the cluster tree at an epsilon and the search for an epsilon;
+// - OctreeSynthesis.cxx: a level from a cut (re-indexed triangles, folds and pinches fixed);
+// - OctreeClustering.cxx: the public class.
+#ifndef meshlod_OctreeClusteringInternals_h
+#define meshlod_OctreeClusteringInternals_h
+
+#include "OctreeClustering.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace meshlod
+{
+namespace octree
+{
+// The e2 weight (original area / new area)^2 is capped where a new triangle nearly degenerates.
+constexpr double MaximumCrossingWeight = 100.0;
+// Fixed blocks for the deterministic parallel compactions (independent of the thread count).
+constexpr Id BlockSize = 16384;
+constexpr float Infinite = std::numeric_limits<float>::infinity();
+
+inline void Cross(const double u[3], const double v[3], double out[3])
+{
+  out[0] = u[1] * v[2] - u[2] * v[1];
+  out[1] = u[2] * v[0] - u[0] * v[2];
+  out[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+inline double Dot(const double u[3], const double v[3])
+{
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+// Normal (not normalised) of triangle (a, b, c).
+inline void Normal(const double a[3], const double b[3], const double c[3], double n[3])
+{
+  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  Cross(u, v, n);
+}
+
+// Keep the i in [0, n) for which keep(i) holds, in order, calling write(i, slot): counts per
+// fixed block, a serial prefix sum, then the writes, so the result does not depend on how the
+// blocks are spread over threads. Returns the number kept.
+template<typename Keep, typename Write>
+Id ParallelCompact(Id n, Keep keep, Write write)
+{
+  const Id blocks = (n + BlockSize - 1) / BlockSize;
+  std::vector<Id> offsets(static_cast<size_t>(blocks) + 1, 0);
+  vtkSMPTools::For(0,
+    blocks,
+    [&](Id begin, Id end)
+    {
+      for (Id b = begin; b < end; ++b)
+      {
+        Id count = 0;
+        for (Id i = b * BlockSize; i < std::min(n, (b + 1) * BlockSize); ++i)
+        {
+          count += keep(i) ? 1 : 0;
+        }
+        offsets[b + 1] = count;
+      }
+    });
+  for (Id b = 0; b < blocks; ++b)
+  {
+    offsets[b + 1] += offsets[b];
+  }
+  vtkSMPTools::For(0,
+    blocks,
+    [&](Id begin, Id end)
+    {
+      for (Id b = begin; b < end; ++b)
+      {
+        Id slot = offsets[b];
+        for (Id i = b * BlockSize; i < std::min(n, (b + 1) * BlockSize); ++i)
+        {
+          if (keep(i))
+          {
+            write(i, slot++);
+          }
+        }
+      }
+    });
+  return offsets[blocks];
+}
+
+enum class NodeState : std::uint8_t
+{
+  NotEvaluated = 0,
+  Admissible = 1,
+  Inadmissible = 2,
+};
+
+// The crossing triangles of a node (exactly one vertex inside) with their planes.
+struct EvaluationScratch
+{
+  std::vector<Id> Crossing;      // 3 t + corner of the vertex inside
+  std::vector<Quadric> Planes;   // area-weighted plane quadric of each
+  std::vector<double> Normals;   // 3 per crossing triangle (twice the area in length)
+  std::vector<Id> BoundaryEdges; // boundary edges with an end inside (3 t + k)
+  std::vector<double> Related;   // planes of the related triangle set (unit normal, offset)
+};
+
+// A level being built: clusters (cut nodes) and the previous level's triangles re-indexed.
+struct Synthesis
+{
+  std::vector<Id> Cut;          // cluster -> node, in depth-first order
+  std::vector<double> Reps;     // 3 per cluster
+  std::vector<Id> PointCluster; // previous point -> cluster
+  std::vector<Id> Triangles;    // 3 clusters per kept triangle
+  std::vector<Id> From;         // kept triangle -> previous triangle
+  std::vector<unsigned char> Duplicate;
+  std::vector<unsigned char> Changed; // cluster is not exactly one previous point
+
+  /// Whether kept triangle j may have folded or pinched: not a duplicate, with a changed cluster.
+  bool Involved(Id j) const
+  {
+    const Id* tri = this->Triangles.data() + 3 * j;
+    return !this->Duplicate[j] &&
+      (this->Changed[tri[0]] || this->Changed[tri[1]] || this->Changed[tri[2]]);
+  }
+};
+} // namespace octree
+
+//------------------------------------------------------------------------------
+struct OctreeClustering::Internals
+{
+  const TriangleMesh& Mesh;
+  const TriangleTopology& Topology;
+  OctreeClusteringOptions Options;
+  ClusterTree Tree;
+  Id NV = 0;
+  Id NT = 0;
+
+  // Per internal node: the full evaluation, and the epsilon from which the node or an ancestor
+  // is a cluster (Activation).
+  std::vector<octree::NodeState> State;
+  std::vector<float> Thr; // the smallest epsilon at which the node may be a cluster
+  std::vector<Id> RepSlot;
+  // Per evaluated node (RepSlot): representative, surface normal and error.
+  static constexpr int SlotSize = 7;
+  std::vector<double> Reps;
+  std::vector<float> Activation;
+  double LogRatioSum = 0.0; // log(full error / e1) summed over the evaluated nodes
+  Id RatioCount = 0;
+  Id Evaluated = 0;
+
+  // The current level.
+  // Level 0 is the input itself: empty vectors stand for the input's triangles and identity
+  // maps, so that no copy of the input is kept.
+  std::vector<Id> CurrentTriangles;
+  std::vector<Id> CurrentLevelZero;
+  std::vector<Id> PointNode;
+  std::vector<Id> PointVertexCount;
+  double CurrentEpsilon = 0.0;
+  std::vector<Id> ClusterOfVertex;
+
+  Internals(const TriangleMesh& mesh,
+    const TriangleTopology& topology,
+    const OctreeClusteringOptions& options)
+    : Mesh(mesh)
+    , Topology(topology)
+    , Options(options)
+    , NV(mesh.GetNumberOfPoints())
+    , NT(mesh.GetNumberOfTriangles())
+  {
+  }
+
+  Id FirstVertex(Id node) const { return this->Tree.Order[this->Tree.Position(node)]; }
+  bool AtInput() const { return this->PointNode.empty(); }
+  Id PreviousPoints() const
+  {
+    return this->AtInput() ? this->NV : static_cast<Id>(this->PointNode.size());
+  }
+  Id PreviousTriangles() const
+  {
+    return this->AtInput() ? this->NT : static_cast<Id>(this->CurrentTriangles.size() / 3);
+  }
+  const Id* PreviousTriangleData() const
+  {
+    return this->AtInput() ? this->Mesh.Triangles.data() : this->CurrentTriangles.data();
+  }
+  Id NodeOfPoint(Id p) const { return this->AtInput() ? p : this->PointNode[p]; }
+  Id VertexCountOfPoint(Id p) const { return this->AtInput() ? 1 : this->PointVertexCount[p]; }
+  Id LevelZeroOf(Id t) const { return this->AtInput() ? t : this->CurrentLevelZero[t]; }
+
+  // --- nodes -----------------------------------------------------------------------------------
+  bool CheapInadmissible(Id index) const;
+  void UpdateThreshold(Id index);
+  void MovedNormal(Id item, const double v0[3], double moved[3]) const;
+  void AddCrossingTerms(const double v0[3], const octree::EvaluationScratch& crossing, Quadric& q) const;
+  bool HasFlip(const double v0[3], const octree::EvaluationScratch& crossing, int depth) const;
+  void Evaluate(Id index, octree::EvaluationScratch& scratch);
+  void ProjectOnBoundary(const std::vector<Id>& edges, double v0[3]) const;
+  void RepresentativeOf(Id node, double out[3]) const;
+  double NodeError(Id node) const;
+  void SurfaceNormal(Id node, double normal[3]) const;
+
+  // --- cuts ------------------------------------------------------------------------------------
+  void ComputeActivation(bool guess = false);
+  void CollectCut(double epsilon, std::vector<Id>& cut) const;
+  void CutAt(double epsilon, std::vector<Id>& cut, bool update = false);
+  double EpsilonForCount(Id target) const;
+  std::int64_t EstimateAt(double epsilon) const;
+  double SearchEpsilon(Id target, Id tolerance);
+
+  // --- levels ----------------------------------------------------------------------------------
+  void AssignClusters(octree::Synthesis& s);
+  Id ReindexTriangles(octree::Synthesis& s) const;
+  void MarkDuplicates(octree::Synthesis& s) const;
+  Id MarkFolds(octree::Synthesis& s);
+  Id MarkPinches(octree::Synthesis& s);
+  // Mark the changed clusters among `clusters` as not mergeable; returns how many were.
+  Id MarkChanged(octree::Synthesis& s, const std::vector<Id>& clusters);
+  Id TryLevel(double epsilon, ClusterLevel& level);
+  void Finalize(octree::Synthesis& s, ClusterLevel& level) const;
+  void Commit(const ClusterLevel& level);
+};
+
+} // namespace meshlod
+
+#endif

@@ -1,0 +1,376 @@
+// Octree clustering: cuts of the cluster tree and the epsilon search (see OctreeClusteringInternals.h).
+#include "OctreeClusteringInternals.h"
+
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace meshlod
+{
+using namespace octree;
+
+//------------------------------------------------------------------------------
+// Activation[i]: the smallest threshold on the path from node i to its root. A node is collapsed
+// (it or an ancestor is a cluster) exactly when epsilon reaches it.
+void OctreeClustering::Internals::ComputeActivation(bool guess)
+{
+  // To guess an epsilon (not to cut), unevaluated nodes count with e1 raised by the ratio the
+  // evaluations showed so far (e2 typically adds some 10%).
+  const float inflation = static_cast<float>(
+    guess && this->RatioCount > 0 ? std::exp(this->LogRatioSum / this->RatioCount) : 1.0);
+  const Id ni = this->Tree.NumberOfInternalNodes();
+  this->Activation.resize(ni);
+  for (Id i = ni - 1; i >= 0; --i)
+  {
+    const Id parent = this->Tree.Nodes[i].Parent;
+    const float own =
+      this->State[i] == NodeState::NotEvaluated ? this->Thr[i] * inflation : this->Thr[i];
+    this->Activation[i] =
+      parent == InvalidId ? own : std::min(own, this->Activation[parent - this->NV]);
+  }
+}
+
+//------------------------------------------------------------------------------
+// The clusters at `epsilon`: the topmost nodes whose threshold is at most epsilon (a vertex on
+// its own always qualifies), in depth-first order. Needs ComputeActivation().
+void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cut) const
+{
+  const Id ni = this->Tree.NumberOfInternalNodes();
+  const Id nv = this->NV;
+  auto parentOpen = [&](Id parent)
+  { return parent == InvalidId || this->Activation[parent - nv] > epsilon; };
+  auto isCluster = [&](Id node)
+  {
+    if (node < nv)
+    {
+      return parentOpen(this->Tree.LeafParent[node]);
+    }
+    const Id i = node - nv;
+    return this->Thr[i] <= epsilon && parentOpen(this->Tree.Nodes[i].Parent);
+  };
+  cut.resize(static_cast<size_t>(nv) + ni);
+  const Id count = ParallelCompact(nv + ni, isCluster, [&](Id node, Id slot) { cut[slot] = node; });
+  cut.resize(count);
+  std::sort(cut.begin(),
+    cut.end(),
+    [&](Id a, Id b) { return this->Tree.Position(a) < this->Tree.Position(b); });
+}
+
+//------------------------------------------------------------------------------
+// The cut at `epsilon` with every cluster evaluated in full. An evaluation can only raise a
+// node's threshold: a cluster that fails is replaced by the topmost nodes below it that qualify,
+// which are evaluated in turn. With `update`, `cut` is the cut at the same epsilon before some of
+// its nodes were marked inadmissible: only those are replaced, which gives the same cut as
+// starting afresh (the nodes above a cut node do not qualify, marked or not) without a pass
+// over the whole tree.
+void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bool update)
+{
+  if (!update)
+  {
+    this->ComputeActivation();
+    this->CollectCut(epsilon, cut);
+  }
+  vtkSMPThreadLocal<EvaluationScratch> scratch;
+  std::vector<Id> pending, failed, kept, stack;
+  auto queue = [&](Id node)
+  {
+    if (node >= this->NV && this->State[node - this->NV] == NodeState::NotEvaluated)
+    {
+      const Id i = node - this->NV;
+      pending.push_back(node);
+      this->RepSlot[i] = static_cast<Id>(this->Reps.size() / SlotSize);
+      this->Reps.resize(this->Reps.size() + SlotSize);
+    }
+    else if (node < this->NV || this->Thr[node - this->NV] <= epsilon)
+    {
+      kept.push_back(node);
+    }
+    else
+    {
+      failed.push_back(node); // evaluated before, since marked inadmissible (update only)
+    }
+  };
+  // Replace a node that does not qualify by the topmost qualifying nodes below it.
+  auto descend = [&](Id node, std::vector<Id>& into)
+  {
+    stack.assign(1, node);
+    while (!stack.empty())
+    {
+      const Id parent = stack.back();
+      stack.pop_back();
+      // The children tile the parent's range of the depth-first order.
+      const Id end = this->Tree.Position(parent) + this->Tree.Count(parent);
+      for (Id pos = this->Tree.Position(parent); pos < end;)
+      {
+        const Id child = this->Tree.ChildAt(parent, pos);
+        pos += this->Tree.Count(child);
+        if (child < this->NV || this->Thr[child - this->NV] <= epsilon)
+        {
+          into.push_back(child);
+        }
+        else
+        {
+          stack.push_back(child);
+        }
+      }
+    }
+  };
+  std::vector<Id> candidates;
+  candidates.swap(cut);
+  for (;;)
+  {
+    pending.clear();
+    failed.clear();
+    for (const Id node : candidates)
+    {
+      queue(node);
+    }
+    if (pending.empty() && failed.empty())
+    {
+      break;
+    }
+    vtkSMPTools::For(0,
+      static_cast<Id>(pending.size()),
+      [&](Id begin, Id end)
+      {
+        EvaluationScratch& local = scratch.Local();
+        for (Id j = begin; j < end; ++j)
+        {
+          this->Evaluate(pending[j] - this->NV, local);
+        }
+      });
+    this->Evaluated += static_cast<Id>(pending.size());
+    for (const Id node : pending)
+    {
+      const Id i = node - this->NV;
+      const float e1 = this->Tree.Nodes[i].E1;
+      const double error = this->NodeError(node);
+      if (this->State[i] == NodeState::Admissible && e1 > 0.0f && error > 0.0)
+      {
+        this->LogRatioSum += std::log(error / e1);
+        ++this->RatioCount;
+      }
+    }
+    candidates.clear();
+    for (const Id node : pending)
+    {
+      if (this->Thr[node - this->NV] <= epsilon)
+      {
+        kept.push_back(node);
+      }
+      else
+      {
+        descend(node, candidates);
+      }
+    }
+    for (const Id node : failed)
+    {
+      descend(node, candidates);
+    }
+  }
+  cut.swap(kept);
+  std::sort(cut.begin(),
+    cut.end(),
+    [&](Id a, Id b) { return this->Tree.Position(a) < this->Tree.Position(b); });
+}
+
+//------------------------------------------------------------------------------
+// The smallest epsilon whose cut keeps at most `target` input triangles by the estimate
+// NT - (triangles that degenerate in collapsed nodes), from a histogram of the activation
+// epsilons (no sort of all nodes). Needs ComputeActivation(). Returns infinity when even
+// collapsing every mergeable node keeps more.
+double OctreeClustering::Internals::EpsilonForCount(Id target) const
+{
+  const Id ni = this->Tree.NumberOfInternalNodes();
+  const std::int64_t need = static_cast<std::int64_t>(this->NT) - target;
+  if (need <= 0)
+  {
+    return 0.0;
+  }
+  double lo = std::numeric_limits<double>::max(), hi = 0.0;
+  std::int64_t total = 0;
+  for (Id i = 0; i < ni; ++i)
+  {
+    const float a = this->Activation[i];
+    if (this->Tree.Nodes[i].Dies > 0 && a < Infinite)
+    {
+      total += this->Tree.Nodes[i].Dies;
+      if (a > 0.0f)
+      {
+        lo = std::min(lo, double(a));
+        hi = std::max(hi, double(a));
+      }
+    }
+  }
+  if (total < need)
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  if (!(hi > 0.0))
+  {
+    return 0.0;
+  }
+  // Positive floats order like their bit patterns: bin by the leading bits above `lo`.
+  constexpr int bins = 4096;
+  auto bits = [](float a)
+  {
+    std::uint32_t u;
+    std::memcpy(&u, &a, sizeof(u));
+    return u;
+  };
+  const std::uint32_t base = bits(static_cast<float>(lo));
+  const std::uint32_t range = bits(static_cast<float>(hi)) - base;
+  int shift = 0;
+  while ((range >> shift) >= static_cast<std::uint32_t>(bins - 1))
+  {
+    ++shift;
+  }
+  auto bin = [&](float a)
+  { return a <= static_cast<float>(lo) ? 0 : 1 + static_cast<int>((bits(a) - base) >> shift); };
+  std::vector<std::int64_t> histogram(bins, 0);
+  for (Id i = 0; i < ni; ++i)
+  {
+    const float a = this->Activation[i];
+    if (this->Tree.Nodes[i].Dies > 0 && a < Infinite)
+    {
+      histogram[bin(a)] += this->Tree.Nodes[i].Dies;
+    }
+  }
+  std::int64_t before = 0;
+  int b = 0;
+  for (; b < bins && before + histogram[b] < need; ++b)
+  {
+    before += histogram[b];
+  }
+  std::vector<std::pair<float, Id>> inBin;
+  for (Id i = 0; i < ni; ++i)
+  {
+    const float a = this->Activation[i];
+    if (this->Tree.Nodes[i].Dies > 0 && a < Infinite && bin(a) == b)
+    {
+      inBin.emplace_back(a, this->Tree.Nodes[i].Dies);
+    }
+  }
+  std::sort(inBin.begin(), inBin.end());
+  for (const auto& entry : inBin)
+  {
+    before += entry.second;
+    if (before >= need)
+    {
+      return entry.first;
+    }
+  }
+  return hi;
+}
+
+//------------------------------------------------------------------------------
+// NT minus the triangles that degenerate at `epsilon`. Needs ComputeActivation().
+std::int64_t OctreeClustering::Internals::EstimateAt(double epsilon) const
+{
+  std::int64_t vanished = 0;
+  for (Id i = 0; i < this->Tree.NumberOfInternalNodes(); ++i)
+  {
+    vanished += this->Activation[i] <= epsilon ? this->Tree.Nodes[i].Dies : 0;
+  }
+  return this->NT - vanished;
+}
+
+//------------------------------------------------------------------------------
+// An epsilon (at least the current one) whose cut keeps about `target` triangles by the
+// estimate. The estimate from e1 alone is a first guess (thresholds only rise when nodes are
+// evaluated); then a bisection in log scale on the estimate with the cut evaluated.
+double OctreeClustering::Internals::SearchEpsilon(Id target, Id tolerance)
+{
+  std::vector<Id> cut;
+  auto estimate = [&](double epsilon)
+  {
+    this->CutAt(epsilon, cut);
+    this->ComputeActivation();
+    return this->EstimateAt(epsilon);
+  };
+  const double floor = this->CurrentEpsilon;
+  double low = floor, high = 0.0;
+  std::int64_t lowCount = this->NT, highCount = 0;
+  for (int guess = 0; guess < 3; ++guess)
+  {
+    this->ComputeActivation(true);
+    const double epsilon = std::max(floor, this->EpsilonForCount(target));
+    if (!std::isfinite(epsilon))
+    {
+      return std::numeric_limits<float>::max(); // unreachable: collapse all that may collapse
+    }
+    const std::int64_t count = estimate(epsilon);
+    if (std::abs(count - target) <= tolerance)
+    {
+      return epsilon;
+    }
+    if (count < target)
+    {
+      high = epsilon;
+      highCount = count;
+      break;
+    }
+    low = epsilon;
+    lowCount = count;
+  }
+  if (!(high > 0.0))
+  {
+    // Grow until the estimate falls below the target.
+    high = std::max(low, 1e-12 * this->Tree.Size);
+    for (int it = 0; it < 60; ++it)
+    {
+      high *= 1.25;
+      highCount = estimate(high);
+      if (highCount <= target)
+      {
+        break;
+      }
+      low = high;
+      lowCount = highCount;
+    }
+  }
+  // The count falls about like a power of epsilon: interpolate in log-log (regula falsi), with a
+  // bisection whenever the same end moved twice.
+  int lastMoved = 0;
+  for (int it = 0; it < 20 && high > low * (1.0 + 1e-7); ++it)
+  {
+    double next = low > 0.0 ? std::sqrt(low * high) : 0.5 * high;
+    if (low > 0.0 && lastMoved != 2 && lastMoved != -2)
+    {
+      const double a = std::log(static_cast<double>(std::max<std::int64_t>(1, lowCount)));
+      const double b = std::log(static_cast<double>(std::max<std::int64_t>(1, highCount)));
+      const double t = a > b ? (a - std::log(static_cast<double>(target))) / (a - b) : 0.5;
+      next = std::exp(
+        std::log(low) + std::min(0.95, std::max(0.05, t)) * (std::log(high) - std::log(low)));
+    }
+    const std::int64_t count = estimate(next);
+    if (std::abs(count - target) <= tolerance)
+    {
+      return next;
+    }
+    if (count > target)
+    {
+      low = next;
+      lowCount = count;
+      lastMoved = lastMoved < 0 ? lastMoved - 1 : -1;
+    }
+    else
+    {
+      high = next;
+      highCount = count;
+      lastMoved = lastMoved > 0 ? lastMoved + 1 : 1;
+    }
+    if (lastMoved == 3 || lastMoved == -3)
+    {
+      lastMoved = 0;
+    }
+  }
+  return high;
+}
+
+} // namespace meshlod

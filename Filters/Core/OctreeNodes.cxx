@@ -1,0 +1,298 @@
+// Octree clustering: evaluating a node of the cluster tree (see OctreeClusteringInternals.h).
+#include "OctreeClusteringInternals.h"
+
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace meshlod
+{
+using namespace octree;
+
+//------------------------------------------------------------------------------
+bool OctreeClustering::Internals::CheapInadmissible(Id index) const
+{
+  const ClusterNode& n = this->Tree.Nodes[index];
+  return n.Locked != 0 ||
+    (this->Options.MaximumPointsPerCell > 0 && n.Count > this->Options.MaximumPointsPerCell) ||
+    (this->Options.MaximumCellSize > 0.0 &&
+      this->Tree.CellSize(n.Depth) > this->Options.MaximumCellSize);
+}
+
+// The smallest epsilon at which the node may be a cluster: its error once evaluated in full,
+// before that e1 (a lower bound). The tree's e1 comes from quadrics summed with cancellations, so
+// values at rounding level are taken as zero (the full evaluation recomputes the quadric
+// directly and tells exact zeros, such as a flat part or a cube corner, from small errors).
+void OctreeClustering::Internals::UpdateThreshold(Id index)
+{
+  float& thr = this->Thr[index];
+  if (this->State[index] == NodeState::Inadmissible || this->CheapInadmissible(index))
+  {
+    thr = Infinite;
+    return;
+  }
+  const float e1 = this->Tree.Nodes[index].E1;
+  thr = this->State[index] == NodeState::Admissible
+    ? static_cast<float>(this->Reps[SlotSize * static_cast<size_t>(this->RepSlot[index]) + 6])
+    : (e1 < 1e-6 * this->Tree.Size ? 0.0f : e1);
+}
+
+//------------------------------------------------------------------------------
+// Normal (not normalised) of crossing triangle item / 3 with its corner item % 3 moved to v0.
+void OctreeClustering::Internals::MovedNormal(Id item, const double v0[3], double moved[3]) const
+{
+  double p[3][3];
+  this->Tree.RelativeTriangle(this->Mesh.Triangle(item / 3), p);
+  std::copy_n(v0, 3, p[item % 3]);
+  Normal(p[0], p[1], p[2], moved);
+}
+
+//------------------------------------------------------------------------------
+// e2 (§3): the squared distance of the vertex inside a crossing triangle (v, a, b) to the new
+// triangle (v0, a, b) is (area(v, a, b) / area(v0, a, b))^2 times the squared distance of v0 to
+// the original plane, so e2 reweights the crossing triangles' planes.
+void OctreeClustering::Internals::AddCrossingTerms(const double v0[3],
+  const EvaluationScratch& crossing,
+  Quadric& q) const
+{
+  for (size_t i = 0; i < crossing.Crossing.size(); ++i)
+  {
+    double moved[3];
+    this->MovedNormal(crossing.Crossing[i], v0, moved);
+    const double* n = crossing.Normals.data() + 3 * i;
+    const double before = Dot(n, n);
+    const double after = Dot(moved, moved);
+    const double weight =
+      after * MaximumCrossingWeight > before ? before / after : MaximumCrossingWeight;
+    q.Add(crossing.Planes[i], weight);
+  }
+}
+
+//------------------------------------------------------------------------------
+// §2.4: clustering must not flip a triangle joining the cluster to the outside. A crossing
+// triangle whose two outside vertices share a cell of the cluster's size will most likely fall
+// into one neighbouring cluster and vanish, so it is not held against the cluster (otherwise the
+// thin triangles of isosurfaces would forbid almost every cluster on a curved surface).
+bool OctreeClustering::Internals::HasFlip(const double v0[3],
+  const EvaluationScratch& crossing,
+  int depth) const
+{
+  for (size_t i = 0; i < crossing.Crossing.size(); ++i)
+  {
+    const Id item = crossing.Crossing[i];
+    const Id* tri = this->Mesh.Triangle(item / 3);
+    const int c = static_cast<int>(item % 3);
+    if (this->Tree.CommonDepth(tri[(c + 1) % 3], tri[(c + 2) % 3]) >= depth)
+    {
+      continue;
+    }
+    double moved[3];
+    this->MovedNormal(item, v0, moved);
+    if (!(Dot(crossing.Normals.data() + 3 * i, moved) > 0.0))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+//------------------------------------------------------------------------------
+// Move v0 (relative coordinates) to the closest point of the given boundary edges.
+void OctreeClustering::Internals::ProjectOnBoundary(const std::vector<Id>& edges,
+  double v0[3]) const
+{
+  double best[3] = { v0[0], v0[1], v0[2] };
+  double bestDistance = std::numeric_limits<double>::max();
+  for (const Id item : edges)
+  {
+    const Id* tri = this->Mesh.Triangle(item / 3);
+    const int k = static_cast<int>(item % 3);
+    double a[3], b[3];
+    this->Tree.RelativePoint(tri[k], a);
+    this->Tree.RelativePoint(tri[(k + 1) % 3], b);
+    const double d[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double w[3] = { v0[0] - a[0], v0[1] - a[1], v0[2] - a[2] };
+    const double length = Dot(d, d);
+    const double t = length > 0.0 ? std::min(1.0, std::max(0.0, Dot(w, d) / length)) : 0.0;
+    const double p[3] = { a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2] };
+    const double e[3] = { v0[0] - p[0], v0[1] - p[1], v0[2] - p[2] };
+    const double distance = Dot(e, e);
+    if (distance < bestDistance)
+    {
+      bestDistance = distance;
+      std::copy_n(p, 3, best);
+    }
+  }
+  std::copy_n(best, 3, v0);
+}
+
+//------------------------------------------------------------------------------
+// The representative and error of a node (§2.3, §3), and whether it may be a cluster.
+void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
+{
+  const Id node = this->NV + index;
+  const ClusterNode& n = this->Tree.Nodes[index];
+  Quadric q1, boundary;
+  double* slot = this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[index]);
+  this->Tree.RelatedQuadric(
+    node, q1, &scratch.Crossing, slot + 3, &boundary, &scratch.BoundaryEdges, &scratch.Related);
+  const size_t crossings = scratch.Crossing.size();
+  scratch.Planes.resize(crossings);
+  scratch.Normals.resize(3 * crossings);
+  for (size_t i = 0; i < crossings; ++i)
+  {
+    const Id* tri = this->Mesh.Triangle(scratch.Crossing[i] / 3);
+    double p[3][3];
+    this->Tree.RelativeTriangle(tri, p);
+    TriangleQuadric(p[0], p[1], p[2], scratch.Planes[i], scratch.Normals.data() + 3 * i);
+  }
+  const EvaluationScratch& crossing = scratch;
+
+  double centre[3];
+  this->Tree.Centroid(node, centre);
+  const double tolerance = this->Options.PlacementTolerance;
+  const double cell = this->Tree.CellSize(n.Depth);
+  double v0[3];
+  MinimizeQuadric(q1, centre, tolerance, v0);
+  const int iterations = this->Options.RepresentativeIterations;
+  for (int it = 0; it < iterations; ++it)
+  {
+    Quadric q = q1;
+    this->AddCrossingTerms(v0, crossing, q);
+    double v1[3];
+    MinimizeQuadric(q, centre, tolerance, v1);
+    const double d[3] = { v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2] };
+    std::copy_n(v1, 3, v0);
+    if (Dot(d, d) <= 1e-18 * cell * cell)
+    {
+      break;
+    }
+  }
+  auto errorAt = [&](const double x[3])
+  {
+    Quadric q = q1;
+    if (iterations > 0)
+    {
+      this->AddCrossingTerms(x, crossing, q);
+    }
+    return q.Evaluate(x);
+  };
+
+  // A placement far outside the cell means near-parallel planes met far away: fall back to the
+  // best of the centroid and the cluster's vertices (§2.3).
+  double low[3], extent[3];
+  this->Tree.CellBox(this->FirstVertex(node), n.Depth, low, extent);
+  bool outside = false;
+  for (int c = 0; c < 3; ++c)
+  {
+    outside = outside || v0[c] < low[c] - 0.5 * extent[c] || v0[c] > low[c] + 1.5 * extent[c];
+  }
+  double value = 0.0;
+  if (outside)
+  {
+    std::copy_n(centre, 3, v0);
+    value = errorAt(v0);
+    const Id first = this->Tree.Position(node);
+    for (Id pos = first; pos < first + n.Count; ++pos)
+    {
+      double p[3];
+      this->Tree.RelativePoint(this->Tree.Order[pos], p);
+      const double e = errorAt(p);
+      if (e < value)
+      {
+        value = e;
+        std::copy_n(p, 3, v0);
+      }
+    }
+  }
+  else
+  {
+    value = errorAt(v0);
+  }
+  // A cluster on an open boundary keeps its representative on the input's boundary: the closest
+  // point of its boundary edges (a small move, paid for in the error below).
+  if (!scratch.BoundaryEdges.empty())
+  {
+    this->ProjectOnBoundary(scratch.BoundaryEdges, v0);
+    value = errorAt(v0);
+  }
+  // The error: the root mean squared distance to the planes of the related triangle set, and
+  // separately to the boundary-edge planes (few, so they would hardly count in the mean: an
+  // open boundary is kept within epsilon too). No single plane may be farther than twice that:
+  // a mean lets elongated or bent clusters stray far at their ends.
+  const double weight = q1.Weight();
+  double error = weight > 0.0 ? std::sqrt(value / weight) : 0.0;
+  if (boundary.Weight() > 0.0)
+  {
+    error = std::max(error, std::sqrt(boundary.Evaluate(v0) / boundary.Weight()));
+  }
+  double farthest = 0.0;
+  for (size_t i = 0; i < scratch.Related.size(); i += 4)
+  {
+    const double* plane = scratch.Related.data() + i;
+    farthest = std::max(farthest, std::abs(Dot(plane, v0) + plane[3]));
+  }
+  error = std::max(error, 0.5 * farthest);
+  std::copy_n(v0, 3, slot);
+  slot[6] = static_cast<float>(error); // as a threshold, in single precision
+  this->State[index] =
+    this->HasFlip(v0, crossing, n.Depth) ? NodeState::Inadmissible : NodeState::Admissible;
+  this->UpdateThreshold(index);
+}
+
+//------------------------------------------------------------------------------
+void OctreeClustering::Internals::RepresentativeOf(Id node, double out[3]) const
+{
+  if (this->Tree.IsLeaf(node))
+  {
+    std::copy_n(this->Mesh.Point(node), 3, out);
+    return;
+  }
+  const double* r =
+    this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[node - this->NV]);
+  for (int c = 0; c < 3; ++c)
+  {
+    out[c] = r[c] + this->Tree.Centre[c];
+  }
+}
+
+double OctreeClustering::Internals::NodeError(Id node) const
+{
+  return this->Tree.IsLeaf(node)
+    ? 0.0
+    : this->Reps[SlotSize * static_cast<size_t>(this->RepSlot[node - this->NV]) + 6];
+}
+
+// The area-weighted normal of the input surface at a node's vertices (not normalised); kept
+// from the evaluation for internal nodes.
+void OctreeClustering::Internals::SurfaceNormal(Id node, double normal[3]) const
+{
+  if (!this->Tree.IsLeaf(node))
+  {
+    std::copy_n(
+      this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[node - this->NV]) + 3,
+      3,
+      normal);
+    return;
+  }
+  normal[0] = normal[1] = normal[2] = 0.0;
+  const VertexTriangleAdjacency& adj = this->Topology.VertexTriangles;
+  const Id first = this->Tree.Position(node);
+  for (Id pos = first; pos < first + this->Tree.Count(node); ++pos)
+  {
+    const Id v = this->Tree.Order[pos];
+    for (Id i = adj.Begin(v); i < adj.End(v); ++i)
+    {
+      const Id* tri = this->Mesh.Triangle(adj.Triangles[i]);
+      double n[3];
+      Normal(this->Mesh.Point(tri[0]), this->Mesh.Point(tri[1]), this->Mesh.Point(tri[2]), n);
+      for (int c = 0; c < 3; ++c)
+      {
+        normal[c] += n[c];
+      }
+    }
+  }
+}
+
+} // namespace meshlod

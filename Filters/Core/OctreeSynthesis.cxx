@@ -1,0 +1,554 @@
+// Octree clustering: a level from a cut of the cluster tree (see OctreeClusteringInternals.h).
+#include "OctreeClusteringInternals.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+
+namespace meshlod
+{
+using namespace octree;
+
+//------------------------------------------------------------------------------
+// Clusters of every vertex and previous point, and the representatives.
+void OctreeClustering::Internals::AssignClusters(Synthesis& s)
+{
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  vtkSMPTools::For(0,
+    clusters,
+    [&](Id begin, Id end)
+    {
+      for (Id k = begin; k < end; ++k)
+      {
+        const Id first = this->Tree.Position(s.Cut[k]);
+        const Id last = first + this->Tree.Count(s.Cut[k]);
+        for (Id pos = first; pos < last; ++pos)
+        {
+          this->ClusterOfVertex[this->Tree.Order[pos]] = k;
+        }
+      }
+    });
+  const Id previousPoints = this->PreviousPoints();
+  s.PointCluster.resize(previousPoints);
+  vtkSMPTools::For(0,
+    previousPoints,
+    [&](Id begin, Id end)
+    {
+      for (Id p = begin; p < end; ++p)
+      {
+        s.PointCluster[p] = this->ClusterOfVertex[this->FirstVertex(this->NodeOfPoint(p))];
+      }
+    });
+  s.Reps.resize(3 * static_cast<size_t>(clusters));
+  vtkSMPTools::For(0,
+    clusters,
+    [&](Id begin, Id end)
+    {
+      for (Id k = begin; k < end; ++k)
+      {
+        this->RepresentativeOf(s.Cut[k], s.Reps.data() + 3 * k);
+      }
+    });
+  // A cluster is unchanged when it is exactly one previous point.
+  std::vector<Id> count(clusters, 0), some(clusters, InvalidId);
+  for (Id p = 0; p < previousPoints; ++p)
+  {
+    ++count[s.PointCluster[p]];
+    some[s.PointCluster[p]] = p;
+  }
+  s.Changed.resize(clusters);
+  for (Id k = 0; k < clusters; ++k)
+  {
+    s.Changed[k] = (count[k] == 1 && this->NodeOfPoint(some[k]) == s.Cut[k]) ? 0 : 1;
+  }
+}
+
+//------------------------------------------------------------------------------
+// The previous triangles re-indexed to clusters, without those that degenerate.
+Id OctreeClustering::Internals::ReindexTriangles(Synthesis& s) const
+{
+  const Id previousTriangles = this->PreviousTriangles();
+  const Id* prev = this->PreviousTriangleData();
+  const std::vector<Id>& pc = s.PointCluster;
+  auto nonDegenerate = [&](Id t)
+  {
+    const Id a = pc[prev[3 * t]], b = pc[prev[3 * t + 1]], c = pc[prev[3 * t + 2]];
+    return a != b && b != c && c != a;
+  };
+  s.From.resize(previousTriangles);
+  const Id kept =
+    ParallelCompact(previousTriangles, nonDegenerate, [&](Id t, Id slot) { s.From[slot] = t; });
+  s.From.resize(kept);
+  s.Triangles.resize(3 * static_cast<size_t>(kept));
+  vtkSMPTools::For(0,
+    kept,
+    [&](Id begin, Id end)
+    {
+      for (Id j = begin; j < end; ++j)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          s.Triangles[3 * j + k] = pc[prev[3 * s.From[j] + k]];
+        }
+      }
+    });
+  return kept;
+}
+
+//------------------------------------------------------------------------------
+// Triangles with the same three clusters as an earlier one (either orientation), grouped by
+// their smallest cluster with the triangle order kept inside each group.
+void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
+{
+  const Id kept = static_cast<Id>(s.From.size());
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  const std::vector<Id>& tris = s.Triangles;
+  auto smallest = [&](Id j)
+  { return std::min(tris[3 * j], std::min(tris[3 * j + 1], tris[3 * j + 2])); };
+  std::vector<Id> offsets(static_cast<size_t>(clusters) + 1, 0);
+  for (Id j = 0; j < kept; ++j)
+  {
+    ++offsets[smallest(j) + 1];
+  }
+  for (Id k = 0; k < clusters; ++k)
+  {
+    offsets[k + 1] += offsets[k];
+  }
+  std::vector<Id> grouped(kept);
+  {
+    std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
+    for (Id j = 0; j < kept; ++j)
+    {
+      grouped[cursor[smallest(j)]++] = j;
+    }
+  }
+  s.Duplicate.assign(kept, 0);
+  vtkSMPTools::For(0,
+    clusters,
+    [&](Id begin, Id end)
+    {
+      for (Id k = begin; k < end; ++k)
+      {
+        for (Id x = offsets[k]; x < offsets[k + 1]; ++x)
+        {
+          const Id* a = tris.data() + 3 * grouped[x];
+          const Id amax = std::max(a[0], std::max(a[1], a[2]));
+          const std::int64_t amid = std::int64_t(a[0]) + a[1] + a[2] - k - amax;
+          for (Id y = offsets[k]; y < x; ++y)
+          {
+            const Id* b = tris.data() + 3 * grouped[y];
+            const Id bmax = std::max(b[0], std::max(b[1], b[2]));
+            if (bmax == amax && std::int64_t(b[0]) + b[1] + b[2] - k - bmax == amid)
+            {
+              s.Duplicate[grouped[x]] = 1;
+              break;
+            }
+          }
+        }
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
+// Folds: a kept triangle whose normal opposes the input surface around its three clusters.
+// The clusters of such a triangle that changed are marked as not mergeable (they lie above the
+// previous cut, so the levels still nest). Returns the number of nodes marked.
+Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
+{
+  const Id kept = static_cast<Id>(s.From.size());
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  // Surface normals only for the clusters of triangles that can have folded.
+  std::vector<unsigned char> needed(clusters, 0);
+  for (Id j = 0; j < kept; ++j)
+  {
+    if (s.Involved(j))
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        needed[s.Triangles[3 * j + c]] = 1;
+      }
+    }
+  }
+  std::vector<double> normals(3 * static_cast<size_t>(clusters), 0.0);
+  vtkSMPTools::For(0,
+    clusters,
+    [&](Id begin, Id end)
+    {
+      for (Id k = begin; k < end; ++k)
+      {
+        if (needed[k])
+        {
+          this->SurfaceNormal(s.Cut[k], normals.data() + 3 * k);
+        }
+      }
+    });
+  std::vector<unsigned char> folded(kept, 0);
+  vtkSMPTools::For(0,
+    kept,
+    [&](Id begin, Id end)
+    {
+      for (Id j = begin; j < end; ++j)
+      {
+        if (!s.Involved(j))
+        {
+          continue;
+        }
+        const Id* tri = s.Triangles.data() + 3 * j;
+        double surface[3] = { 0.0, 0.0, 0.0 }, after[3];
+        for (int c = 0; c < 3; ++c)
+        {
+          for (int i = 0; i < 3; ++i)
+          {
+            surface[i] += normals[3 * tri[c] + i];
+          }
+        }
+        Normal(s.Reps.data() + 3 * tri[0],
+          s.Reps.data() + 3 * tri[1],
+          s.Reps.data() + 3 * tri[2],
+          after);
+        folded[j] = Dot(surface, after) > 0.0 ? 0 : 1;
+      }
+    });
+  std::vector<Id> marks; // the clusters of the folded triangles
+  for (Id j = 0; j < kept; ++j)
+  {
+    if (folded[j])
+    {
+      marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
+    }
+  }
+  return this->MarkChanged(s, marks);
+}
+
+//------------------------------------------------------------------------------
+Id OctreeClustering::Internals::MarkChanged(Synthesis& s, const std::vector<Id>& clusters)
+{
+  Id marked = 0;
+  for (const Id k : clusters)
+  {
+    const Id node = s.Cut[k];
+    if (s.Changed[k] && node >= this->NV &&
+      this->State[node - this->NV] != NodeState::Inadmissible)
+    {
+      this->State[node - this->NV] = NodeState::Inadmissible;
+      this->UpdateThreshold(node - this->NV);
+      ++marked;
+    }
+  }
+  return marked;
+}
+
+//------------------------------------------------------------------------------
+// Pinches: an edge that three or more kept triangles share, where one of them has a changed
+// cluster (clusters that merged folded part of the surface onto itself). Like folds, the changed
+// clusters of the triangles on such an edge are marked as not mergeable. The edges are grouped
+// by their smaller cluster (a counting sort, as for duplicates), so that each edge's triangles
+// are found among the few edges of one cluster.
+Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
+{
+  const Id kept = static_cast<Id>(s.From.size());
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  std::vector<Id> offsets(static_cast<size_t>(clusters) + 1, 0);
+  auto forEachEdge = [&](auto visit)
+  {
+    for (Id j = 0; j < kept; ++j)
+    {
+      for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
+      {
+        const Id a = s.Triangles[3 * j + c], b = s.Triangles[3 * j + (c + 1) % 3];
+        visit(std::min(a, b), std::max(a, b), j);
+      }
+    }
+  };
+  forEachEdge([&](Id low, Id, Id) { ++offsets[low + 1]; });
+  for (Id k = 0; k < clusters; ++k)
+  {
+    offsets[k + 1] += offsets[k];
+  }
+  // Each entry packs the larger cluster (high bits) and the triangle, so that sorting a
+  // cluster's entries brings the triangles of each of its edges together (n log n even around a
+  // vertex with very many triangles).
+  std::vector<std::uint64_t> entries(offsets[clusters]);
+  {
+    std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
+    forEachEdge([&](Id low, Id other, Id j) {
+      entries[cursor[low]++] =
+        (static_cast<std::uint64_t>(other) << 32) | static_cast<std::uint32_t>(j);
+    });
+  }
+  auto triangleOf = [&](std::size_t x) { return static_cast<Id>(entries[x] & 0xffffffffu); };
+  // pinched[x]: entry x is on an edge with three or more triangles, one of them involved.
+  std::vector<unsigned char> pinched(entries.size(), 0);
+  vtkSMPTools::For(0,
+    clusters,
+    [&](Id begin, Id end)
+    {
+      for (Id k = begin; k < end; ++k)
+      {
+        const std::size_t first = offsets[k], last = offsets[k + 1];
+        std::sort(entries.begin() + first, entries.begin() + last);
+        for (std::size_t x = first; x < last;)
+        {
+          std::size_t y = x;
+          bool watched = false;
+          for (; y < last && (entries[y] >> 32) == (entries[x] >> 32); ++y)
+          {
+            watched = watched || s.Involved(triangleOf(y));
+          }
+          if (y - x > 2 && watched)
+          {
+            std::fill(pinched.begin() + x, pinched.begin() + y, 1);
+          }
+          x = y;
+        }
+      }
+    });
+  std::vector<Id> marks; // the clusters of the triangles on pinched edges
+  for (std::size_t x = 0; x < pinched.size(); ++x)
+  {
+    if (pinched[x])
+    {
+      const Id j = triangleOf(x);
+      marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
+    }
+  }
+  return this->MarkChanged(s, marks);
+}
+
+//------------------------------------------------------------------------------
+// Points, triangles, targets, ranks and sources of a level from its synthesis.
+void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) const
+{
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  const Id previousPoints = this->PreviousPoints();
+  const Id previousTriangles = this->PreviousTriangles();
+  const Id* prev = this->PreviousTriangleData();
+  std::vector<Id> final;
+  final.resize(s.From.size());
+  const Id count = ParallelCompact(
+    static_cast<Id>(s.From.size()),
+    [&](Id j) { return s.Duplicate[j] == 0; },
+    [&](Id j, Id slot) { final[slot] = j; });
+  final.resize(count);
+  if (count == 0)
+  {
+    return; // everything collapsed: no level
+  }
+
+  // Points: the clusters some triangle uses, in depth-first order.
+  std::vector<Id> newId(clusters, InvalidId);
+  for (const Id j : final)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      newId[s.Triangles[3 * j + c]] = 0;
+    }
+  }
+  Id points = 0;
+  for (Id k = 0; k < clusters; ++k)
+  {
+    newId[k] = newId[k] == 0 ? points++ : InvalidId;
+  }
+  level.Mesh.Points.resize(3 * static_cast<size_t>(points));
+  level.PointNode.resize(points);
+  level.PointVertexCount.resize(points);
+  double worst = 0.0;
+  for (Id k = 0; k < clusters; ++k)
+  {
+    if (newId[k] != InvalidId)
+    {
+      std::copy_n(s.Reps.data() + 3 * k, 3, level.Mesh.Point(newId[k]));
+      level.PointNode[newId[k]] = s.Cut[k];
+      level.PointVertexCount[newId[k]] = this->Tree.Count(s.Cut[k]);
+      worst = std::max(worst, this->NodeError(s.Cut[k]));
+    }
+  }
+  level.EstimatedError = worst;
+  level.Mesh.Triangles.resize(3 * static_cast<size_t>(count));
+  level.LevelZeroTriangle.resize(count);
+  vtkSMPTools::For(0,
+    count,
+    [&](Id begin, Id end)
+    {
+      for (Id i = begin; i < end; ++i)
+      {
+        const Id j = final[i];
+        for (int c = 0; c < 3; ++c)
+        {
+          level.Mesh.Triangles[3 * i + c] = newId[s.Triangles[3 * j + c]];
+        }
+        level.LevelZeroTriangle[i] = this->LevelZeroOf(s.From[j]);
+      }
+    });
+
+  // Clusters that lost all their triangles send their previous points to the nearest cluster
+  // joined to them by a previous triangle, else to the nearer kept cluster before or after them
+  // in depth-first order.
+  std::vector<Id> redirect(clusters, InvalidId);
+  std::vector<double> distance(clusters, std::numeric_limits<double>::max());
+  auto offer = [&](Id k, Id candidate)
+  {
+    const double* x = s.Reps.data() + 3 * k;
+    const double* y = s.Reps.data() + 3 * candidate;
+    const double d =
+      (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]);
+    if (d < distance[k] || (d == distance[k] && candidate < redirect[k]))
+    {
+      redirect[k] = candidate;
+      distance[k] = d;
+    }
+  };
+  bool anyVanished = false;
+  for (Id p = 0; p < previousPoints && !anyVanished; ++p)
+  {
+    anyVanished = newId[s.PointCluster[p]] == InvalidId;
+  }
+  if (anyVanished)
+  {
+    for (Id t = 0; t < previousTriangles; ++t)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const Id k = s.PointCluster[prev[3 * t + c]];
+        for (int o = 1; o < 3 && newId[k] == InvalidId; ++o)
+        {
+          const Id other = s.PointCluster[prev[3 * t + (c + o) % 3]];
+          if (newId[other] != InvalidId)
+          {
+            offer(k, other);
+          }
+        }
+      }
+    }
+    std::vector<Id> before(clusters, InvalidId);
+    Id lastKept = InvalidId;
+    for (Id k = 0; k < clusters; ++k)
+    {
+      before[k] = lastKept;
+      lastKept = newId[k] != InvalidId ? k : lastKept;
+    }
+    Id nextKept = InvalidId;
+    for (Id k = clusters - 1; k >= 0; --k)
+    {
+      if (newId[k] == InvalidId && redirect[k] == InvalidId)
+      {
+        for (const Id candidate : { before[k], nextKept })
+        {
+          if (candidate != InvalidId)
+          {
+            offer(k, candidate);
+          }
+        }
+      }
+      nextKept = newId[k] != InvalidId ? k : nextKept;
+    }
+  }
+
+  // Targets; collapse ranks: the clusters that changed, by increasing error.
+  level.Target.resize(previousPoints);
+  std::vector<unsigned char> receives(clusters, 0);
+  for (Id p = 0; p < previousPoints; ++p)
+  {
+    Id k = s.PointCluster[p];
+    if (newId[k] == InvalidId)
+    {
+      k = redirect[k];
+      receives[k] = 1;
+    }
+    level.Target[p] = newId[k];
+  }
+  std::vector<Id> ranked;
+  for (Id k = 0; k < clusters; ++k)
+  {
+    if (newId[k] != InvalidId && (s.Changed[k] || receives[k]))
+    {
+      ranked.push_back(k);
+    }
+  }
+  std::sort(ranked.begin(),
+    ranked.end(),
+    [&](Id a, Id b)
+    {
+      const double ea = this->NodeError(s.Cut[a]), eb = this->NodeError(s.Cut[b]);
+      return ea < eb || (ea == eb && s.Cut[a] < s.Cut[b]);
+    });
+  std::vector<Id> rankOfPoint(points, -1);
+  for (size_t r = 0; r < ranked.size(); ++r)
+  {
+    rankOfPoint[newId[ranked[r]]] = static_cast<Id>(r);
+  }
+  level.Rank.resize(previousPoints);
+  for (Id p = 0; p < previousPoints; ++p)
+  {
+    level.Rank[p] = rankOfPoint[level.Target[p]];
+  }
+  level.ChangedClusters = static_cast<Id>(ranked.size());
+
+  // Sources: the previous points of each cluster, weighted by the input vertices they stand for.
+  level.SourceOffsets.assign(static_cast<size_t>(points) + 1, 0);
+  for (Id p = 0; p < previousPoints; ++p)
+  {
+    const Id j = newId[s.PointCluster[p]];
+    if (j != InvalidId)
+    {
+      ++level.SourceOffsets[j + 1];
+    }
+  }
+  for (Id j = 0; j < points; ++j)
+  {
+    level.SourceOffsets[j + 1] += level.SourceOffsets[j];
+  }
+  level.SourceParents.resize(level.SourceOffsets[points]);
+  level.SourceWeights.resize(level.SourceOffsets[points]);
+  std::vector<Id> cursor(level.SourceOffsets.begin(), level.SourceOffsets.end() - 1);
+  for (Id p = 0; p < previousPoints; ++p)
+  {
+    const Id j = newId[s.PointCluster[p]];
+    if (j != InvalidId)
+    {
+      level.SourceParents[cursor[j]] = p;
+      level.SourceWeights[cursor[j]++] = static_cast<float>(
+        static_cast<double>(this->VertexCountOfPoint(p)) / level.PointVertexCount[j]);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+// Build (without committing) the level at `epsilon` from the current one; returns its number of
+// triangles.
+Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
+{
+  level = ClusterLevel();
+  level.Epsilon = epsilon;
+  Synthesis s;
+  for (int pass = 0;; ++pass)
+  {
+    this->CutAt(epsilon, s.Cut, pass > 0); // later passes replace only the marked clusters
+    this->AssignClusters(s);
+    this->ReindexTriangles(s);
+    this->MarkDuplicates(s);
+    const Id marked =
+      pass < this->Options.FlipPasses ? this->MarkFolds(s) + this->MarkPinches(s) : 0;
+    if (marked == 0)
+    {
+      break;
+    }
+    level.FlippedTrianglesFixed += marked;
+  }
+  this->Finalize(s, level);
+  return level.Mesh.GetNumberOfTriangles();
+}
+
+//------------------------------------------------------------------------------
+void OctreeClustering::Internals::Commit(const ClusterLevel& level)
+{
+  this->CurrentTriangles = level.Mesh.Triangles;
+  this->CurrentLevelZero = level.LevelZeroTriangle;
+  this->PointNode = level.PointNode;
+  this->PointVertexCount = level.PointVertexCount;
+  this->CurrentEpsilon = level.Epsilon;
+}
+
+} // namespace meshlod
