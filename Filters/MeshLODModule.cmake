@@ -31,6 +31,7 @@ set(meshlod_private_headers
   Filters/Core/TriangleCollapse.h
   Filters/Core/TriangleMesh.h
   Filters/MeshLODBlend.h
+  Filters/MeshLODGeomorphInternals.h
   Filters/MeshLODHierarchy.h
   Filters/MeshLODInputArrays.h
   Filters/MeshLODInputMesh.h
@@ -59,6 +60,7 @@ set(meshlod_sources
   Filters/Core/TriangleCollapse.cxx
   Filters/Core/TriangleMesh.cxx
   Filters/MeshLODBlend.cxx
+  Filters/MeshLODGeomorphInternals.cxx
   Filters/MeshLODHierarchy.cxx
   Filters/MeshLODInputArrays.cxx
   Filters/MeshLODInputMesh.cxx

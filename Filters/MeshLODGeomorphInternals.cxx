@@ -1,0 +1,728 @@
+#include "MeshLODGeomorphInternals.h"
+
+#include "Core/CollapseSchedule.h"
+#include "Core/EdgeMerge.h"
+#include "MeshLODBlend.h"
+#include "MeshLODHierarchy.h"
+#include "MeshLODInputMesh.h"
+#include "MeshLODNearestCorrespondence.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkInformation.h"
+#include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkTypeInt32Array.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace meshlod
+{
+namespace geomorph
+{
+vtkMTimeType HierarchyTime(vtkMultiBlockDataSet* input)
+{
+  vtkMTimeType time = input->GetMTime();
+  for (unsigned int i = 0; i < input->GetNumberOfBlocks(); ++i)
+  {
+    if (vtkDataObject* block = input->GetBlock(i))
+    {
+      time = std::max(time, block->GetMTime());
+    }
+  }
+  return time;
+}
+
+// The level's polygons as 32-bit triangles; false when a cell is not a triangle or the level
+} // namespace geomorph
+} // namespace meshlod
+
+namespace
+{
+using meshlod::Id;
+using namespace meshlod::geomorph;
+// has vertices, lines or strips.
+bool ReadTriangles(vtkPolyData* poly, std::vector<Id>& triangles)
+{
+  triangles.clear();
+  if (poly->GetNumberOfCells() != poly->GetNumberOfPolys())
+  {
+    return false;
+  }
+  vtkCellArray* polys = poly->GetPolys();
+  const vtkIdType n = polys->GetNumberOfCells();
+  triangles.resize(3 * static_cast<size_t>(n));
+  bool ok = true;
+  auto visit = [&](auto* offsets, auto* connectivity) {
+    const auto off = vtk::DataArrayValueRange<1>(offsets);
+    const auto conn = vtk::DataArrayValueRange<1>(connectivity);
+    for (vtkIdType c = 0; c < n && ok; ++c)
+    {
+      ok = off[c + 1] - off[c] == 3;
+    }
+    for (vtkIdType i = 0; i < 3 * n && ok; ++i)
+    {
+      triangles[i] = static_cast<Id>(conn[i]);
+    }
+  };
+  if (polys->IsStorage64Bit())
+  {
+    visit(polys->GetOffsetsArray64(), polys->GetConnectivityArray64());
+  }
+  else
+  {
+    visit(polys->GetOffsetsArray32(), polys->GetConnectivityArray32());
+  }
+  return ok;
+}
+
+std::vector<Id> ToIds(vtkDataArray* array)
+{
+  std::vector<Id> ids(array->GetNumberOfTuples());
+  const auto values = vtk::DataArrayValueRange<1>(array);
+  vtkSMPTools::For(0, array->GetNumberOfTuples(), [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      ids[i] = static_cast<Id>(values[i]);
+    }
+  });
+  return ids;
+}
+
+vtkSmartPointer<vtkIdList> ToIdList(const std::vector<Id>& ids)
+{
+  auto list = vtkSmartPointer<vtkIdList>::New();
+  list->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  for (size_t i = 0; i < ids.size(); ++i)
+  {
+    list->SetId(static_cast<vtkIdType>(i), ids[i]);
+  }
+  return list;
+}
+
+// The cell data of the kept cells, array by array.
+vtkSmartPointer<vtkCellData> SubsetCellData(vtkCellData* in, const std::vector<Id>& kept)
+{
+  auto out = vtkSmartPointer<vtkCellData>::New();
+  vtkSmartPointer<vtkIdList> ids = ToIdList(kept);
+  for (int i = 0; i < in->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* array = in->GetAbstractArray(i);
+    auto subset = vtk::TakeSmartPointer(array->NewInstance());
+    subset->SetName(array->GetName());
+    subset->SetNumberOfComponents(array->GetNumberOfComponents());
+    subset->SetNumberOfTuples(ids->GetNumberOfIds());
+    array->GetTuples(ids, subset);
+    const int attribute = in->IsArrayAnAttribute(i);
+    if (attribute >= 0)
+    {
+      out->SetAttribute(subset, attribute);
+    }
+    else
+    {
+      out->AddArray(subset);
+    }
+  }
+  return out;
+}
+
+vtkSmartPointer<vtkPoints> PointsFrom(vtkDataArray* data)
+{
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetData(data);
+  return points;
+}
+
+// The triangles t with keep(t) whose corners, renumbered through newId(), are three distinct
+// points, as a cell array built in place (parallel flags, a prefix sum, a parallel fill);
+// `keptTriangles` gets their ids in the level, for the cell data.
+template <typename NewId, typename Keep>
+vtkSmartPointer<vtkCellArray> CompactTriangles(const std::vector<Id>& triangles, const NewId& newId,
+  const Keep& keep, std::vector<Id>& keptTriangles)
+{
+  const vtkIdType n = static_cast<vtkIdType>(triangles.size() / 3);
+  std::vector<std::uint8_t> kept(n);
+  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType t = b; t < e; ++t)
+    {
+      const Id x = newId(triangles[3 * t]), y = newId(triangles[3 * t + 1]),
+               z = newId(triangles[3 * t + 2]);
+      kept[t] = (keep(t) && x != y && y != z && z != x) ? 1 : 0;
+    }
+  });
+  keptTriangles.clear();
+  keptTriangles.reserve(n);
+  for (vtkIdType t = 0; t < n; ++t)
+  {
+    if (kept[t])
+    {
+      keptTriangles.push_back(static_cast<Id>(t));
+    }
+  }
+  const vtkIdType m = static_cast<vtkIdType>(keptTriangles.size());
+  vtkNew<vtkTypeInt32Array> offsets;
+  vtkNew<vtkTypeInt32Array> connectivity;
+  offsets->SetNumberOfValues(m + 1);
+  connectivity->SetNumberOfValues(3 * m);
+  std::int32_t* off = offsets->GetPointer(0);
+  std::int32_t* conn = connectivity->GetPointer(0);
+  vtkSMPTools::For(0, m, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      const Id* tri = triangles.data() + 3 * static_cast<size_t>(keptTriangles[i]);
+      off[i] = static_cast<std::int32_t>(3 * i);
+      conn[3 * i] = newId(tri[0]);
+      conn[3 * i + 1] = newId(tri[1]);
+      conn[3 * i + 2] = newId(tri[2]);
+    }
+  });
+  off[m] = static_cast<std::int32_t>(3 * m);
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, connectivity);
+  return cells;
+}
+} // namespace
+
+namespace
+{
+// Per-edge flag: its two end points are at most `tolerance` apart.
+struct ShortEdgeWorker
+{
+  const meshlod::EdgeList* Edges;
+  double Tolerance2;
+  std::vector<std::uint8_t>* Flags;
+
+  template <typename PointArray>
+  void operator()(PointArray* points) const
+  {
+    const auto x = vtk::DataArrayTupleRange<3>(points);
+    const std::vector<Id>& ends = this->Edges->Ends;
+    std::uint8_t* flags = this->Flags->data();
+    const double tolerance2 = this->Tolerance2;
+    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Edges->Size()), [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        const auto p = x[ends[2 * i]];
+        const auto q = x[ends[2 * i + 1]];
+        double d2 = 0.0;
+        for (int c = 0; c < 3; ++c)
+        {
+          const double d = static_cast<double>(p[c]) - static_cast<double>(q[c]);
+          d2 += d * d;
+        }
+        flags[i] = d2 <= tolerance2 ? 1 : 0;
+      }
+    });
+  }
+};
+
+// Per-triangle flag: two corners closer than `Tolerance` (the same position up to rounding), or
+// exactly zero area.
+struct DegenerateWorker
+{
+  const std::vector<Id>* Triangles;
+  double Tolerance2;
+  std::vector<std::uint8_t>* Flags;
+
+  template <typename PointArray>
+  void operator()(PointArray* points) const
+  {
+    const auto x = vtk::DataArrayTupleRange<3>(points);
+    const Id* tri = this->Triangles->data();
+    std::uint8_t* flags = this->Flags->data();
+    const double tolerance2 = this->Tolerance2;
+    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Flags->size()), [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType t = b; t < e; ++t)
+      {
+        double p[3][3];
+        for (int k = 0; k < 3; ++k)
+        {
+          const auto v = x[tri[3 * t + k]];
+          p[k][0] = v[0];
+          p[k][1] = v[1];
+          p[k][2] = v[2];
+        }
+        bool degenerate = false;
+        for (int k = 0; k < 3; ++k)
+        {
+          degenerate =
+            degenerate || vtkMath::Distance2BetweenPoints(p[k], p[(k + 1) % 3]) <= tolerance2;
+        }
+        const double u[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
+        const double w[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
+        double n[3];
+        vtkMath::Cross(u, w, n);
+        flags[t] = (degenerate || (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0)) ? 1 : 0;
+      }
+    });
+  }
+};
+
+template <typename Worker>
+void DispatchPoints(vtkDataArray* points, Worker& worker)
+{
+  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(points, worker))
+  {
+    worker(points);
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::string vtkLODGeomorph::Internals::Prepare(vtkMultiBlockDataSet* input, int requested)
+{
+  this->Levels.clear();
+  this->Exact = ExactTopology();
+  std::string problem = meshlod::CheckHierarchyLayout(input, false);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  const unsigned int n = input->GetNumberOfBlocks();
+  this->Levels.resize(n);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    this->Levels[i].Poly = vtkPolyData::SafeDownCast(input->GetBlock(i));
+  }
+  this->Mode = requested;
+  if (this->Mode == AUTOMATIC)
+  {
+    vtkPointData* pd = this->Levels[0].Poly->GetPointData();
+    const bool any = pd->GetAbstractArray(meshlod::names::MorphTarget) ||
+      pd->GetAbstractArray(meshlod::names::MorphTargetId) ||
+      pd->GetAbstractArray(meshlod::names::CollapseRank);
+    this->Mode = (n > 1 && any) ? MORPH_ARRAYS : NEAREST_VERTICES;
+  }
+  if (this->Mode == MORPH_ARRAYS)
+  {
+    problem = meshlod::CheckHierarchyLayout(input, true);
+    if (!problem.empty())
+    {
+      this->Levels.clear();
+      return problem;
+    }
+    for (unsigned int i = 0; i + 1 < n; ++i)
+    {
+      this->Levels[i].TargetIds =
+        ToIds(this->Levels[i].Poly->GetPointData()->GetArray(meshlod::names::MorphTargetId));
+    }
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+bool vtkLODGeomorph::Internals::EnsureTriangles(
+  vtkLODGeomorph* self, int level, const char* purpose)
+{
+  LevelCache& cache = this->Levels[level];
+  if (!cache.TrianglesRead)
+  {
+    cache.AllTriangles = ReadTriangles(cache.Poly, cache.Triangles);
+    cache.TrianglesRead = true;
+  }
+  if (!cache.AllTriangles)
+  {
+    vtkErrorWithObjectMacro(self,
+      "Level " << level << " has cells other than triangles; " << purpose
+               << " needs triangles only (vtkTriangleFilter "
+               << "triangulates, and drops vertices and lines).");
+  }
+  return cache.AllTriangles;
+}
+
+//------------------------------------------------------------------------------
+bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
+{
+  LevelCache& cache = this->Levels[level];
+  if (cache.Schedule)
+  {
+    return true;
+  }
+  if (!this->EnsureTriangles(self, level, "TargetNumberOfTriangles"))
+  {
+    return false;
+  }
+  vtkPolyData* poly = cache.Poly;
+  const vtkIdType n = poly->GetNumberOfPoints();
+  vtkPointData* pd = poly->GetPointData();
+  vtkDataArray* rankArray = pd->GetArray(meshlod::names::CollapseRank);
+  vtkDataArray* target = pd->GetArray(meshlod::names::MorphTarget);
+  vtkDataArray* points = poly->GetPoints()->GetData();
+  std::vector<std::int64_t> rank(n);
+  std::vector<std::uint8_t> atTarget(n);
+  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+    double x[3], y[3];
+    for (vtkIdType p = b; p < e; ++p)
+    {
+      rank[p] = static_cast<std::int64_t>(rankArray->GetComponent(p, 0));
+      points->GetTuple(p, x);
+      target->GetTuple(p, y);
+      atTarget[p] = (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) ? 1 : 0;
+    }
+  });
+  cache.Schedule.reset(new meshlod::CollapseSchedule);
+  cache.Schedule->Build(cache.Triangles.data(), static_cast<Id>(cache.Triangles.size() / 3),
+    static_cast<Id>(n), cache.TargetIds.data(), rank.data(), atTarget.data());
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkLODGeomorph::Internals::EnsureCorrespondence(vtkLODGeomorph* self, int level)
+{
+  LevelCache& cache = this->Levels[level];
+  if (cache.HasCorrespondence)
+  {
+    return true;
+  }
+  if (!this->EnsureTriangles(self, level, "the nearest-vertex correspondence"))
+  {
+    return false;
+  }
+  vtkPolyData* coarse = this->Levels[level + 1].Poly;
+  meshlod::NearestVertexCorrespondence(cache.Poly->GetPoints(), coarse->GetPoints(), cache.Partner);
+  self->UpdateProgress(0.4);
+  cache.Edges.Build(cache.Triangles.data(), static_cast<Id>(cache.Triangles.size() / 3),
+    static_cast<Id>(cache.Poly->GetNumberOfPoints()));
+  cache.Diagonal = cache.Poly->GetLength();
+  cache.HasCorrespondence = true;
+  ++self->NumberOfCorrespondenceBuilds;
+  self->UpdateProgress(0.6);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkPointData* vtkLODGeomorph::Internals::TargetData(int level)
+{
+  LevelCache& cache = this->Levels[level];
+  if (!cache.TargetData)
+  {
+    for (LevelCache& other : this->Levels)
+    {
+      other.TargetData = nullptr;
+    }
+    cache.TargetData = vtkSmartPointer<vtkPointData>::New();
+    meshlod::GatherPointData(cache.Poly->GetPointData(),
+      this->Levels[level + 1].Poly->GetPointData(), cache.TargetIds.data(),
+      cache.Poly->GetNumberOfPoints(), cache.TargetData);
+  }
+  return cache.TargetData;
+}
+
+//------------------------------------------------------------------------------
+void vtkLODGeomorph::Internals::ProduceLevel(int level, vtkPolyData* output)
+{
+  vtkPolyData* poly = this->Levels[level].Poly;
+  output->SetPoints(poly->GetPoints());
+  output->SetVerts(poly->GetVerts());
+  output->SetLines(poly->GetLines());
+  output->SetPolys(poly->GetPolys());
+  output->SetStrips(poly->GetStrips());
+  meshlod::BlendPlan same;
+  same.NumberOfPoints = poly->GetNumberOfPoints();
+  meshlod::BlendPointData(poly->GetPointData(), nullptr, same, output->GetPointData());
+  output->GetCellData()->ShallowCopy(poly->GetCellData());
+}
+
+//------------------------------------------------------------------------------
+bool vtkLODGeomorph::Internals::ProducePartialCollapse(
+  vtkLODGeomorph* self, int level, double t, vtkPolyData* output)
+{
+  LevelCache& cache = this->Levels[level];
+  vtkPolyData* poly = cache.Poly;
+  const vtkIdType n = poly->GetNumberOfPoints();
+  if (n == 0)
+  {
+    this->ProduceLevel(level, output);
+    return true;
+  }
+  // Paper: p(t) = p + t (c - p), written (1 - t) p + t c so that t = 0 and 1 are exact.
+  meshlod::BlendPlan geometry;
+  geometry.Pool = &this->Pool;
+  geometry.NumberOfPoints = n;
+  geometry.Weight = t;
+  vtkDataArray* target = poly->GetPointData()->GetArray(meshlod::names::MorphTarget);
+  vtkSmartPointer<vtkDataArray> points =
+    meshlod::BlendRealArray(poly->GetPoints()->GetData(), target, geometry, false);
+  output->SetPoints(PointsFrom(points));
+  meshlod::BlendPointData(
+    poly->GetPointData(), this->TargetData(level), geometry, output->GetPointData());
+
+  output->SetVerts(poly->GetVerts());
+  output->SetLines(poly->GetLines());
+  output->SetStrips(poly->GetStrips());
+  if (!self->DropDegenerateTriangles)
+  {
+    output->SetPolys(poly->GetPolys());
+    output->GetCellData()->ShallowCopy(poly->GetCellData());
+    return true;
+  }
+  if (!this->EnsureTriangles(self, level, "DropDegenerateTriangles"))
+  {
+    return false;
+  }
+  // Coinciding up to rounding: a few units in the last place of the point type, at the scale of
+  // the level.
+  const double epsilon = points->GetDataType() == VTK_FLOAT
+    ? std::numeric_limits<float>::epsilon()
+    : std::numeric_limits<double>::epsilon();
+  const double tolerance = 4.0 * epsilon * poly->GetLength();
+  std::vector<std::uint8_t> degenerate(cache.Triangles.size() / 3);
+  DegenerateWorker worker{ &cache.Triangles, tolerance * tolerance, &degenerate };
+  DispatchPoints(points.Get(), worker);
+  if (std::find(degenerate.begin(), degenerate.end(), 1) == degenerate.end())
+  {
+    output->SetPolys(poly->GetPolys());
+    output->GetCellData()->ShallowCopy(poly->GetCellData());
+    return true;
+  }
+  std::vector<Id> keptTriangles;
+  output->SetPolys(CompactTriangles(
+    cache.Triangles, [](Id p) { return p; }, [&](vtkIdType tri) { return !degenerate[tri]; },
+    keptTriangles));
+  output->GetCellData()->ShallowCopy(SubsetCellData(poly->GetCellData(), keptTriangles));
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkLODGeomorph::Internals::ProduceNearestBlend(
+  vtkLODGeomorph* self, int level, double t, vtkPolyData* output)
+{
+  LevelCache& cache = this->Levels[level];
+  vtkPolyData* poly = cache.Poly;
+  vtkPolyData* coarse = this->Levels[level + 1].Poly;
+  const vtkIdType n = poly->GetNumberOfPoints();
+  if (n == 0 || coarse->GetNumberOfPoints() == 0)
+  {
+    if (n > 0)
+    {
+      vtkWarningWithObjectMacro(self,
+        "Level " << level + 1 << " has no points: producing level " << level << " unchanged.");
+    }
+    this->ProduceLevel(level, output);
+    return true;
+  }
+  if (!this->EnsureCorrespondence(self, level))
+  {
+    return false;
+  }
+  if (self->GetAbortExecute())
+  {
+    return false;
+  }
+  // Paper step 3: P = t P_coarse + (1 - t) P_fine.
+  meshlod::BlendPlan plan;
+  plan.Pool = &this->Pool;
+  plan.NumberOfPoints = n;
+  plan.Map = cache.Partner.data();
+  plan.Weight = t;
+  vtkDataArray* finePoints = poly->GetPoints()->GetData();
+  vtkDataArray* coarsePoints = coarse->GetPoints()->GetData();
+  vtkSmartPointer<vtkDataArray> points =
+    meshlod::BlendRealArray(finePoints, coarsePoints, plan, false);
+
+  // Paper step 4: merge the points joined by an edge shorter than the tolerance, and remove the
+  // triangles that degenerate.
+  std::vector<std::uint8_t> shortEdge(cache.Edges.Size());
+  const double tolerance = self->MergeTolerance * cache.Diagonal;
+  ShortEdgeWorker lengths{ &cache.Edges, tolerance * tolerance, &shortEdge };
+  DispatchPoints(points.Get(), lengths);
+  if (std::find(shortEdge.begin(), shortEdge.end(), 1) == shortEdge.end())
+  {
+    output->SetPoints(PointsFrom(points));
+    output->SetPolys(poly->GetPolys());
+    output->GetCellData()->ShallowCopy(poly->GetCellData());
+    meshlod::BlendPointData(
+      poly->GetPointData(), coarse->GetPointData(), plan, output->GetPointData());
+    return true;
+  }
+  // The merged topology only changes when the set of short edges does (a few times between
+  // t = 0 and 1): keep the last one.
+  MergedTopology& merged = cache.Merged;
+  if (shortEdge != merged.ShortEdges)
+  {
+    merged.ShortEdges.swap(shortEdge);
+    std::vector<Id> representative;
+    meshlod::MergeAlongEdges(
+      cache.Edges, merged.ShortEdges.data(), static_cast<Id>(n), representative);
+    std::vector<Id> newId(n);
+    merged.Source.clear();
+    merged.Source.reserve(n);
+    for (vtkIdType p = 0; p < n; ++p)
+    {
+      if (representative[p] == p)
+      {
+        newId[p] = static_cast<Id>(merged.Source.size());
+        merged.Source.push_back(static_cast<Id>(p));
+      }
+      else
+      {
+        newId[p] = newId[representative[p]]; // the representative has a lower id
+      }
+    }
+    std::vector<Id> keptTriangles;
+    merged.Cells = CompactTriangles(
+      cache.Triangles, [&](Id p) { return newId[p]; }, [](vtkIdType) { return true; },
+      keptTriangles);
+    merged.CellData = SubsetCellData(poly->GetCellData(), keptTriangles);
+  }
+  plan.NumberOfPoints = static_cast<vtkIdType>(merged.Source.size());
+  plan.Source = merged.Source.data();
+  output->SetPoints(PointsFrom(meshlod::BlendRealArray(finePoints, coarsePoints, plan, false)));
+  meshlod::BlendPointData(
+    poly->GetPointData(), coarse->GetPointData(), plan, output->GetPointData());
+  output->SetPolys(merged.Cells);
+  output->GetCellData()->ShallowCopy(merged.CellData);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkLODGeomorph::Internals::BuildExactTopology(int level, Id steps, Id nextStep)
+{
+  ExactTopology& exact = this->Exact;
+  const LevelCache& cache = this->Levels[level];
+  const meshlod::CollapseSchedule& schedule = *cache.Schedule;
+  const Id n = static_cast<Id>(cache.Poly->GetNumberOfPoints());
+  const Id targets = static_cast<Id>(this->Levels[level + 1].Poly->GetNumberOfPoints());
+  exact.Level = level;
+  exact.Steps = steps;
+  exact.Source.clear();
+  exact.State.clear();
+
+  // Settled points with the same target become one point: the lowest id among them.
+  std::vector<Id> representative(targets, meshlod::InvalidId);
+  std::vector<Id> newId(n);
+  for (Id p = 0; p < n; ++p)
+  {
+    const Id step = schedule.Step[p];
+    if (step <= steps)
+    {
+      Id& rep = representative[cache.TargetIds[p]];
+      if (rep != meshlod::InvalidId)
+      {
+        newId[p] = newId[rep];
+        continue;
+      }
+      rep = p;
+    }
+    newId[p] = static_cast<Id>(exact.Source.size());
+    exact.Source.push_back(p);
+    exact.State.push_back(step <= steps ? 2 : (nextStep > 0 && step <= nextStep ? 1 : 0));
+  }
+  std::vector<Id> keptTriangles;
+  exact.Cells = CompactTriangles(
+    cache.Triangles, [&](Id p) { return newId[p]; },
+    [&](vtkIdType tri) { return schedule.RemovalStep[tri] > steps; }, keptTriangles);
+  exact.CellData = SubsetCellData(cache.Poly->GetCellData(), keptTriangles);
+}
+
+//------------------------------------------------------------------------------
+bool vtkLODGeomorph::Internals::ProduceExactCount(
+  vtkLODGeomorph* self, vtkIdType count, double fraction, vtkPolyData* output, double& lod)
+{
+  const int n = static_cast<int>(this->Levels.size());
+  auto trianglesOf = [&](int level) { return this->Levels[level].Poly->GetNumberOfPolys(); };
+  // The coarsest level with at least `count` triangles.
+  int level = -1;
+  for (int i = 0; i < n; ++i)
+  {
+    if (trianglesOf(i) >= count)
+    {
+      level = i;
+    }
+  }
+  if (level < 0)
+  {
+    vtkWarningWithObjectMacro(self,
+      "TargetNumberOfTriangles " << count << " is above the " << trianglesOf(0)
+                                 << " triangles of the finest level; "
+                                 << "producing the finest level.");
+    level = 0;
+  }
+  if (trianglesOf(level) == count || trianglesOf(level) < count)
+  {
+    lod = level;
+    this->ProduceLevel(level, output);
+    return true;
+  }
+  if (level == n - 1)
+  {
+    vtkWarningWithObjectMacro(self,
+      "TargetNumberOfTriangles " << count << " is below the " << trianglesOf(level)
+                                 << " triangles of the coarsest level; "
+                                 << "producing the coarsest level.");
+    lod = level;
+    this->ProduceLevel(level, output);
+    return true;
+  }
+  if (this->Mode != MORPH_ARRAYS)
+  {
+    // Without collapse ranks, the finest level with at most `count` triangles.
+    vtkWarningWithObjectMacro(self,
+      "An exact triangle count needs the morph arrays ("
+        << meshlod::names::CollapseRank << "); producing level " << level + 1 << " ("
+        << trianglesOf(level + 1) << " triangles) instead of " << count << " triangles.");
+    lod = level + 1;
+    this->ProduceLevel(level + 1, output);
+    return true;
+  }
+  if (!this->EnsureSchedule(self, level))
+  {
+    return false;
+  }
+  const meshlod::CollapseSchedule& schedule = *this->Levels[level].Schedule;
+  const Id steps = schedule.StepsForCount(count);
+  if (steps < 0)
+  {
+    // Even the whole transition leaves more: the next level is the nearest count below.
+    lod = level + 1;
+    this->ProduceLevel(level + 1, output);
+    return true;
+  }
+  const Id nextStep = schedule.NextRemovingStep(steps);
+  if (this->Exact.Level != level || this->Exact.Steps != steps)
+  {
+    this->BuildExactTopology(level, steps, nextStep);
+  }
+  const ExactTopology& exact = this->Exact;
+  const vtkIdType m = static_cast<vtkIdType>(exact.Source.size());
+  std::vector<double> weights(m);
+  vtkSMPTools::For(0, m, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType q = b; q < e; ++q)
+    {
+      weights[q] = exact.State[q] == 2 ? 1.0 : (exact.State[q] == 1 ? fraction : 0.0);
+    }
+  });
+  LevelCache& cache = this->Levels[level];
+  vtkPolyData* poly = cache.Poly;
+  meshlod::BlendPlan plan;
+  plan.Pool = &this->Pool;
+  plan.NumberOfPoints = m;
+  plan.Source = exact.Source.data();
+  plan.Weights = weights.data();
+  vtkDataArray* target = poly->GetPointData()->GetArray(meshlod::names::MorphTarget);
+  output->SetPoints(
+    PointsFrom(meshlod::BlendRealArray(poly->GetPoints()->GetData(), target, plan, false)));
+  plan.Map = cache.TargetIds.data();
+  meshlod::BlendPointData(poly->GetPointData(), this->Levels[level + 1].Poly->GetPointData(), plan,
+    output->GetPointData());
+  output->SetPolys(exact.Cells);
+  output->GetCellData()->ShallowCopy(exact.CellData);
+  const double moved = nextStep > 0 ? fraction * (nextStep - steps) : 0.0;
+  lod = level + (steps + moved) / std::max<Id>(1, schedule.NumberOfSteps());
+  return true;
+}
+
