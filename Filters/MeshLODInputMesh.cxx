@@ -507,7 +507,9 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
       "Did not stitch " << keptApart
                         << " points on open boundaries to the points they coincide with: their "
                            "point data differ (an attribute seam, such as split normals or a "
-                           "texture's wrap), so the surface stays open there.");
+                           "texture's wrap), so the surface stays open there and its sides "
+                           "simplify separately. To join them anyway, run vtkCleanPolyData "
+                           "first (it merges coincident points whatever their data).");
   }
   if (result.MergedPoints > 0)
   {

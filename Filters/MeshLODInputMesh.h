@@ -18,7 +18,9 @@
 //   this stitches triangle soups such as STL files and seams duplicated by rounding (as
 //   parametric sources make them). Coincident points inside
 //   closed manifold regions are left alone: merging them would create a non-manifold vertex.
-//   Coincident points whose point data differ are an attribute seam and stay apart (warning).
+//   Coincident points whose point data differ are an attribute seam and stay apart (warning):
+//   the sides of the seam then simplify separately, as with vtkQuadricDecimation; running
+//   vtkCleanPolyData first joins them (it merges coincident points whatever their data).
 //   Points used by no triangle are dropped.
 // - Triangles whose orientation disagrees with their part's (the triangles joined by manifold
 //   edges) are flipped, each orientable part keeping the orientation most of its triangles had
