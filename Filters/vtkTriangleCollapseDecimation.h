@@ -45,7 +45,9 @@
  * neighbourhood is one disk or half-disk (no pinch, no non-manifold edge, no duplicate triangle,
  * same genus), no neighbour apex drops to valence 3 (paper 000's "no new cycle" rule), the
  * stencil boundary polygon projected on the triangle's plane is star-shaped around the collapse
- * point, no triangle's normal turns by more than MaximumNormalDeviation, and no triangle faces
+ * point, no triangle's normal turns by more than MaximumNormalDeviation (unless it ends within
+ * that angle of the input surface's facing: collapses that smooth a noisy scan turn its
+ * triangles towards the surface), and no triangle faces
  * away from the original surface its corners stand for (the summed area vectors of the input
  * triangles merged into them; without this, many small turns can add up to a fold at coarse
  * levels). Zero-area input triangles (coincident points, as marching cubes makes where the
@@ -291,7 +293,11 @@ public:
   ///@{
   /**
    * Largest angle in degrees by which a triangle's normal may turn in one collapse, in
-   * [0, 180]. Default 60.
+   * [0, 180], unless it ends within that angle of the input surface it stands for. Default 90
+   * (no triangle flips; vtkQuadricDecimation's bound too). Smaller values refuse more
+   * collapses: at 60 (and without the exception for turns towards the input surface), a
+   * sphere with 1% radial noise stopped at 3.7% of its triangles asked for 1%, with 13x
+   * vtkQuadricDecimation's RMS distance; isosurfaces decimate the same at 60 and 90.
    */
   vtkSetClampMacro(MaximumNormalDeviation, double, 0.0, 180.0);
   vtkGetMacro(MaximumNormalDeviation, double);
@@ -348,7 +354,7 @@ protected:
   double AngleWeight = 1.0 / 3.0;
   double ValenceWeight = 1.0 / 3.0;
   double BoundaryWeight = 10.0;
-  double MaximumNormalDeviation = 60.0;
+  double MaximumNormalDeviation = 90.0;
   int MaximumFitPoints = 48;
   bool ComputeLevelError = false;
   int NumberOfLevelsProduced = 0;

@@ -69,8 +69,8 @@ struct TriangleCollapseOptions
   /// Weight of the planes through boundary edges, relative to the area-weighted surface
   /// planes (the plane of an edge of length l gets BoundaryWeight * l^2).
   double BoundaryWeight = 10.0;
-  /// Largest angle (degrees) a triangle's normal may turn in one collapse.
-  double MaximumNormalDeviation = 60.0;
+  /// Largest angle (degrees) a triangle's normal may turn in one collapse (see CollapseMesh).
+  double MaximumNormalDeviation = 90.0;
   /// Curvature method: at most this many ancestral points per triangle fit (a strided subset).
   int MaximumFitPoints = 48;
 };
