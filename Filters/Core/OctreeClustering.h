@@ -73,9 +73,12 @@ struct VTKFILTERSMESHLOD_EXPORT OctreeClusteringOptions
   double BoundaryWeight = 1.0;
   /// Eigenvalues below this fraction of the largest are treated as zero when placing.
   double PlacementTolerance = 1e-3;
-  /// How many times a level is cut again to remove flipped triangles and pinched edges (each
-  /// pass refuses the clusters that made them; a rough surface can need a dozen).
-  int FlipPasses = 16;
+  /// How many times a level is cut again to remove flipped triangles and pinched edges with
+  /// the least refinement (each pass refuses the clusters that made them, whose children then
+  /// compete; a rough surface can need a dozen, a noisy terrain thirty). Later passes split
+  /// such clusters back into the previous level's points, which cannot fold or pinch, so a
+  /// level never keeps either.
+  int FlipPasses = 64;
 };
 
 /// One level as produced by OctreeClustering; point ids refer to this level, "previous" ids to

@@ -216,8 +216,10 @@ struct OctreeClustering::Internals
   void MarkDuplicates(octree::Synthesis& s) const;
   Id MarkFolds(octree::Synthesis& s);
   Id MarkPinches(octree::Synthesis& s);
-  // Mark the changed clusters among `clusters` as not mergeable; returns how many were.
+  // Mark the changed clusters among `clusters` as not mergeable; returns how many were. With
+  // SplitFully, also every node between them and the previous level's points inside them.
   Id MarkChanged(octree::Synthesis& s, const std::vector<Id>& clusters);
+  bool SplitFully = false;
   Id TryLevel(double epsilon, ClusterLevel& level);
   void Finalize(octree::Synthesis& s, ClusterLevel& level) const;
   void Commit(const ClusterLevel& level);

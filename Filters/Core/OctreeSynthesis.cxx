@@ -226,15 +226,44 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
 Id OctreeClustering::Internals::MarkChanged(Synthesis& s, const std::vector<Id>& clusters)
 {
   Id marked = 0;
-  for (const Id k : clusters)
+  auto mark = [&](Id node)
   {
-    const Id node = s.Cut[k];
-    if (s.Changed[k] && node >= this->NV &&
-      this->State[node - this->NV] != NodeState::Inadmissible)
+    if (node >= this->NV && this->State[node - this->NV] != NodeState::Inadmissible)
     {
       this->State[node - this->NV] = NodeState::Inadmissible;
       this->UpdateThreshold(node - this->NV);
       ++marked;
+    }
+  };
+  std::vector<unsigned char> split(this->SplitFully ? s.Cut.size() : 0, 0);
+  for (const Id k : clusters)
+  {
+    if (s.Changed[k])
+    {
+      mark(s.Cut[k]);
+      if (this->SplitFully)
+      {
+        split[k] = 1;
+      }
+    }
+  }
+  if (this->SplitFully)
+  {
+    // Every node from a previous point of a split cluster up to the cluster: the next cut
+    // descends to those points (which qualify: they were clusters at the previous epsilon).
+    const Id previousPoints = this->PreviousPoints();
+    for (Id p = 0; p < previousPoints; ++p)
+    {
+      const Id k = s.PointCluster[p];
+      if (!split[k])
+      {
+        continue;
+      }
+      for (Id node = this->NodeOfPoint(p); node != s.Cut[k];)
+      {
+        node = this->Tree.Parent(node);
+        mark(node);
+      }
     }
   }
   return marked;
@@ -529,14 +558,19 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
     this->AssignClusters(s);
     this->ReindexTriangles(s);
     this->MarkDuplicates(s);
-    const Id marked =
-      pass < this->Options.FlipPasses ? this->MarkFolds(s) + this->MarkPinches(s) : 0;
+    // After FlipPasses, a cluster that folds or pinches goes back to the previous level's
+    // points at once: each pass then leaves fewer changed clusters, so the loop ends. (A noisy
+    // terrain kept 40 non-manifold edges when the passes simply stopped after 16; it needs 31
+    // passes of the gradual kind.)
+    this->SplitFully = pass >= this->Options.FlipPasses;
+    const Id marked = this->MarkFolds(s) + this->MarkPinches(s);
     if (marked == 0)
     {
       break;
     }
     level.FlippedTrianglesFixed += marked;
   }
+  this->SplitFully = false;
   this->Finalize(s, level);
   return level.Mesh.GetNumberOfTriangles();
 }
