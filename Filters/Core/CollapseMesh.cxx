@@ -328,6 +328,9 @@ Legality CollapseMesh::IsLegal(
     return Legality::Illegal; // several cycles or paths: the merge would pinch the surface
   }
 
+  // Paper 000's rule against new valence-3 vertices (see CollapseRules).
+  const bool forbidValenceThree =
+    star.MemberCount == 3 ? rules.ForbidValenceThree : rules.ForbidValenceThreeForEdges;
   // Apexes lose edges: an apex shared by m dying triangles was joined to m + 1 members, which
   // become one vertex, so it loses m edges. Its valence must stay healthy.
   for (std::size_t i = 0; i < star.Apexes.size(); ++i)
@@ -339,7 +342,7 @@ Legality CollapseMesh::IsLegal(
     }
     const int m = static_cast<int>(std::count(star.Apexes.begin(), star.Apexes.end(), p));
     const int after = this->Valence(p, star.ValenceScratch) - m;
-    const int minimum = this->IsBoundary(p) ? 2 : (rules.ForbidValenceThree ? 4 : 3);
+    const int minimum = this->IsBoundary(p) ? 2 : (forbidValenceThree ? 4 : 3);
     if (after < minimum)
     {
       star.BlockingApex = p;

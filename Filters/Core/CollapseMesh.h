@@ -41,6 +41,12 @@ struct CollapseRules
   /// Paper 000 (Gieng et al.) condition (2): an interior apex of valence 4 would become a
   /// valence-3 vertex, which blocks later collapses; refuse such collapses.
   bool ForbidValenceThree = true;
+  /// The same for edge collapses. The rule serves triangle collapses (a triangle next to a
+  /// valence-3 vertex has a stencil cycle and needs a swap first); an edge collapse removes
+  /// such a vertex like any other, and without the rule edges follow vtkQuadricDecimation's
+  /// manifold test (valence 3 allowed): on an extruded text at 1%, 1.0x its Hausdorff and RMS
+  /// distances instead of 2.4x and 3x. The independent-set schedule keeps it, as paper 000.
+  bool ForbidValenceThreeForEdges = true;
   /// Paper 000 condition (3): the stencil boundary polygon, projected on the collapsing
   /// triangle's plane, must be star-shaped around the projected collapse point.
   bool RequireStarShaped = true;

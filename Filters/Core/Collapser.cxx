@@ -52,6 +52,7 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   this->State.Initialize(std::move(mesh), std::move(topology), options.BoundaryWeight);
   this->Rules.MinimumNormalCosine =
     std::cos(std::min(180.0, std::max(0.0, options.MaximumNormalDeviation)) * M_PI / 180.0);
+  this->Rules.ForbidValenceThreeForEdges = options.Schedule == CollapseSchedule::IndependentSets;
   this->Targets = options.LevelTargets;
   this->LastEmitted = this->InitialTriangles;
   this->Costs.assign(this->InitialTriangles, InfiniteCost);

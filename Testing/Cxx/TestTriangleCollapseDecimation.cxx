@@ -10,6 +10,7 @@
 #include "MeshLODTestHierarchies.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkAdaptiveSubdivisionFilter.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCleanPolyData.h"
@@ -20,6 +21,7 @@
 #include "vtkFieldData.h"
 #include "vtkIntArray.h"
 #include "vtkLinearSubdivisionFilter.h"
+#include "vtkLinearExtrusionFilter.h"
 #include "vtkMath.h"
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkMultiBlockDataSet.h"
@@ -901,6 +903,80 @@ void TestNoisySurface()
   }
 }
 
+// A CAD-like solid with sharp rims along curves: a flower-shaped polygon (r = 1 + 0.3 sin 5a,
+// 200 corners) extruded and subdivided to 48,148 triangles. With paper 000's rule against new
+// valence-3 vertices applied to edge collapses too, the 1% level had 1.9x vtkQuadricDecimation's
+// Hausdorff distance and 2.0x its RMS distance (on 79,544 triangles, 5x and 4.8x); the rule now
+// holds for triangle collapses only, as the paper states it.
+void TestExtrudedSolid()
+{
+  const int corners = 200;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> outline;
+  outline->InsertNextCell(corners);
+  for (int i = 0; i < corners; ++i)
+  {
+    const double a = 2.0 * vtkMath::Pi() * i / corners;
+    const double r = 1.0 + 0.3 * std::sin(5.0 * a);
+    outline->InsertCellPoint(points->InsertNextPoint(r * std::cos(a), r * std::sin(a), 0.0));
+  }
+  vtkNew<vtkPolyData> flower;
+  flower->SetPoints(points);
+  flower->SetPolys(outline);
+  vtkNew<vtkTriangleFilter> cap;
+  cap->SetInputData(flower);
+  vtkNew<vtkLinearExtrusionFilter> extrude;
+  extrude->SetInputConnection(cap->GetOutputPort());
+  extrude->SetExtrusionTypeToVectorExtrusion();
+  extrude->SetVector(0.0, 0.0, 0.3);
+  extrude->CappingOn();
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(extrude->GetOutputPort());
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputConnection(triangles->GetOutputPort());
+  vtkNew<vtkAdaptiveSubdivisionFilter> subdivide;
+  subdivide->SetInputConnection(clean->GetOutputPort());
+  subdivide->SetMaximumEdgeLength(0.05);
+  subdivide->SetMaximumNumberOfPasses(100);
+  subdivide->SetMaximumNumberOfTriangles(VTK_ID_MAX);
+  vtkNew<vtkCleanPolyData> solid;
+  solid->SetInputConnection(subdivide->GetOutputPort());
+  solid->Update();
+  vtkPolyData* input = solid->GetOutput();
+  const vtkIdType n = input->GetNumberOfPolys();
+
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  filter->SetInputData(input);
+  filter->AddLevelReduction(0.9);
+  filter->AddLevelReduction(0.99);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
+  if (h->GetNumberOfBlocks() != 3)
+  {
+    return;
+  }
+  vtkPolyData* coarse = Level(h, 2);
+  MESHLOD_CHECK_LE(coarse->GetNumberOfPolys(), n / 100 + 1);
+  vtkNew<vtkQuadricDecimation> peer;
+  peer->SetInputData(input);
+  peer->SetTargetReduction(1.0 - static_cast<double>(coarse->GetNumberOfPolys()) / n);
+  peer->Update();
+  SurfaceDistanceOptions options;
+  options.SamplesPerSurface = 20000;
+  const SurfaceDistance ours = MeasureSurfaceDistance(input, coarse, options);
+  const SurfaceDistance theirs = MeasureSurfaceDistance(input, peer->GetOutput(), options);
+  std::cerr << "  extruded solid (" << n << " triangles) at " << coarse->GetNumberOfPolys()
+            << ": Hausdorff " << ours.HausdorffPercent() << "%, RMS " << ours.RmsPercent()
+            << "% (vtkQuadricDecimation " << theirs.HausdorffPercent() << "%, "
+            << theirs.RmsPercent() << "%)\n";
+  MESHLOD_CHECK_LE(ours.Rms, 1.5 * theirs.Rms);
+  MESHLOD_CHECK_LE(ours.Hausdorff, 1.6 * theirs.Hausdorff);
+  const testing::MeshReport report = testing::InspectMesh(coarse);
+  MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
+  MESHLOD_CHECK_EQ(report.BoundaryEdges, 0);
+}
+
 void TestFarFromOrigin()
 {
   vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(5);
@@ -958,6 +1034,7 @@ int TestTriangleCollapseDecimation(int, char*[])
   TestHighValenceFan();
   TestFarFromOrigin();
   TestNoisySurface();
+  TestExtrudedSolid();
   TestPointData();
   TestThreadIndependence();
   TestPartitionedGreedy();
