@@ -43,7 +43,9 @@
  * A collapse is made only when it is legal (paper 000, section 3, generalised to open
  * meshes): no vertex involved is non-manifold (such vertices are locked), the merged vertex's
  * neighbourhood is one disk or half-disk (no pinch, no non-manifold edge, no duplicate triangle,
- * same genus), no neighbour apex drops to valence 3 (paper 000's "no new cycle" rule), the
+ * same genus), no neighbour apex drops to valence 3 (paper 000's "no new cycle" rule; it holds
+ * for triangle collapses, and for edge collapses in the IndependentSets schedule only: an edge
+ * collapse removes a valence-3 vertex like any other, as in vtkQuadricDecimation), the
  * stencil boundary polygon projected on the triangle's plane is star-shaped around the collapse
  * point, no triangle's normal turns by more than MaximumNormalDeviation (unless it ends within
  * that angle of the input surface's facing: collapses that smooth a noisy scan turn its
