@@ -237,9 +237,11 @@ void vtkVertexClusterOctree::WarnIfCountMissed(
   else
   {
     vtkWarningMacro("Level " << level << ": asked for " << asked << " triangles, reached "
-                             << reached << ": no epsilon merges more (clusters that would flip "
-                                           "triangles, non-manifold vertices or separate "
-                                           "components stop the merging).");
+                             << reached
+                             << ": the epsilon search found none that keeps fewer (clusters that "
+                                "would flip triangles or pinch edges are split again, which on a "
+                                "rough or noisy surface adds many triangles back; non-manifold "
+                                "vertices and separate components do not merge).");
   }
 }
 
