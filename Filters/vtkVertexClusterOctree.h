@@ -42,7 +42,9 @@
  *   allows, and a miss by more than 2% (or 2 triangles) is reported by a warning naming the
  *   count reached and why: a count below what collapsing every mergeable cluster gives
  *   (clusters that would flip triangles, non-manifold vertices and separate components stop
- *   the merging); a count between two that consecutive epsilons give (levels cut one cluster
+ *   the merging; on a rough or noisy surface, splitting the clusters that fold adds back so
+ *   many triangles that counts well above the target are all the search finds: a noisy
+ *   terrain asked for 10% got 18%); a count between two that consecutive epsilons give (levels cut one cluster
  *   tree, so counts move in steps of whole clusters; many clusters of exactly zero error, as in
  *   an exactly flat region, merge at any epsilon: bound the clusters with MaximumCellSize to
  *   keep more); a count at or above the previous level's (a level never refines).
