@@ -299,7 +299,7 @@ public:
    * (no triangle flips; vtkQuadricDecimation's bound too). Smaller values refuse more
    * collapses: at 60 (and without the exception for turns towards the input surface), a
    * sphere with 1% radial noise stopped at 3.7% of its triangles asked for 1%, with 13x
-   * vtkQuadricDecimation's RMS distance; isosurfaces decimate the same at 60 and 90.
+   * vtkQuadricDecimation's RMS distance; on isosurfaces 60 and 90 differ within noise.
    */
   vtkSetClampMacro(MaximumNormalDeviation, double, 0.0, 180.0);
   vtkGetMacro(MaximumNormalDeviation, double);
