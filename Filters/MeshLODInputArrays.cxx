@@ -98,9 +98,11 @@ PointDataAgreement::PointDataAgreement(vtkPointData* pointData)
     this->Arrays.push_back(array);
     for (int c = 0; c < array->GetNumberOfComponents(); ++c)
     {
+      // The finite range: one infinite value would make every pair agree.
       double range[2];
-      array->GetRange(range, c);
-      this->Tolerances.push_back(1e-6 * (range[1] - range[0]));
+      array->GetFiniteRange(range, c);
+      const double width = range[1] - range[0];
+      this->Tolerances.push_back(std::isfinite(width) && width > 0.0 ? 1e-6 * width : 0.0);
     }
   }
 }

@@ -156,8 +156,16 @@ vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdT
 // in three lexicographic orders (x y z, y z x, z x y), which catches every pair that differs in
 // one coordinate only, as rounding makes them. Returns the number of points merged away;
 // triangles are re-indexed to the lowest id of each group. Points whose point data differ
-// (`agree` is false) stay apart; `keptApart` counts the points left apart from a twin.
+// (`agree` is false) stay apart; `keptApart` counts the points that coincide with a point of
+// other data and agree with none.
 constexpr double SeamTolerance = 1e-12;
+constexpr size_t MaximumSeamGroups = 16;
+
+double Distance2(const double* a, const double* b)
+{
+  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+    (a[2] - b[2]) * (a[2] - b[2]);
+}
 
 vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
   const PointDataAgreement& agree, vtkIdType& keptApart)
@@ -180,6 +188,9 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
   }
   const double tolerance = SeamTolerance * mesh.BoundingDiagonal();
 
+  const double tolerance2 = tolerance * tolerance;
+  std::vector<Id> groups;           // per run: the first member of each group
+  std::vector<size_t> memberGroup;  // per run member: its group
   // Union-find over the vertices; a group's root is its lowest id.
   std::vector<Id> root(nv);
   std::iota(root.begin(), root.end(), 0);
@@ -199,27 +210,61 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
       return a < b;
     };
     std::sort(candidates.begin(), candidates.end(), less);
-    for (size_t j = 1; j < candidates.size(); ++j)
+    // Runs of neighbours in this order, each within the tolerance of the one before. A member
+    // joins the first of the run's groups (so far) whose first member is within the tolerance
+    // and carries the same point data, or starts a group: comparing neighbours only would keep
+    // apart two agreeing twins sorted on either side of a third that differs.
+    for (size_t begin = 0; begin < candidates.size();)
     {
-      const double* pa = mesh.Point(candidates[j - 1]);
-      const double* pb = mesh.Point(candidates[j]);
-      const double d2 = (pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
-        (pa[2] - pb[2]) * (pa[2] - pb[2]);
-      if (d2 <= tolerance * tolerance)
+      size_t end = begin + 1;
+      while (end < candidates.size() &&
+        Distance2(mesh.Point(candidates[end - 1]), mesh.Point(candidates[end])) <= tolerance2)
       {
-        const Id a = FindRoot(root, candidates[j - 1]), b = FindRoot(root, candidates[j]);
-        if (a == b)
-        {
-          continue;
-        }
-        if (!agree(candidates[j - 1], candidates[j]))
-        {
-          apart.resize(nv, 0);
-          apart[candidates[j - 1]] = apart[candidates[j]] = 1;
-          continue;
-        }
-        root[std::max(a, b)] = std::min(a, b);
+        ++end;
       }
+      groups.clear();
+      memberGroup.clear();
+      for (size_t j = begin; j < end; ++j)
+      {
+        const Id v = candidates[j];
+        size_t joined = groups.size();
+        // A bounded number of groups per run: many coincident points with distinct data (a
+        // pathological input) would otherwise cost the square of their number.
+        const size_t first =
+          groups.size() > MaximumSeamGroups ? groups.size() - MaximumSeamGroups : 0;
+        for (size_t g = first; g < groups.size() && joined == groups.size(); ++g)
+        {
+          if (Distance2(mesh.Point(groups[g]), mesh.Point(v)) <= tolerance2 &&
+            agree(groups[g], v))
+          {
+            const Id a = FindRoot(root, groups[g]), b = FindRoot(root, v);
+            root[std::max(a, b)] = std::min(a, b);
+            joined = g;
+          }
+        }
+        if (joined == groups.size())
+        {
+          groups.push_back(v);
+        }
+        memberGroup.push_back(joined);
+      }
+      // A member coinciding with another group's first member is left apart from it.
+      for (size_t j = begin; groups.size() > 1 && j < end; ++j)
+      {
+        const size_t own = memberGroup[j - begin];
+        const size_t from = own > MaximumSeamGroups ? own - MaximumSeamGroups : 0;
+        const size_t to = std::min(groups.size(), own + MaximumSeamGroups + 1);
+        for (size_t g = from; g < to; ++g)
+        {
+          if (g != own && Distance2(mesh.Point(groups[g]), mesh.Point(candidates[j])) <= tolerance2)
+          {
+            apart.resize(nv, 0);
+            apart[candidates[j]] = 1;
+            break;
+          }
+        }
+      }
+      begin = end;
     }
   }
   keptApart = std::count(apart.begin(), apart.end(), 1);

@@ -85,9 +85,9 @@ int vtkLODGeomorph::RequestInformation(vtkInformation* vtkNotUsed(request),
   }
   auto* input = vtkMultiBlockDataSet::SafeDownCast(this->GetInputDataObject(0, 0));
   const int levels = input ? static_cast<int>(input->GetNumberOfBlocks()) : 0;
-  if (levels == 0 || !meshlod::SettingsAreNumbers(this, { { "TimeScale", this->TimeScale } }))
+  if (levels == 0 || std::isnan(this->TimeScale))
   {
-    return 1; // no time steps (RequestData reports the problem)
+    return 1; // no time steps (RequestData reports a NaN TimeScale)
   }
   std::vector<double> times(levels);
   for (int i = 0; i < levels; ++i)
@@ -146,7 +146,8 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
   const bool pipelineTime =
     this->UsePipelineTime && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
   if (!meshlod::SettingsAreNumbers(this,
-        { { "LevelOfDetail", this->LevelOfDetail }, { "TimeScale", this->TimeScale },
+        { { "LevelOfDetail", pipelineTime ? 0.0 : this->LevelOfDetail },
+          { "TimeScale", this->TimeScale },
           { "CollapseFraction", this->CollapseFraction },
           { "MergeTolerance", this->MergeTolerance },
           { "The requested time (UPDATE_TIME_STEP)",

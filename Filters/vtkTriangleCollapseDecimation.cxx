@@ -189,7 +189,9 @@ int vtkTriangleCollapseDecimation::RequestData(
   // A run that stops early emits the coarsest mesh it reached as a level of its own (see
   // Collapser::FinishRun), so the level count alone does not tell a missed target: the last
   // level must also be within one collapse (3 triangles) of the coarsest target.
-  const std::int64_t coarsestTarget = options.LevelTargets.back();
+  // (No targets at all, as with TargetReduction 0: only level 0, nothing missed.)
+  const std::int64_t coarsestTarget =
+    options.LevelTargets.empty() ? result.FinalTriangles : options.LevelTargets.back();
   if (result.LevelsEmitted < static_cast<int>(options.LevelTargets.size()) ||
     result.FinalTriangles > coarsestTarget + 3)
   {

@@ -295,8 +295,9 @@ public:
   ///@{
   /**
    * Largest angle in degrees by which a triangle's normal may turn in one collapse, in
-   * [0, 180], unless it ends within that angle of the input surface it stands for. Default 90
-   * (no triangle flips; vtkQuadricDecimation's bound too). Smaller values refuse more
+   * [0, 180], unless it ends within that angle of the input surface it stands for (no
+   * triangle may face away from that surface in any case). Default 90, vtkQuadricDecimation's
+   * bound too. Smaller values refuse more
    * collapses: at 60 (and without the exception for turns towards the input surface), a
    * sphere with 1% radial noise stopped at 3.7% of its triangles asked for 1%, with 13x
    * vtkQuadricDecimation's RMS distance; on isosurfaces 60 and 90 differ within noise.

@@ -367,6 +367,10 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
     meshlod::HierarchyBuilder empty;
     empty.SetEmptyLevelZero(input);
     empty.Finish(output);
+    if (this->BakeTexture)
+    {
+      textures->SetNumberOfBlocks(1); // block i for level i: level 0 has no texture to bake
+    }
     return 1;
   }
   meshlod::WarnAboutReservedNames(input, this);

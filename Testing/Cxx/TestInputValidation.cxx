@@ -361,6 +361,57 @@ void TestAttributeSeamKept(Reader& reader)
   // The texture coordinates of a corner's points differ for most corners: the seam stays.
   MESHLOD_CHECK_GE(result.Mesh.GetNumberOfPoints(), 16);
 
+  // Three coincident points whose ids sort as (same data, other data, same data): the first
+  // and the last are stitched although the one between them differs (comparing neighbours in
+  // sort order only left them apart). A soup of three triangles, two coplanar sharing an edge
+  // (normal +z) and one standing on that edge (normal +y), with per-face normals.
+  {
+    const double xyz[9][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, // flat, +z
+      { 0, 0, 0 }, { 1, 0, 0 }, { 0, 0, -1 },                          // standing, +y
+      { 1, 0, 0 }, { 0, 0, 0 }, { 0, -1, 0 } };                        // flat, +z
+    const double normals[3][3] = { { 0, 0, 1 }, { 0, 1, 0 }, { 0, 0, 1 } };
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkFloatArray> normal;
+    normal->SetName("Normals");
+    normal->SetNumberOfComponents(3);
+    vtkNew<vtkCellArray> polys;
+    for (int t = 0; t < 3; ++t)
+    {
+      vtkIdType ids[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        ids[k] = points->InsertNextPoint(xyz[3 * t + k]);
+        normal->InsertNextTuple(normals[t]);
+      }
+      polys->InsertNextCell(3, ids);
+    }
+    vtkNew<vtkPolyData> soup;
+    soup->SetPoints(points);
+    soup->SetPolys(polys);
+    soup->GetPointData()->SetNormals(normal);
+    MESHLOD_CHECK(reader.Read(soup, result) == InputStatus::Valid);
+    MESHLOD_CHECK_EQ(result.MergedPoints, 2); // the two flat triangles share their edge
+    MESHLOD_CHECK_EQ(result.Topology.CountEdges(result.Mesh).Boundary, 7);
+  }
+
+  // An infinite value does not make every pair agree (the tolerance comes from the finite
+  // range).
+  {
+    vtkNew<vtkPolyData> withInfinity;
+    withInfinity->DeepCopy(bare);
+    vtkNew<vtkFloatArray> values;
+    values->SetName("Values");
+    values->SetNumberOfTuples(withInfinity->GetNumberOfPoints());
+    for (vtkIdType p = 0; p < withInfinity->GetNumberOfPoints(); ++p)
+    {
+      values->SetValue(p, static_cast<float>(p));
+    }
+    values->SetValue(0, std::numeric_limits<float>::infinity());
+    withInfinity->GetPointData()->AddArray(values);
+    MESHLOD_CHECK(reader.Read(withInfinity, result) == InputStatus::Valid);
+    MESHLOD_CHECK_EQ(result.MergedPoints, 0);
+  }
+
   bare->GetPointData()->Initialize();
   MESHLOD_CHECK(reader.Read(bare, result) == InputStatus::Valid);
   MESHLOD_CHECK_EQ(result.MergedPoints, 16);
