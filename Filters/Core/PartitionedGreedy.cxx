@@ -38,9 +38,10 @@ namespace
 // heaps; fewer: less left at cell borders) ...
 constexpr std::int64_t TrianglesPerCell = 32768;
 // ... but a round has at least this many cells (to keep two threads busy) when every cell
-// still gets MinimumTrianglesPerCell.
+// still gets MinimumTrianglesPerCell. (At 4096, the levels below 30,000 triangles had 2 to 6
+// cells, too few to balance two threads: 1.5x on the 154k benchmark mesh, 1.7x at 2048.)
 constexpr std::int64_t MinimumCells = 16;
-constexpr std::int64_t MinimumTrianglesPerCell = 4096;
+constexpr std::int64_t MinimumTrianglesPerCell = 2048;
 // The grid never has more cells than this (each round counts candidates per cell).
 constexpr std::int64_t MaximumCells = 1 << 16;
 // A round removes at most this fraction of what is left to the next level's count ...
