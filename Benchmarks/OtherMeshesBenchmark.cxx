@@ -6,12 +6,12 @@
 //
 //   OtherMeshesBenchmark [samples]   (surface samples per side for the distances, default 100000)
 #include "MeshLODSurfaceDistance.h"
+#include "MeshLODTestMeshes.h"
 #include "vtkTriangleCollapseDecimation.h"
 
 #include "vtkCleanPolyData.h"
 #include "vtkCylinderSource.h"
 #include "vtkLinearSubdivisionFilter.h"
-#include "vtkMinimalStandardRandomSequence.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkParametricFunctionSource.h"
@@ -90,16 +90,7 @@ std::vector<TestMesh> Meshes()
         sphere->SetThetaResolution(400);
         sphere->SetPhiResolution(200);
         vtkSmartPointer<vtkPolyData> mesh = Prepare(sphere, 0);
-        vtkNew<vtkMinimalStandardRandomSequence> random;
-        random->SetSeed(seed);
-        for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
-        {
-          double x[3];
-          mesh->GetPoint(i, x);
-          const double f = 1.0 + 0.002 * (random->GetValue() - 0.5);
-          random->Next();
-          mesh->GetPoints()->SetPoint(i, f * x[0], f * x[1], f * x[2]);
-        }
+        meshlod::testing::PerturbRadially(mesh, 0.002, seed);
         return mesh;
       } });
   }

@@ -23,7 +23,6 @@
 #include "vtkLinearSubdivisionFilter.h"
 #include "vtkLinearExtrusionFilter.h"
 #include "vtkMath.h"
-#include "vtkMinimalStandardRandomSequence.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkParametricFunctionSource.h"
@@ -871,16 +870,7 @@ void TestNoisySurface()
   vtkNew<vtkPolyData> sphere;
   sphere->DeepCopy(clean->GetOutput());
   sphere->GetPointData()->Initialize();
-  vtkNew<vtkMinimalStandardRandomSequence> random;
-  random->SetSeed(3);
-  for (vtkIdType p = 0; p < sphere->GetNumberOfPoints(); ++p)
-  {
-    double x[3];
-    sphere->GetPoint(p, x);
-    const double f = 1.0 + 0.08 * (random->GetValue() - 0.5);
-    random->Next();
-    sphere->GetPoints()->SetPoint(p, f * x[0], f * x[1], f * x[2]);
-  }
+  testing::PerturbRadially(sphere, 0.08, 3);
   const vtkIdType triangles = sphere->GetNumberOfPolys();
   vtkNew<vtkTriangleCollapseDecimation> filter;
   filter->SetInputData(sphere);

@@ -5,6 +5,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMath.h"
+#include "vtkMinimalStandardRandomSequence.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -219,6 +220,20 @@ vtkSmartPointer<vtkPolyData> MakeFan(int n)
     triangles.insert(triangles.end(), { 0, 1 + i, 1 + (i + 1) % n });
   }
   return MakePolyData(points, triangles);
+}
+
+void PerturbRadially(vtkPolyData* mesh, double amplitude, int seed)
+{
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(seed);
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    const double f = 1.0 + amplitude * (random->GetValue() - 0.5);
+    random->Next();
+    mesh->GetPoints()->SetPoint(p, f * x[0], f * x[1], f * x[2]);
+  }
 }
 
 // Points: 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z. Outward-facing triangles.

@@ -57,6 +57,10 @@ vtkSmartPointer<vtkPolyData> MakeGridWithHole();
 /// A wavy disk of n triangles around one centre point (valence n): an open fan, as a
 /// triangulated polygon or a cylinder's cap makes it.
 vtkSmartPointer<vtkPolyData> MakeFan(int n);
+/// Scan-like noise: every point's position vector scaled by 1 + amplitude (u - 1/2), u uniform
+/// in [0, 1) from vtkMinimalStandardRandomSequence with `seed`, in point order (for surfaces
+/// centred at the origin).
+void PerturbRadially(vtkPolyData* mesh, double amplitude, int seed);
 /// A closed surface from a flat list of points and triangles.
 vtkSmartPointer<vtkPolyData> MakePolyData(
   const std::vector<double>& points, const std::vector<long long>& triangles);
