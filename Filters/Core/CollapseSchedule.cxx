@@ -217,6 +217,24 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     parent[p] = saved;
     return valid;
   };
+  // Whether the points settled on target t so far form one vertex with one fan.
+  auto settledHaveOneFan = [&](Id t) {
+    members.clear();
+    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
+    {
+      if (this->Step[targetPoints[i]] != Unassigned)
+      {
+        members.push_back(targetPoints[i]);
+      }
+    }
+    return HasOneFan(
+      triangles, adjacency, parent, members, Find(parent, settledOn[t]), from, to);
+  };
+  // Targets that a step passed through left without one fan. A later step may stop only once
+  // none is left: a step's own check sees its target only, and an earlier step's broken
+  // target can stay broken (a non-manifold edge, a doubled triangle) while later steps
+  // elsewhere pass theirs.
+  std::vector<Id> broken;
   std::vector<std::uint8_t> valid(1, 1);
 
   size_t begin = 0;
@@ -276,12 +294,21 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       }
       this->Order.push_back(p);
       this->Step[p] = static_cast<Id>(this->Order.size());
-      valid.push_back(ok ? 1 : 0);
       if (settledOn[t] == Unassigned)
       {
         settledOn[t] = p;
       }
       parent[Find(parent, p)] = Find(parent, settledOn[t]);
+      if (!ok && std::find(broken.begin(), broken.end(), t) == broken.end())
+      {
+        broken.push_back(t);
+      }
+      // The broken targets (this one included, when it was broken before) may have one fan
+      // again now.
+      broken.erase(std::remove_if(broken.begin(), broken.end(),
+                     [&](Id b) { return (b != t || ok) && settledHaveOneFan(b); }),
+        broken.end());
+      valid.push_back(ok && broken.empty() ? 1 : 0);
     }
     begin = end;
   }
