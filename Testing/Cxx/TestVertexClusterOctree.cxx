@@ -697,6 +697,12 @@ void TestSettingsAndErrors()
   MESHLOD_CHECK(!observer->GetWarning());
   MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 1u);
   MESHLOD_CHECK_EQ(Level(filter->GetHierarchy(), 0)->GetNumberOfPoints(), 0);
+  // With baking, the texture output has its block for that level too.
+  filter->BakeTextureOn();
+  filter->Update();
+  MESHLOD_CHECK(!observer->GetError());
+  MESHLOD_CHECK_EQ(filter->GetTextures()->GetNumberOfBlocks(), 1u);
+  filter->BakeTextureOff();
 
   // NaN settings: an error naming the setting, no output (vtkSetClampMacro lets NaN through;
   // an epsilon of NaN crashed while assigning clusters).
