@@ -74,7 +74,10 @@
  * target; the collapses between two levels are composed. On the benchmark meshes both reach
  * about the same error per triangle (RMS within 2%, Hausdorff distances within the few tens of
  * percent by which a maximum varies between runs; Benchmarks/RESULTS.md); Greedy is the
- * default because it is about twice as fast, on one thread and on two.
+ * default because it is about twice as fast, on one thread and on two. On CAD-like solids
+ * (flat faces, sharp rims) Greedy is also far more accurate: IndependentSets keeps paper 000's
+ * valence rule for edge collapses too, and on an extruded text at 1% it stopped at 1.3% of the
+ * triangles with about 28x vtkQuadricDecimation's Hausdorff distance (Greedy: 1.0x).
  *
  * Levels: by default NumberOfLevels levels follow level 0 with triangle counts spaced
  * geometrically down to (1 - TargetReduction) times the input's (8 levels to 1% gives 56%, 32%,
