@@ -77,7 +77,7 @@
  * default because it is about twice as fast, on one thread and on two. On CAD-like solids
  * (flat faces, sharp rims) Greedy is also far more accurate: IndependentSets keeps paper 000's
  * valence rule for edge collapses too, and on an extruded text at 1% it stopped at 1.3% of the
- * triangles with about 28x vtkQuadricDecimation's Hausdorff distance (Greedy: 1.0x).
+ * triangles with about 30x vtkQuadricDecimation's Hausdorff distance (Greedy: 1.0x).
  *
  * Levels: by default NumberOfLevels levels follow level 0 with triangle counts spaced
  * geometrically down to (1 - TargetReduction) times the input's (8 levels to 1% gives 56%, 32%,
