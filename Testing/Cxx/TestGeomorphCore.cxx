@@ -8,6 +8,7 @@
 
 #include "vtkPolyData.h"
 
+#include <initializer_list>
 #include <vector>
 
 namespace
@@ -23,24 +24,48 @@ using namespace meshlod;
 //    8 [9 10] 11
 //    4 [5  6]  7
 //    0  1  2  3
+// The transition inputs of CollapseSchedule::Build on the 3x3 grid below: every point fixed
+// at its own target until Collapse() moves some.
+struct GridCollapses
+{
+  const TriangleMesh Grid = testing::ToTriangleMesh(testing::MakeGrid(3, 3));
+  std::vector<Id> Target;
+  std::vector<std::int64_t> Rank;
+  std::vector<std::uint8_t> AtTarget;
+  GridCollapses() { this->Reset(); }
+  void Reset()
+  {
+    this->Target.resize(16);
+    for (Id p = 0; p < 16; ++p)
+    {
+      this->Target[p] = p;
+    }
+    this->Rank.assign(16, -1);
+    this->AtTarget.assign(16, 1);
+  }
+  // The points merge into `target` as one collapse of the given rank.
+  void Collapse(std::initializer_list<Id> points, Id target, std::int64_t rank)
+  {
+    for (const Id p : points)
+    {
+      this->Target[p] = target;
+      this->Rank[p] = rank;
+      this->AtTarget[p] = 0;
+    }
+  }
+  void Build(CollapseSchedule& s) const
+  {
+    s.Build(this->Grid.Triangles.data(), 18, 16, this->Target.data(), this->Rank.data(),
+      this->AtTarget.data());
+  }
+};
+
 void TestCluster()
 {
-  const TriangleMesh grid = testing::ToTriangleMesh(testing::MakeGrid(3, 3));
-  std::vector<Id> target(16);
-  std::vector<std::int64_t> rank(16, -1);
-  std::vector<std::uint8_t> atTarget(16, 1);
-  for (Id p = 0; p < 16; ++p)
-  {
-    target[p] = p;
-  }
-  for (const Id p : { 5, 6, 9, 10 })
-  {
-    target[p] = 5;
-    rank[p] = 0;
-    atTarget[p] = 0;
-  }
+  GridCollapses grid;
+  grid.Collapse({ 5, 6, 9, 10 }, 5, 0);
   CollapseSchedule s;
-  s.Build(grid.Triangles.data(), 18, 16, target.data(), rank.data(), atTarget.data());
+  grid.Build(s);
   // 5 first (lowest id), then the lowest id joined to a settled point: 6, 9, then 10.
   MESHLOD_CHECK(s.Order == std::vector<Id>({ 5, 6, 9, 10 }));
   MESHLOD_CHECK_EQ(s.Step[0], 0);
@@ -68,8 +93,8 @@ void TestCluster()
 
   // Point 9 already at the collapse point: it settles at step 0, then each time the lowest id
   // joined to a settled point: 5 (joined to 9), 6 (joined to 5), 10.
-  atTarget[9] = 1;
-  s.Build(grid.Triangles.data(), 18, 16, target.data(), rank.data(), atTarget.data());
+  grid.AtTarget[9] = 1;
+  grid.Build(s);
   MESHLOD_CHECK(s.Order == std::vector<Id>({ 5, 6, 10 }));
   MESHLOD_CHECK_EQ(s.Step[9], 0);
   // 5 joins 9: (5, 10, 9) and (4, 5, 9); 6 joins: (1, 6, 5), (5, 6, 10); 10: (6, 11, 10),
@@ -77,37 +102,19 @@ void TestCluster()
   MESHLOD_CHECK(s.CountAfter == std::vector<Id>({ 18, 16, 14, 12 }));
 
   // Two collapses: {1, 2} (rank 1) and {13, 14} (rank 0): rank order first.
-  atTarget.assign(16, 1);
-  rank.assign(16, -1);
-  for (Id p = 0; p < 16; ++p)
-  {
-    target[p] = p;
-  }
-  target[2] = 1;
-  target[14] = 13;
-  rank[1] = rank[2] = 1;
-  rank[13] = rank[14] = 0;
-  atTarget[1] = atTarget[2] = atTarget[13] = atTarget[14] = 0;
-  s.Build(grid.Triangles.data(), 18, 16, target.data(), rank.data(), atTarget.data());
+  grid.Reset();
+  grid.Collapse({ 1, 2 }, 1, 1);
+  grid.Collapse({ 13, 14 }, 13, 0);
+  grid.Build(s);
   MESHLOD_CHECK(s.Order == std::vector<Id>({ 13, 14, 1, 2 }));
   // Edge 13-14 has one triangle (9, 14, 13), edge 1-2 one triangle (1, 2, 6): boundary edges.
   MESHLOD_CHECK(s.CountAfter == std::vector<Id>({ 18, 18, 17, 17, 16 }));
 
   // One collapse {0, 3, 4}: 4 (joined to 0) settles before 3 (joined to neither), so the
   // boundary triangle (0, 5, 4) goes one step earlier than in plain id order.
-  atTarget.assign(16, 1);
-  rank.assign(16, -1);
-  for (Id p = 0; p < 16; ++p)
-  {
-    target[p] = p;
-  }
-  for (const Id p : { 0, 3, 4 })
-  {
-    target[p] = 0;
-    rank[p] = 0;
-    atTarget[p] = 0;
-  }
-  s.Build(grid.Triangles.data(), 18, 16, target.data(), rank.data(), atTarget.data());
+  grid.Reset();
+  grid.Collapse({ 0, 3, 4 }, 0, 0);
+  grid.Build(s);
   MESHLOD_CHECK(s.Order == std::vector<Id>({ 0, 4, 3 }));
   MESHLOD_CHECK(s.CountAfter == std::vector<Id>({ 18, 18, 17, 17 }));
 }
@@ -134,28 +141,11 @@ void TestEdgeMerge()
 // exact-count mode produced such meshes for 3% of the counts of one transition).
 void TestPinchStaysUntilRepaired()
 {
-  const TriangleMesh grid = testing::ToTriangleMesh(testing::MakeGrid(3, 3));
-  std::vector<Id> target(16);
-  std::vector<std::int64_t> rank(16, -1);
-  std::vector<std::uint8_t> atTarget(16, 1);
-  for (Id p = 0; p < 16; ++p)
-  {
-    target[p] = p;
-  }
-  for (const Id p : { 0, 15 })
-  {
-    target[p] = 0;
-    rank[p] = 0;
-    atTarget[p] = 0;
-  }
-  for (const Id p : { 1, 2 })
-  {
-    target[p] = 1;
-    rank[p] = 1;
-    atTarget[p] = 0;
-  }
+  GridCollapses grid;
+  grid.Collapse({ 0, 15 }, 0, 0);
+  grid.Collapse({ 1, 2 }, 1, 1);
   CollapseSchedule s;
-  s.Build(grid.Triangles.data(), 18, 16, target.data(), rank.data(), atTarget.data());
+  grid.Build(s);
   MESHLOD_CHECK(s.Order == std::vector<Id>({ 0, 15, 1, 2 }));
   // Step 1 only moves 0; step 2 pinches; steps 3 and 4 leave the pinch in place.
   MESHLOD_CHECK(s.Stops == std::vector<Id>({ 0, 1 }));
