@@ -85,8 +85,10 @@ vtkSmartPointer<vtkPolyData> DropMismatchedArrays(vtkPolyData* input, vtkAlgorit
 }
 
 //------------------------------------------------------------------------------
-PointDataAgreement::PointDataAgreement(vtkPointData* pointData)
+void PointDataAgreement::Prepare() const
 {
+  this->Prepared = true;
+  vtkPointData* pointData = this->PointData;
   for (int i = 0; i < pointData->GetNumberOfArrays(); ++i)
   {
     vtkDataArray* array = pointData->GetArray(i);
@@ -109,6 +111,10 @@ PointDataAgreement::PointDataAgreement(vtkPointData* pointData)
 
 bool PointDataAgreement::operator()(Id a, Id b) const
 {
+  if (!this->Prepared)
+  {
+    this->Prepare();
+  }
   size_t k = 0;
   for (vtkDataArray* array : this->Arrays)
   {

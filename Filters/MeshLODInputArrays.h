@@ -26,12 +26,20 @@ vtkSmartPointer<vtkPolyData> DropMismatchedArrays(vtkPolyData* input, vtkAlgorit
 class PointDataAgreement
 {
 public:
-  explicit PointDataAgreement(vtkPointData* pointData);
+  explicit PointDataAgreement(vtkPointData* pointData)
+    : PointData(pointData)
+  {
+  }
   bool operator()(Id a, Id b) const;
 
 private:
-  std::vector<vtkDataArray*> Arrays;
-  std::vector<double> Tolerances; // per array, per component
+  // The arrays and their tolerances, found at the first comparison: most inputs have no
+  // coincident boundary points, and the ranges cost a pass over every array.
+  void Prepare() const;
+  vtkPointData* PointData;
+  mutable bool Prepared = false;
+  mutable std::vector<vtkDataArray*> Arrays;
+  mutable std::vector<double> Tolerances; // per array, per component
 };
 
 } // namespace meshlod
