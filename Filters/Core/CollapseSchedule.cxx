@@ -194,6 +194,21 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     }
   }
   std::vector<Id> members, from, to, joined;
+  // Whether the points settled on target t (and `extra`, when given) form one vertex with one
+  // fan; `extra` must already point at the class root.
+  auto hasOneFan = [&](Id t, Id extra) {
+    members.clear();
+    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
+    {
+      const Id q = targetPoints[i];
+      if (q == extra || this->Step[q] != Unassigned)
+      {
+        members.push_back(q);
+      }
+    }
+    return HasOneFan(
+      triangles, adjacency, parent, members, Find(parent, settledOn[t]), from, to);
+  };
   // Whether settling p now leaves a valid mesh (p's target keeps one fan).
   auto validWith = [&](Id p) {
     const Id t = target[p];
@@ -201,35 +216,14 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     {
       return true; // the first point of its target only moves
     }
-    const Id root = Find(parent, settledOn[t]);
     const Id saved = parent[p];
-    parent[p] = root;
-    members.clear();
-    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
-    {
-      const Id q = targetPoints[i];
-      if (q == p || this->Step[q] != Unassigned)
-      {
-        members.push_back(q);
-      }
-    }
-    const bool valid = HasOneFan(triangles, adjacency, parent, members, root, from, to);
+    parent[p] = Find(parent, settledOn[t]);
+    const bool valid = hasOneFan(t, p);
     parent[p] = saved;
     return valid;
   };
   // Whether the points settled on target t so far form one vertex with one fan.
-  auto settledHaveOneFan = [&](Id t) {
-    members.clear();
-    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
-    {
-      if (this->Step[targetPoints[i]] != Unassigned)
-      {
-        members.push_back(targetPoints[i]);
-      }
-    }
-    return HasOneFan(
-      triangles, adjacency, parent, members, Find(parent, settledOn[t]), from, to);
-  };
+  auto settledHaveOneFan = [&](Id t) { return hasOneFan(t, Unassigned); };
   // Targets that a step passed through left without one fan. A later step may stop only once
   // none is left: a step's own check sees its target only, and an earlier step's broken
   // target can stay broken (a non-manifold edge, a doubled triangle) while later steps
