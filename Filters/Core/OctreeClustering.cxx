@@ -13,6 +13,20 @@ namespace meshlod
 {
 using namespace octree;
 
+namespace
+{
+// The corrected aim of the count search never falls below the target over this, and a level
+// with fewer triangles than that is searched again without the earlier levels' fold refusals.
+constexpr Id MinimumAimFraction = 4;
+
+// How far a count is from a target, as a ratio: 2 triangles for a target of 1555 is worse than
+// 17,000.
+double Miss(Id count, Id target)
+{
+  return std::abs(std::log(static_cast<double>(count) / static_cast<double>(target)));
+}
+}
+
 //------------------------------------------------------------------------------
 OctreeClustering::OctreeClustering(const TriangleMesh& mesh,
   const TriangleTopology& topology,
@@ -35,6 +49,8 @@ void OctreeClustering::BuildTree()
   impl.Tree.Build(impl.Mesh, impl.Topology, options);
   const Id ni = impl.Tree.NumberOfInternalNodes();
   impl.State.assign(ni, NodeState::NotEvaluated);
+  impl.Refused.assign(ni, 0);
+  impl.RefusedNodes.clear();
   impl.RepSlot.assign(ni, InvalidId);
   impl.Reps.clear();
   impl.Thr.resize(ni);
@@ -85,44 +101,61 @@ bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLeve
     impl.Commit(level);
     return true;
   }
-  const Id tolerance = std::max<Id>(2, targetTriangles / 500);
-  // The estimate NT - (triangles that degenerate in collapsed nodes) ignores duplicates: aim off
-  // by the difference a trial level shows, a few times.
-  Id aim = targetTriangles;
-  ClusterLevel best, trial;
-  Id bestCount = 0;
-  bool haveBest = false;
-  for (int round = 0; round < 3; ++round)
+  ClusterLevel best;
+  Id bestCount = impl.SearchLevel(targetTriangles, best);
+  if (bestCount > 0 && bestCount < targetTriangles / MinimumAimFraction && impl.ClearRefusals())
   {
-    const double epsilon = impl.SearchEpsilon(aim, std::max<Id>(1, tolerance / 2));
-    const Id count = impl.TryLevel(epsilon, trial);
-    if (count > 0)
+    // Far too few: the earlier levels' fold refusals left nothing to merge but large nodes.
+    // Without them (the clusters around them are coarser now) the search may do better.
+    ClusterLevel retry;
+    const Id count = impl.SearchLevel(targetTriangles, retry);
+    if (count > 0 && Miss(count, targetTriangles) < Miss(bestCount, targetTriangles))
     {
-      const Id error = std::abs(count - targetTriangles);
-      const Id bestError = std::abs(bestCount - targetTriangles);
-      if (!haveBest || error < bestError)
-      {
-        best = std::move(trial);
-        bestCount = count;
-        haveBest = true;
-      }
+      best = std::move(retry);
+      bestCount = count;
     }
-    if (std::abs(count - targetTriangles) <= tolerance || count == 0 ||
-      epsilon >= std::numeric_limits<float>::max())
-    {
-      break;
-    }
-    impl.ComputeActivation();
-    aim = static_cast<Id>(
-      std::max<std::int64_t>(1, targetTriangles + (impl.EstimateAt(epsilon) - count)));
   }
-  if (!haveBest)
+  if (bestCount == 0)
   {
     return false;
   }
   level = std::move(best);
   impl.Commit(level);
   return true;
+}
+
+//------------------------------------------------------------------------------
+Id OctreeClustering::Internals::SearchLevel(Id targetTriangles, ClusterLevel& best)
+{
+  const Id tolerance = std::max<Id>(2, targetTriangles / 500);
+  // The estimate NT - (triangles that degenerate in collapsed nodes) ignores duplicates and the
+  // clusters split again to remove folds: aim off by the difference a trial level shows, a few
+  // times. On a rough surface the folds can add back more than the whole target; the aim then
+  // stays at a fraction of the target (aiming at nothing would cut the octree at its roots).
+  const Id lowestAim = std::max<Id>(1, targetTriangles / MinimumAimFraction);
+  Id aim = targetTriangles;
+  ClusterLevel trial;
+  Id bestCount = 0;
+  for (int round = 0; round < 3; ++round)
+  {
+    const double epsilon = this->SearchEpsilon(aim, std::max<Id>(1, tolerance / 2));
+    const Id count = this->TryLevel(epsilon, trial);
+    if (count > 0 &&
+      (bestCount == 0 || Miss(count, targetTriangles) < Miss(bestCount, targetTriangles)))
+    {
+      best = std::move(trial);
+      bestCount = count;
+    }
+    if (std::abs(count - targetTriangles) <= tolerance || count == 0 ||
+      epsilon >= std::numeric_limits<float>::max())
+    {
+      break;
+    }
+    this->ComputeActivation();
+    aim = static_cast<Id>(
+      std::max<std::int64_t>(lowestAim, targetTriangles + (this->EstimateAt(epsilon) - count)));
+  }
+  return bestCount;
 }
 
 Id OctreeClustering::GetCurrentTriangleCount() const

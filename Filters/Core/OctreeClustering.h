@@ -47,7 +47,10 @@
 // changed as not mergeable, and the level is cut again (such nodes lie above the previous cut,
 // so nesting holds). A target triangle count is met by a search over epsilon on the count
 // estimate (input triangles minus those that degenerate in collapsed nodes), corrected by what
-// a trial level actually keeps.
+// a trial level actually keeps; the trial closest to the target in ratio is kept. Nodes refused
+// for a fold stay refused at later levels, unless a level would otherwise keep under a quarter
+// of its target: then the search is repeated without those refusals (on a rough surface they
+// can leave nothing to merge but the octree's roots).
 #ifndef meshlod_OctreeClustering_h
 #define meshlod_OctreeClustering_h
 

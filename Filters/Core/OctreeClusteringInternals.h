@@ -141,6 +141,14 @@ struct OctreeClustering::Internals
   // Per internal node: the full evaluation, and the epsilon from which the node or an ancestor
   // is a cluster (Activation).
   std::vector<octree::NodeState> State;
+  // Per internal node: refused as a cluster because it folded a level (MarkFolds). Unlike
+  // pinches (State Inadmissible for good), a fold refusal can be lifted (ClearRefusals) when a
+  // later level finds almost nothing left to merge: on a rough surface the refusals can leave
+  // only the octree's roots, while the coarser clusters around a refused node at the later
+  // epsilon may no longer fold it. Nesting holds either way: a refused node lies above the cut
+  // it was refused for.
+  std::vector<unsigned char> Refused;
+  std::vector<Id> RefusedNodes;
   std::vector<float> Thr; // the smallest epsilon at which the node may be a cluster
   std::vector<Id> RepSlot;
   // Per evaluated node (RepSlot): representative, surface normal and error.
@@ -218,9 +226,15 @@ struct OctreeClustering::Internals
   Id MarkPinches(octree::Synthesis& s);
   // Mark the changed clusters among `clusters` as not mergeable; returns how many were. With
   // SplitFully, also every node between them and the previous level's points inside them.
-  Id MarkChanged(octree::Synthesis& s, const std::vector<Id>& clusters);
+  // `lasting`: for good (pinches), otherwise as a fold refusal (Refused).
+  Id MarkChanged(octree::Synthesis& s, const std::vector<Id>& clusters, bool lasting);
+  // Lift the fold refusals; false when there were none.
+  bool ClearRefusals();
   bool SplitFully = false;
   Id TryLevel(double epsilon, ClusterLevel& level);
+  // The best of a few trial levels for a target count (see MakeLevelForTriangleCount); returns
+  // its count, 0 when none has a triangle.
+  Id SearchLevel(Id targetTriangles, ClusterLevel& best);
   void Finalize(octree::Synthesis& s, ClusterLevel& level) const;
   void Commit(const ClusterLevel& level);
 };

@@ -79,7 +79,8 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
   std::vector<Id> pending, failed, kept, stack;
   auto queue = [&](Id node)
   {
-    if (node >= this->NV && this->State[node - this->NV] == NodeState::NotEvaluated)
+    if (node >= this->NV && this->State[node - this->NV] == NodeState::NotEvaluated &&
+      !this->Refused[node - this->NV])
     {
       const Id i = node - this->NV;
       pending.push_back(node);
@@ -92,7 +93,7 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
     }
     else
     {
-      failed.push_back(node); // evaluated before, since marked inadmissible (update only)
+      failed.push_back(node); // refused since its evaluation, or before it (update only)
     }
   };
   // Replace a node that does not qualify by the topmost qualifying nodes below it.

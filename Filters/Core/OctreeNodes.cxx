@@ -27,7 +27,8 @@ bool OctreeClustering::Internals::CheapInadmissible(Id index) const
 void OctreeClustering::Internals::UpdateThreshold(Id index)
 {
   float& thr = this->Thr[index];
-  if (this->State[index] == NodeState::Inadmissible || this->CheapInadmissible(index))
+  if (this->State[index] == NodeState::Inadmissible || this->Refused[index] ||
+    this->CheapInadmissible(index))
   {
     thr = Infinite;
     return;

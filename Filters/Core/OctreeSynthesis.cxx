@@ -219,19 +219,30 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
       marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
     }
   }
-  return this->MarkChanged(s, marks);
+  return this->MarkChanged(s, marks, false);
 }
 
 //------------------------------------------------------------------------------
-Id OctreeClustering::Internals::MarkChanged(Synthesis& s, const std::vector<Id>& clusters)
+Id OctreeClustering::Internals::MarkChanged(Synthesis& s,
+  const std::vector<Id>& clusters,
+  bool lasting)
 {
   Id marked = 0;
   auto mark = [&](Id node)
   {
-    if (node >= this->NV && this->State[node - this->NV] != NodeState::Inadmissible)
+    const Id i = node - this->NV;
+    if (node >= this->NV && this->State[i] != NodeState::Inadmissible && !this->Refused[i])
     {
-      this->State[node - this->NV] = NodeState::Inadmissible;
-      this->UpdateThreshold(node - this->NV);
+      if (lasting)
+      {
+        this->State[i] = NodeState::Inadmissible;
+      }
+      else
+      {
+        this->Refused[i] = 1;
+        this->RefusedNodes.push_back(i);
+      }
+      this->UpdateThreshold(i);
       ++marked;
     }
   };
@@ -343,7 +354,7 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
       marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
     }
   }
-  return this->MarkChanged(s, marks);
+  return this->MarkChanged(s, marks, true);
 }
 
 //------------------------------------------------------------------------------
@@ -573,6 +584,19 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
   this->SplitFully = false;
   this->Finalize(s, level);
   return level.Mesh.GetNumberOfTriangles();
+}
+
+//------------------------------------------------------------------------------
+bool OctreeClustering::Internals::ClearRefusals()
+{
+  for (const Id i : this->RefusedNodes)
+  {
+    this->Refused[i] = 0;
+    this->UpdateThreshold(i);
+  }
+  const bool any = !this->RefusedNodes.empty();
+  this->RefusedNodes.clear();
+  return any;
 }
 
 //------------------------------------------------------------------------------
