@@ -411,7 +411,12 @@ Legality CollapseMesh::IsLegal(
     {
       return Legality::Illegal;
     }
-    if (rules.KeepFacing && Dot(after, facing) <= 0.0)
+    // Facing away is refused only for a triangle that faced the right way before: on a very
+    // noisy input many triangles face away already (a sphere with radial noise of two thirds
+    // of an edge), and refusing every collapse that keeps one so left only collapses making
+    // huge triangles, which cut whole caps off (Hausdorff 17% against vtkQuadricDecimation's
+    // 2.2% on that sphere, stopped at 3.3% of its triangles asked for 1%).
+    if (rules.KeepFacing && Dot(after, facing) <= 0.0 && Dot(before, facing) > 0.0)
     {
       return Legality::Illegal;
     }

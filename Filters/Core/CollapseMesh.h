@@ -50,9 +50,9 @@ struct CollapseRules
   /// Paper 000 condition (3): the stencil boundary polygon, projected on the collapsing
   /// triangle's plane, must be star-shaped around the projected collapse point.
   bool RequireStarShaped = true;
-  /// No ring triangle may face away from the original surface its corners stand for
-  /// (CollapseMesh::Facing). The per-collapse normal test alone lets many small turns add up
-  /// to a fold at coarse levels.
+  /// No ring triangle may come to face away from the original surface its corners stand for
+  /// (CollapseMesh::Facing); one that faces away already (noise) may stay so. The per-collapse
+  /// normal test alone lets many small turns add up to a fold at coarse levels.
   bool KeepFacing = true;
 };
 

@@ -849,17 +849,10 @@ void TestHighValenceFan()
   MESHLOD_CHECK_LE(testing::BoundaryDeviation(fan, Level(h, 2)), 0.01);
 }
 
-// Far from the origin (world or map coordinates) a quadric's evaluation cancels away the error
-// it measures unless the engine works about the mesh's centre: the same sphere decimated at
-// (1e6, -2e6, 3e5) must be as accurate as at the origin (measured without the centring: 1.9
-// times the Hausdorff distance at 10%), and its levels must stay where the input is.
-// A scan-like input: a UV sphere (100 x 100, 19,600 triangles) with its radii perturbed by up
-// to 4%, more than an edge near the poles. Its triangles' normals scatter widely, and the
-// collapses that smooth the noise turn them far from their own normal but towards the surface:
-// before this change (a bound of 60 degrees measured against the old normal alone) the run
-// stopped short of the 1% level. (At 60 degrees with the new exception for turns towards the
-// input surface it still does: the default of 90 is needed too.)
-void TestNoisySurface()
+// A sphere of 19,600 triangles with uniform radial noise of `amplitude` (relative to the
+// radius): every level within 2x vtkQuadricDecimation's errors at the same count, the last at
+// its target.
+void CheckNoisySphere(double amplitude)
 {
   vtkNew<vtkSphereSource> source;
   source->SetThetaResolution(100);
@@ -870,7 +863,7 @@ void TestNoisySurface()
   vtkNew<vtkPolyData> sphere;
   sphere->DeepCopy(clean->GetOutput());
   sphere->GetPointData()->Initialize();
-  testing::PerturbRadially(sphere, 0.08, 3);
+  testing::PerturbRadially(sphere, amplitude, 3);
   const vtkIdType triangles = sphere->GetNumberOfPolys();
   vtkNew<vtkTriangleCollapseDecimation> filter;
   filter->SetInputData(sphere);
@@ -896,7 +889,7 @@ void TestNoisySurface()
     peer->Update();
     const SurfaceDistance ours = MeasureSurfaceDistance(sphere, level, options);
     const SurfaceDistance theirs = MeasureSurfaceDistance(sphere, peer->GetOutput(), options);
-    std::cerr << "  noisy sphere at " << level->GetNumberOfPolys() << " triangles: RMS "
+    std::cerr << "  noisy sphere (" << amplitude << ") at " << level->GetNumberOfPolys() << " triangles: RMS "
               << ours.RmsPercent() << "%, Hausdorff " << ours.HausdorffPercent()
               << "% (vtkQuadricDecimation " << theirs.RmsPercent() << "%, "
               << theirs.HausdorffPercent() << "%)\n";
@@ -906,6 +899,23 @@ void TestNoisySurface()
     MESHLOD_CHECK_LE(ours.Hausdorff, 2.0 * theirs.Hausdorff);
     MESHLOD_CHECK_EQ(testing::InspectMesh(level).NonManifoldEdges, 0);
   }
+}
+
+// A scan-like input: a UV sphere (100 x 100, 19,600 triangles) with its radii perturbed by up
+// to 4%, more than an edge near the poles. Its triangles' normals scatter widely, and the
+// collapses that smooth the noise turn them far from their own normal but towards the surface:
+// before this change (a bound of 60 degrees measured against the old normal alone) the run
+// stopped short of the 1% level. (At 60 degrees with the new exception for turns towards the
+// input surface it still does: the default of 90 is needed too.)
+void TestNoisySurface()
+{
+  CheckNoisySphere(0.08);
+  // Radii perturbed by up to 10%, about 1.6 edges: many input triangles face inwards. Refusing every collapse
+  // that left one facing away stopped this sphere short of its 2% level (on 79,200 triangles
+  // with 2% noise, at 3.3% with a last level whose few huge triangles cut caps off: Hausdorff
+  // 17% against vtkQuadricDecimation's 2.2%). Now: RMS 0.60%, 1.19%, 1.81% against 0.59%,
+  // 1.21%, 1.86%.
+  CheckNoisySphere(0.2);
 }
 
 // A CAD-like solid with sharp rims along curves: a flower-shaped polygon (r = 1 + 0.3 sin 5a,
@@ -982,6 +992,10 @@ void TestExtrudedSolid()
   MESHLOD_CHECK_EQ(report.BoundaryEdges, 0);
 }
 
+// Far from the origin (world or map coordinates) a quadric's evaluation cancels away the error
+// it measures unless the engine works about the mesh's centre: the same sphere decimated at
+// (1e6, -2e6, 3e5) must be as accurate as at the origin (measured without the centring: 1.9
+// times the Hausdorff distance at 10%), and its levels must stay where the input is.
 void TestFarFromOrigin()
 {
   vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(5);
