@@ -260,64 +260,70 @@ Legality CollapseMesh::IsLegal(
     boundary = boundary || this->IsBoundary(star.Members[m]);
   }
 
-  // Link of the merged vertex: ring triangle (member, u, w) contributes the directed edge
-  // u -> w. A manifold result needs these edges to form one simple cycle (interior) or one
-  // simple path (boundary): every vertex leaves at most once and enters at most once.
-  std::vector<Id>& from = star.LinkScratch;
-  from.resize(2 * ringSize);
-  Id* to = from.data() + ringSize;
+  // Link of the merged vertex: ring triangle (member, u, w) contributes the edge {u, w}. A
+  // manifold result needs these edges to form one simple cycle (interior) or one simple path
+  // (boundary): no edge twice, every vertex on two edges (a path's two ends on one). The edges
+  // are not directed: on a non-orientable surface (Boy's surface, a Moebius strip) neighbouring
+  // triangles disagree on the direction of their shared edge somewhere, and a test of directed
+  // edges refused every collapse along that seam.
+  std::vector<Id>& ends = star.LinkScratch;
+  ends.resize(2 * ringSize);
   for (std::size_t i = 0; i < ringSize; ++i)
   {
     const Id* tri = this->Mesh.Triangle(star.Ring[i]);
     const int c = star.RingCorner[i];
-    from[i] = tri[(c + 1) % 3];
-    to[i] = tri[(c + 2) % 3];
+    ends[2 * i] = tri[(c + 1) % 3];
+    ends[2 * i + 1] = tri[(c + 2) % 3];
   }
-  Id start = InvalidId;
-  int pathStarts = 0;
   for (std::size_t i = 0; i < ringSize; ++i)
   {
-    int leaves = 0, enters = 0;
-    for (std::size_t j = 0; j < ringSize; ++j)
+    for (std::size_t j = i + 1; j < ringSize; ++j)
     {
-      leaves += from[j] == from[i] ? 1 : 0;
-      enters += to[j] == from[i] ? 1 : 0;
+      if ((ends[2 * i] == ends[2 * j] && ends[2 * i + 1] == ends[2 * j + 1]) ||
+        (ends[2 * i] == ends[2 * j + 1] && ends[2 * i + 1] == ends[2 * j]))
+      {
+        return Legality::Illegal; // two new triangles would be the same triangle
+      }
     }
-    if (leaves != 1 || enters > 1)
+  }
+  Id start = InvalidId;
+  int pathEnds = 0;
+  for (std::size_t i = 0; i < 2 * ringSize; ++i)
+  {
+    const int degree = static_cast<int>(std::count(ends.begin(), ends.end(), ends[i]));
+    if (degree > 2)
     {
       return Legality::Illegal; // two triangles would share an edge of the new fan twice
     }
-    if (enters == 0)
+    if (degree == 1)
     {
-      ++pathStarts;
-      start = static_cast<Id>(i);
+      ++pathEnds;
+      start = ends[i];
     }
   }
-  if (pathStarts != (boundary ? 1 : 0) || (!boundary && ringSize < 3))
+  if (pathEnds != (boundary ? 2 : 0) || (!boundary && ringSize < 3))
   {
     return Legality::Illegal;
   }
-  // Walk the link from the start edge: it must use every edge.
-  std::size_t walked = 1;
-  std::size_t edge = boundary ? static_cast<std::size_t>(start) : 0;
-  const Id first = from[edge];
+  // Walk the link from a path end (or any vertex of a cycle): it must use every edge.
+  Id at = boundary ? start : ends[0];
+  std::size_t walked = 0, previous = ringSize;
   for (;;)
   {
-    const Id next = to[edge];
-    if (!boundary && next == first)
+    std::size_t next = ringSize;
+    for (std::size_t j = 0; j < ringSize && next == ringSize; ++j)
     {
-      break;
+      if (j != previous && (ends[2 * j] == at || ends[2 * j + 1] == at))
+      {
+        next = j;
+      }
     }
-    std::size_t j = 0;
-    while (j < ringSize && from[j] != next)
+    if (next == ringSize || (!boundary && walked == ringSize))
     {
-      ++j;
+      break; // the end of the path, or back at the start of the cycle
     }
-    if (j == ringSize)
-    {
-      break; // end of an open path
-    }
-    edge = j;
+    at = ends[2 * next] == at ? ends[2 * next + 1] : ends[2 * next];
+    previous = next;
     if (++walked > ringSize)
     {
       return Legality::Illegal;
