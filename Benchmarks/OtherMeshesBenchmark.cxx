@@ -1,7 +1,7 @@
 // Beyond isosurfaces: vtkTriangleCollapseDecimation (defaults) against vtkQuadricDecimation on
 // meshes made by VTK's own sources, the kinds a user feeds in besides marching-cubes output:
-// a CAD-like faceted solid, a parametric surface with a seam, a scan-like noisy sphere and a
-// superquadric with rounded edges. Prints a markdown table (quality only; no timing) that
+// a CAD-like faceted solid, a parametric surface with a seam, scan-like noisy spheres, a
+// non-orientable surface and a superquadric with rounded edges. Prints a markdown table (quality only; no timing) that
 // run-benchmarks.sh appends to RESULTS.md.
 //
 //   OtherMeshesBenchmark [samples]   (surface samples per side for the distances, default 100000)
@@ -14,6 +14,7 @@
 #include "vtkLinearSubdivisionFilter.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
+#include "vtkParametricBoy.h"
 #include "vtkParametricFunctionSource.h"
 #include "vtkParametricTorus.h"
 #include "vtkPoints.h"
@@ -94,6 +95,26 @@ std::vector<TestMesh> Meshes()
         return mesh;
       } });
   }
+  // Noise of more than an edge: many input triangles face inwards.
+  meshes.push_back({ "very noisy sphere",
+    "vtkSphereSource 400 x 200, radii perturbed by 4% (uniform noise, seed 7)", [] {
+      vtkNew<vtkSphereSource> sphere;
+      sphere->SetThetaResolution(400);
+      sphere->SetPhiResolution(200);
+      vtkSmartPointer<vtkPolyData> mesh = Prepare(sphere, 0);
+      meshlod::testing::PerturbRadially(mesh, 0.08, 7);
+      return mesh;
+    } });
+  // Non-orientable: no orientation of its triangles is consistent everywhere.
+  meshes.push_back({ "Boy's surface", "vtkParametricBoy, 300 x 300, no normals", [] {
+                      vtkNew<vtkParametricBoy> boy;
+                      vtkNew<vtkParametricFunctionSource> source;
+                      source->SetParametricFunction(boy);
+                      source->SetUResolution(300);
+                      source->SetVResolution(300);
+                      source->GenerateNormalsOff();
+                      return Prepare(source, 0);
+                    } });
   meshes.push_back({ "superquadric", "vtkSuperquadricSource 300 x 300, roundness 0.3", [] {
                       vtkNew<vtkSuperquadricSource> superquadric;
                       superquadric->SetThetaResolution(300);
