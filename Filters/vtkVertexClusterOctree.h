@@ -44,7 +44,9 @@
  *   (clusters that would flip triangles, non-manifold vertices and separate components stop
  *   the merging; on a rough or noisy surface, splitting the clusters that fold adds back so
  *   many triangles that counts well above the target are all the search finds: a noisy
- *   terrain asked for 10% got 18%); a count between two that consecutive epsilons give (levels cut one cluster
+ *   terrain asked for 10% and 1% got 18% and 9%; when the trials miss, the one nearest the
+ *   target in ratio is kept, never a level cut at the octree's roots because it is nearer in
+ *   difference); a count between two that consecutive epsilons give (levels cut one cluster
  *   tree, so counts move in steps of whole clusters; many clusters of exactly zero error, as in
  *   an exactly flat region, merge at any epsilon: bound the clusters with MaximumCellSize to
  *   keep more); a count at or above the previous level's (a level never refines).
