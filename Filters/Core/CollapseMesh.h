@@ -21,6 +21,7 @@
 #include "TriangleMesh.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace meshlod
@@ -82,6 +83,7 @@ struct Star
   std::uint32_t Block = 0;
   bool Foreign = false;
   mutable std::vector<Id> LinkScratch;
+  mutable std::vector<std::pair<Id, Id>> LinkIncidence;
   mutable std::vector<Id> ValenceScratch;
 };
 

@@ -103,13 +103,13 @@ bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLeve
   }
   ClusterLevel best;
   Id bestCount = impl.SearchLevel(targetTriangles, best);
-  if (bestCount > 0 && bestCount < targetTriangles / MinimumAimFraction && impl.ClearRefusals())
+  if (bestCount < targetTriangles / MinimumAimFraction && impl.ClearRefusals())
   {
-    // Far too few: the earlier levels' fold refusals left nothing to merge but large nodes.
-    // Without them (the clusters around them are coarser now) the search may do better.
+    // Far too few (or none): the earlier levels' fold refusals left nothing to merge but large
+    // nodes. Without them (the clusters around them are coarser now) the search may do better.
     ClusterLevel retry;
     const Id count = impl.SearchLevel(targetTriangles, retry);
-    if (count > 0 && Miss(count, targetTriangles) < Miss(bestCount, targetTriangles))
+    if (count > 0 && (bestCount == 0 || Miss(count, targetTriangles) < Miss(bestCount, targetTriangles)))
     {
       best = std::move(retry);
       bestCount = count;
@@ -146,7 +146,8 @@ Id OctreeClustering::Internals::SearchLevel(Id targetTriangles, ClusterLevel& be
       best = std::move(trial);
       bestCount = count;
     }
-    if (std::abs(count - targetTriangles) <= tolerance || count == 0 ||
+    // (A trial that keeps nothing, a closed surface merged whole, corrects the aim upwards.)
+    if (std::abs(count - targetTriangles) <= tolerance ||
       epsilon >= std::numeric_limits<float>::max())
     {
       break;

@@ -146,7 +146,8 @@ struct OctreeClustering::Internals
   // later level finds almost nothing left to merge: on a rough surface the refusals can leave
   // only the octree's roots, while the coarser clusters around a refused node at the later
   // epsilon may no longer fold it. Nesting holds either way: a refused node lies above the cut
-  // it was refused for.
+  // it was refused for (and Commit lifts every mark from the clusters of the level it keeps,
+  // which a later trial may have marked).
   std::vector<unsigned char> Refused;
   std::vector<Id> RefusedNodes;
   std::vector<float> Thr; // the smallest epsilon at which the node may be a cluster

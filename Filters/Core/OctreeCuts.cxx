@@ -65,9 +65,9 @@ void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cu
 // The cut at `epsilon` with every cluster evaluated in full. An evaluation can only raise a
 // node's threshold: a cluster that fails is replaced by the topmost nodes below it that qualify,
 // which are evaluated in turn. With `update`, `cut` is the cut at the same epsilon before some of
-// its nodes were marked inadmissible: only those are replaced, which gives the same cut as
-// starting afresh (the nodes above a cut node do not qualify, marked or not) without a pass
-// over the whole tree.
+// its nodes were refused or marked inadmissible: only those are replaced, which gives the same
+// cut as starting afresh (the nodes above a cut node do not qualify, marked or not) without a
+// pass over the whole tree.
 void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bool update)
 {
   if (!update)

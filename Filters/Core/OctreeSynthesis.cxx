@@ -231,20 +231,22 @@ Id OctreeClustering::Internals::MarkChanged(Synthesis& s,
   auto mark = [&](Id node)
   {
     const Id i = node - this->NV;
-    if (node >= this->NV && this->State[i] != NodeState::Inadmissible && !this->Refused[i])
+    if (node < this->NV || this->State[i] == NodeState::Inadmissible)
     {
-      if (lasting)
-      {
-        this->State[i] = NodeState::Inadmissible;
-      }
-      else
-      {
-        this->Refused[i] = 1;
-        this->RefusedNodes.push_back(i);
-      }
-      this->UpdateThreshold(i);
-      ++marked;
+      return;
     }
+    // A fold refusal is counted once; a pinch on a refused node still makes it lasting.
+    marked += this->Refused[i] ? 0 : 1;
+    if (lasting)
+    {
+      this->State[i] = NodeState::Inadmissible;
+    }
+    else if (!this->Refused[i])
+    {
+      this->Refused[i] = 1;
+      this->RefusedNodes.push_back(i);
+    }
+    this->UpdateThreshold(i);
   };
   std::vector<unsigned char> split(this->SplitFully ? s.Cut.size() : 0, 0);
   for (const Id k : clusters)
@@ -574,7 +576,8 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
     // terrain kept 40 non-manifold edges when the passes simply stopped after 16; it needs 31
     // passes of the gradual kind.)
     this->SplitFully = pass >= this->Options.FlipPasses;
-    const Id marked = this->MarkFolds(s) + this->MarkPinches(s);
+    const Id folds = this->MarkFolds(s); // before the pinches, which may make marks lasting
+    const Id marked = folds + this->MarkPinches(s);
     if (marked == 0)
     {
       break;
@@ -602,6 +605,22 @@ bool OctreeClustering::Internals::ClearRefusals()
 //------------------------------------------------------------------------------
 void OctreeClustering::Internals::Commit(const ClusterLevel& level)
 {
+  // The level's clusters qualify again: a trial made after this level's (and not kept) may
+  // have marked some of them, and the next level's cut would then go below them and break the
+  // nesting. Each was a cluster, so evaluated, admissible and within its epsilon.
+  for (const Id node : level.PointNode)
+  {
+    if (node >= this->NV)
+    {
+      const Id i = node - this->NV;
+      this->Refused[i] = 0;
+      if (this->State[i] == NodeState::Inadmissible)
+      {
+        this->State[i] = NodeState::Admissible;
+      }
+      this->UpdateThreshold(i);
+    }
+  }
   this->CurrentTriangles = level.Mesh.Triangles;
   this->CurrentLevelZero = level.LevelZeroTriangle;
   this->PointNode = level.PointNode;

@@ -24,6 +24,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSphereSource.h"
 #include "vtkTestErrorObserver.h"
 
 #include <algorithm>
@@ -616,11 +617,6 @@ void TestRoughPlane()
   }
 }
 
-// A noisy terrain (waves plus height noise of up to 1.5 edges) cut at an epsilon as large as
-// its waves: the first cut folds it almost everywhere, and fixing the folds takes 29 passes.
-// With the passes capped at 16 the level kept 3 non-manifold edges (a larger terrain, 40); now
-// passes go on, splitting stubborn clusters back into the previous level's points at the end,
-// until none is left.
 // A rough terrain: smooth hills plus uniform noise of 3 grid spacings, on an n x n grid.
 vtkSmartPointer<vtkPolyData> MakeNoisyTerrain(int n)
 {
@@ -640,6 +636,11 @@ vtkSmartPointer<vtkPolyData> MakeNoisyTerrain(int n)
   return grid;
 }
 
+// A noisy terrain (waves plus height noise of up to 1.5 edges) cut at an epsilon as large as
+// its waves: the first cut folds it almost everywhere, and fixing the folds takes 29 passes.
+// With the passes capped at 16 the level kept 3 non-manifold edges (a larger terrain, 40); now
+// passes go on, splitting stubborn clusters back into the previous level's points at the end,
+// until none is left.
 void TestNoisyTerrain()
 {
   vtkSmartPointer<vtkPolyData> grid = MakeNoisyTerrain(120);
@@ -663,9 +664,9 @@ void TestNoisyTerrain()
 }
 
 // Target counts on the rough terrain, where fixing folds keeps many more triangles than asked.
-// The second level used to be cut at the octree's roots (2 triangles for a terrain) because the
-// count search preferred the smallest difference to the target, and the first level's fold
-// refusals left nothing else to merge.
+// The second level used to be cut at the octree's roots (2 triangles for a terrain): its first
+// trial kept far too many, the corrected aim fell to 1 triangle, and the search preferred the
+// smallest difference to the target.
 void TestNoisyTerrainCounts()
 {
   vtkSmartPointer<vtkPolyData> grid = MakeNoisyTerrain(160);
@@ -692,10 +693,52 @@ void TestNoisyTerrainCounts()
     MESHLOD_CHECK_EQ(r.NonManifoldEdges, 0);
     MESHLOD_CHECK_EQ(r.DuplicateTriangles, 0);
   }
+  // Not asserted: on this terrain a level keeps one non-manifold vertex, and the octree's
+  // removal of opposite duplicates (two triangles folded onto each other, one kept) leaves a
+  // few fine triangles whose MorphTargetId image is the kept twin, opposite in orientation.
 }
 
 // A fan of 50,000 triangles around one point: levels at their counts, valid and nested. (Input
 // validation used to scan the centre's triangles once per triangle: quadratic in the valence.)
+// A sphere with radial noise of about an edge, at target counts: the first level's fold
+// refusals leave nothing mergeable below the octree's root for the second, whose trials keep no
+// triangle; the hierarchy used to stop at level 1 with a warning. The search then runs again
+// without those refusals.
+void TestNoisySphereCounts()
+{
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(200);
+  source->SetPhiResolution(200);
+  source->Update();
+  vtkNew<vtkPolyData> sphere;
+  sphere->DeepCopy(source->GetOutput());
+  sphere->GetPointData()->Initialize();
+  testing::PerturbRadially(sphere, 0.04, 3);
+  const vtkIdType input = sphere->GetNumberOfPolys();
+  vtkNew<vtkVertexClusterOctree> cluster;
+  cluster->SetInputData(sphere);
+  cluster->SetLevelModeToTargetTriangleCounts();
+  cluster->AddTargetTriangleCount(input / 10);
+  cluster->AddTargetTriangleCount(input / 100);
+  cluster->Update();
+  vtkMultiBlockDataSet* h = cluster->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
+  if (h->GetNumberOfBlocks() != 3)
+  {
+    return;
+  }
+  const testing::MeshReport r = testing::InspectMesh(Level(h, 2));
+  const meshlod::SurfaceDistance d = meshlod::MeasureSurfaceDistance(sphere, Level(h, 2));
+  std::cerr << "noisy sphere, target " << input / 100 << ": " << r.Triangles
+            << " triangles, Hausdorff " << d.HausdorffPercent() << "%\n";
+  MESHLOD_CHECK_LT(r.Triangles, Level(h, 1)->GetNumberOfPolys());
+  MESHLOD_CHECK_EQ(r.NonManifoldEdges, 0);
+  // Measured: 8263 triangles (asked 792), Hausdorff 1.9%. Not asserted: both levels have a
+  // three-edge hole, where the removal of opposite duplicates (two triangles folded onto each
+  // other) leaves a triangle missing.
+  MESHLOD_CHECK_LT(d.HausdorffPercent(), 4.0);
+}
+
 void TestHighValenceFan()
 {
   vtkSmartPointer<vtkPolyData> fan = testing::MakeFan(50000);
@@ -902,6 +945,7 @@ int TestVertexClusterOctree(int, char*[])
   TestRoughPlane();
   TestNoisyTerrain();
   TestNoisyTerrainCounts();
+  TestNoisySphereCounts();
   TestHighValenceFan();
   TestCellLimits();
   TestSettingsAndErrors();
