@@ -700,7 +700,7 @@ void TestNoisyTerrainCounts()
 
 // A fan of 50,000 triangles around one point: levels at their counts, valid and nested. (Input
 // validation used to scan the centre's triangles once per triangle: quadratic in the valence.)
-// A sphere with radial noise of about an edge, at target counts: the first level's fold
+// A sphere with radial noise of up to two thirds of an edge, at target counts: the first level's fold
 // refusals leave nothing mergeable below the octree's root for the second, whose trials keep no
 // triangle; the hierarchy used to stop at level 1 with a warning. The search then runs again
 // without those refusals.
