@@ -52,6 +52,33 @@ namespace
 using namespace meshlod;
 using testing::Level;
 
+// The distances to `input` of `level` and of vtkQuadricDecimation at the same triangle count
+// (20,000 samples per surface), printed under `label`.
+struct PeerComparison
+{
+  SurfaceDistance Ours;
+  SurfaceDistance Theirs;
+};
+PeerComparison CompareWithQuadricDecimation(
+  vtkPolyData* input, vtkPolyData* level, const std::string& label)
+{
+  vtkNew<vtkQuadricDecimation> peer;
+  peer->SetInputData(input);
+  peer->SetTargetReduction(
+    1.0 - static_cast<double>(level->GetNumberOfPolys()) / input->GetNumberOfPolys());
+  peer->Update();
+  SurfaceDistanceOptions options;
+  options.SamplesPerSurface = 20000;
+  const PeerComparison c = { MeasureSurfaceDistance(input, level, options),
+    MeasureSurfaceDistance(input, peer->GetOutput(), options) };
+  std::cerr << "  " << label << " at " << level->GetNumberOfPolys()
+            << " triangles: Hausdorff " << c.Ours.HausdorffPercent() << "%, RMS "
+            << c.Ours.RmsPercent() << "% (vtkQuadricDecimation at "
+            << peer->GetOutput()->GetNumberOfPolys() << ": " << c.Theirs.HausdorffPercent()
+            << "%, " << c.Theirs.RmsPercent() << "%)\n";
+  return c;
+}
+
 double Field(vtkPolyData* level, const char* name)
 {
   vtkDataArray* a = level->GetFieldData()->GetArray(name);
@@ -803,20 +830,8 @@ void TestParametricSeam()
     return;
   }
   MESHLOD_CHECK_LE(coarse->GetNumberOfPolys(), Level(h, 0)->GetNumberOfPolys() / 100 + 1);
-  SurfaceDistanceOptions options;
-  options.SamplesPerSurface = 20000;
-  const SurfaceDistance distance = MeasureSurfaceDistance(input, coarse, options);
-  vtkNew<vtkQuadricDecimation> peer;
-  peer->SetInputData(input);
-  peer->SetTargetReduction(
-    1.0 - static_cast<double>(coarse->GetNumberOfPolys()) / input->GetNumberOfPolys());
-  peer->Update();
-  const SurfaceDistance peerDistance = MeasureSurfaceDistance(input, peer->GetOutput(), options);
-  std::cerr << "  parametric torus at " << coarse->GetNumberOfPolys()
-            << " triangles: Hausdorff " << distance.HausdorffPercent()
-            << "% (vtkQuadricDecimation at " << peer->GetOutput()->GetNumberOfPolys()
-            << ": " << peerDistance.HausdorffPercent() << "%)\n";
-  MESHLOD_CHECK_LE(distance.Hausdorff, 1.5 * peerDistance.Hausdorff);
+  const PeerComparison c = CompareWithQuadricDecimation(input, coarse, "parametric torus");
+  MESHLOD_CHECK_LE(c.Ours.Hausdorff, 1.5 * c.Theirs.Hausdorff);
 }
 
 // A fan of 50,000 triangles around one point (a triangulated polygon, a cylinder's cap): every
@@ -880,25 +895,15 @@ void CheckNoisySphere(double amplitude)
     return;
   }
   MESHLOD_CHECK_LE(Level(h, 3)->GetNumberOfPolys(), triangles / 100 + 3);
-  SurfaceDistanceOptions options;
-  options.SamplesPerSurface = 20000;
   for (unsigned int i = 1; i < 4; ++i)
   {
     vtkPolyData* level = Level(h, i);
-    vtkNew<vtkQuadricDecimation> peer;
-    peer->SetInputData(sphere);
-    peer->SetTargetReduction(1.0 - static_cast<double>(level->GetNumberOfPolys()) / triangles);
-    peer->Update();
-    const SurfaceDistance ours = MeasureSurfaceDistance(sphere, level, options);
-    const SurfaceDistance theirs = MeasureSurfaceDistance(sphere, peer->GetOutput(), options);
-    std::cerr << "  noisy sphere (" << amplitude << ") at " << level->GetNumberOfPolys() << " triangles: RMS "
-              << ours.RmsPercent() << "%, Hausdorff " << ours.HausdorffPercent()
-              << "% (vtkQuadricDecimation " << theirs.RmsPercent() << "%, "
-              << theirs.HausdorffPercent() << "%)\n";
+    const PeerComparison c = CompareWithQuadricDecimation(
+      sphere, level, "noisy sphere (" + std::to_string(amplitude) + ")");
     // At a few hundred triangles of a noisy surface both filters' errors vary by tens of
     // percent with the noise; the bound catches a run that stops collapsing where it should.
-    MESHLOD_CHECK_LE(ours.Rms, 2.0 * theirs.Rms);
-    MESHLOD_CHECK_LE(ours.Hausdorff, 2.0 * theirs.Hausdorff);
+    MESHLOD_CHECK_LE(c.Ours.Rms, 2.0 * c.Theirs.Rms);
+    MESHLOD_CHECK_LE(c.Ours.Hausdorff, 2.0 * c.Theirs.Hausdorff);
     MESHLOD_CHECK_EQ(testing::InspectMesh(level).NonManifoldEdges, 0);
   }
 }
@@ -963,20 +968,9 @@ void CheckNonOrientable(const char* name)
   MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
   MESHLOD_CHECK_EQ(report.NonManifoldVertices, 0);
   MESHLOD_CHECK_EQ(report.EulerCharacteristic, fine.EulerCharacteristic);
-  vtkNew<vtkQuadricDecimation> peer;
-  peer->SetInputData(input);
-  peer->SetTargetReduction(1.0 - static_cast<double>(coarse->GetNumberOfPolys()) / count);
-  peer->Update();
-  SurfaceDistanceOptions options;
-  options.SamplesPerSurface = 20000;
-  const SurfaceDistance ours = MeasureSurfaceDistance(input, coarse, options);
-  const SurfaceDistance theirs = MeasureSurfaceDistance(input, peer->GetOutput(), options);
-  std::cerr << "  " << name << " at " << coarse->GetNumberOfPolys() << " triangles: Hausdorff "
-            << ours.HausdorffPercent() << "%, RMS " << ours.RmsPercent()
-            << "% (vtkQuadricDecimation " << theirs.HausdorffPercent() << "%, "
-            << theirs.RmsPercent() << "%)\n";
-  MESHLOD_CHECK_LE(ours.Hausdorff, 2.0 * theirs.Hausdorff);
-  MESHLOD_CHECK_LE(ours.Rms, 1.5 * theirs.Rms);
+  const PeerComparison c = CompareWithQuadricDecimation(input, coarse, name);
+  MESHLOD_CHECK_LE(c.Ours.Hausdorff, 2.0 * c.Theirs.Hausdorff);
+  MESHLOD_CHECK_LE(c.Ours.Rms, 1.5 * c.Theirs.Rms);
 }
 
 void TestNonOrientable()
@@ -1040,20 +1034,10 @@ void TestExtrudedSolid()
   }
   vtkPolyData* coarse = Level(h, 2);
   MESHLOD_CHECK_LE(coarse->GetNumberOfPolys(), n / 100 + 1);
-  vtkNew<vtkQuadricDecimation> peer;
-  peer->SetInputData(input);
-  peer->SetTargetReduction(1.0 - static_cast<double>(coarse->GetNumberOfPolys()) / n);
-  peer->Update();
-  SurfaceDistanceOptions options;
-  options.SamplesPerSurface = 20000;
-  const SurfaceDistance ours = MeasureSurfaceDistance(input, coarse, options);
-  const SurfaceDistance theirs = MeasureSurfaceDistance(input, peer->GetOutput(), options);
-  std::cerr << "  extruded solid (" << n << " triangles) at " << coarse->GetNumberOfPolys()
-            << ": Hausdorff " << ours.HausdorffPercent() << "%, RMS " << ours.RmsPercent()
-            << "% (vtkQuadricDecimation " << theirs.HausdorffPercent() << "%, "
-            << theirs.RmsPercent() << "%)\n";
-  MESHLOD_CHECK_LE(ours.Rms, 1.5 * theirs.Rms);
-  MESHLOD_CHECK_LE(ours.Hausdorff, 1.6 * theirs.Hausdorff);
+  const PeerComparison c = CompareWithQuadricDecimation(
+    input, coarse, "extruded solid (" + std::to_string(n) + " triangles)");
+  MESHLOD_CHECK_LE(c.Ours.Rms, 1.5 * c.Theirs.Rms);
+  MESHLOD_CHECK_LE(c.Ours.Hausdorff, 1.6 * c.Theirs.Hausdorff);
   const testing::MeshReport report = testing::InspectMesh(coarse);
   MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
   MESHLOD_CHECK_EQ(report.BoundaryEdges, 0);

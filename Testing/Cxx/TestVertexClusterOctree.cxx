@@ -663,6 +663,17 @@ void TestNoisyTerrain()
   }
 }
 
+// The hierarchy of `cluster` on `mesh` at 10% and 1% of its triangles (target-count mode).
+vtkMultiBlockDataSet* AtTenthAndHundredth(vtkVertexClusterOctree* cluster, vtkPolyData* mesh)
+{
+  cluster->SetInputData(mesh);
+  cluster->SetLevelModeToTargetTriangleCounts();
+  cluster->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 10);
+  cluster->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 100);
+  cluster->Update();
+  return cluster->GetHierarchy();
+}
+
 // Target counts on the rough terrain, where fixing folds keeps many more triangles than asked.
 // The second level used to be cut at the octree's roots (2 triangles for a terrain): its first
 // trial kept far too many, the corrected aim fell to 1 triangle, and the search preferred the
@@ -672,12 +683,7 @@ void TestNoisyTerrainCounts()
   vtkSmartPointer<vtkPolyData> grid = MakeNoisyTerrain(160);
   const vtkIdType input = grid->GetNumberOfPolys();
   vtkNew<vtkVertexClusterOctree> cluster;
-  cluster->SetInputData(grid);
-  cluster->SetLevelModeToTargetTriangleCounts();
-  cluster->AddTargetTriangleCount(input / 10);
-  cluster->AddTargetTriangleCount(input / 100);
-  cluster->Update();
-  vtkMultiBlockDataSet* h = cluster->GetHierarchy();
+  vtkMultiBlockDataSet* h = AtTenthAndHundredth(cluster, grid);
   MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
   MESHLOD_CHECK(CheckHierarchyLayout(h, true).empty());
   for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
@@ -716,12 +722,7 @@ void TestNoisySphereCounts()
   testing::PerturbRadially(sphere, 0.04, 3);
   const vtkIdType input = sphere->GetNumberOfPolys();
   vtkNew<vtkVertexClusterOctree> cluster;
-  cluster->SetInputData(sphere);
-  cluster->SetLevelModeToTargetTriangleCounts();
-  cluster->AddTargetTriangleCount(input / 10);
-  cluster->AddTargetTriangleCount(input / 100);
-  cluster->Update();
-  vtkMultiBlockDataSet* h = cluster->GetHierarchy();
+  vtkMultiBlockDataSet* h = AtTenthAndHundredth(cluster, sphere);
   MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
   if (h->GetNumberOfBlocks() != 3)
   {
