@@ -9,7 +9,6 @@
 #include "MeshLODTestMeshes.h"
 #include "vtkTriangleCollapseDecimation.h"
 
-#include "vtkCleanPolyData.h"
 #include "vtkCylinderSource.h"
 #include "vtkLinearSubdivisionFilter.h"
 #include "vtkMultiBlockDataSet.h"
@@ -23,7 +22,6 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkSuperquadricSource.h"
-#include "vtkTriangleFilter.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -43,12 +41,7 @@ struct TestMesh
 // Triangulated and cleaned (exactly coincident points merged), optionally subdivided.
 vtkSmartPointer<vtkPolyData> Prepare(vtkAlgorithm* source, int subdivisions)
 {
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(source->GetOutputPort());
-  vtkNew<vtkCleanPolyData> clean;
-  clean->SetInputConnection(triangles->GetOutputPort());
-  clean->Update();
-  vtkSmartPointer<vtkPolyData> mesh = clean->GetOutput();
+  vtkSmartPointer<vtkPolyData> mesh = meshlod::testing::TriangulateAndClean(source);
   if (subdivisions > 0)
   {
     vtkNew<vtkLinearSubdivisionFilter> subdivide;

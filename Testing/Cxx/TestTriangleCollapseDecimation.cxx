@@ -756,12 +756,8 @@ void TestFacetedCylinder()
   cylinder->SetResolution(24);
   cylinder->CappingOn();
   cylinder->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(cylinder->GetOutputPort());
-  vtkNew<vtkCleanPolyData> clean;
-  clean->SetInputConnection(triangles->GetOutputPort());
   vtkNew<vtkLinearSubdivisionFilter> subdivide;
-  subdivide->SetInputConnection(clean->GetOutputPort());
+  subdivide->SetInputData(testing::TriangulateAndClean(cylinder));
   subdivide->SetNumberOfSubdivisions(3);
   subdivide->Update();
   vtkPolyData* input = subdivide->GetOutput();
@@ -802,12 +798,7 @@ void TestParametricSeam()
   source->SetParametricFunction(torus);
   source->SetUResolution(80);
   source->SetVResolution(80);
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(source->GetOutputPort());
-  vtkNew<vtkCleanPolyData> clean;
-  clean->SetInputConnection(triangles->GetOutputPort());
-  clean->Update();
-  vtkPolyData* input = clean->GetOutput();
+  vtkSmartPointer<vtkPolyData> input = testing::TriangulateAndClean(source);
   MESHLOD_CHECK_GT(testing::InspectMesh(input).NonManifoldEdges, 0); // the seam, as given
 
   vtkNew<vtkTriangleCollapseDecimation> filter;
@@ -945,12 +936,7 @@ void CheckNonOrientable(const char* name)
   // the filter would keep them apart as an attribute seam.
   source->GenerateNormalsOff();
   source->SetScalarModeToNone();
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(source->GetOutputPort());
-  vtkNew<vtkCleanPolyData> clean;
-  clean->SetInputConnection(triangles->GetOutputPort());
-  clean->Update();
-  vtkPolyData* input = clean->GetOutput();
+  vtkSmartPointer<vtkPolyData> input = testing::TriangulateAndClean(source);
   const vtkIdType count = input->GetNumberOfPolys();
 
   vtkNew<vtkTriangleCollapseDecimation> filter;
@@ -1006,12 +992,8 @@ void TestExtrudedSolid()
   extrude->SetExtrusionTypeToVectorExtrusion();
   extrude->SetVector(0.0, 0.0, 0.3);
   extrude->CappingOn();
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(extrude->GetOutputPort());
-  vtkNew<vtkCleanPolyData> clean;
-  clean->SetInputConnection(triangles->GetOutputPort());
   vtkNew<vtkAdaptiveSubdivisionFilter> subdivide;
-  subdivide->SetInputConnection(clean->GetOutputPort());
+  subdivide->SetInputData(testing::TriangulateAndClean(extrude));
   subdivide->SetMaximumEdgeLength(0.05);
   subdivide->SetMaximumNumberOfPasses(100);
   subdivide->SetMaximumNumberOfTriangles(VTK_ID_MAX);

@@ -1,6 +1,7 @@
 #include "MeshLODTestMeshes.h"
 
 #include "vtkCellArray.h"
+#include "vtkCleanPolyData.h"
 #include "vtkFlyingEdges3D.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -12,6 +13,7 @@
 #include "vtkPolyData.h"
 #include "vtkRTAnalyticSource.h"
 #include "vtkSMPTools.h"
+#include "vtkTriangleFilter.h"
 
 #include <algorithm>
 #include <cmath>
@@ -234,6 +236,18 @@ void PerturbRadially(vtkPolyData* mesh, double amplitude, int seed)
     random->Next();
     mesh->GetPoints()->SetPoint(p, f * x[0], f * x[1], f * x[2]);
   }
+}
+
+vtkSmartPointer<vtkPolyData> TriangulateAndClean(vtkAlgorithm* source)
+{
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(source->GetOutputPort());
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputConnection(triangles->GetOutputPort());
+  clean->Update();
+  vtkSmartPointer<vtkPolyData> mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(clean->GetOutput());
+  return mesh;
 }
 
 // Points: 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z. Outward-facing triangles.

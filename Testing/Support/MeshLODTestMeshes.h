@@ -5,6 +5,8 @@
 
 #include "vtkSmartPointer.h"
 
+class vtkAlgorithm;
+
 #include <string>
 #include <vector>
 
@@ -61,6 +63,9 @@ vtkSmartPointer<vtkPolyData> MakeFan(int n);
 /// in [0, 1) from vtkMinimalStandardRandomSequence with `seed`, in point order (for surfaces
 /// centred at the origin).
 void PerturbRadially(vtkPolyData* mesh, double amplitude, int seed);
+/// The output of `source` triangulated (vtkTriangleFilter) and cleaned (vtkCleanPolyData:
+/// exactly coincident points merged), as a new data set.
+vtkSmartPointer<vtkPolyData> TriangulateAndClean(vtkAlgorithm* source);
 /// A closed surface from a flat list of points and triangles.
 vtkSmartPointer<vtkPolyData> MakePolyData(
   const std::vector<double>& points, const std::vector<long long>& triangles);
