@@ -43,7 +43,8 @@
 // epsilon selects nodes at or above those of a smaller one: every cluster of a coarser level is
 // a union of clusters of the finer one. Each level is built from the one before it (triangles
 // re-indexed to clusters, degenerate and duplicate triangles removed, orientation kept). A kept
-// triangle whose normal opposes the input surface around its clusters marks the clusters that
+// triangle whose normal opposes the input surface around its clusters, or two on the same
+// clusters in opposite order (a thin part folded onto itself), marks the clusters that
 // changed as not mergeable, and the level is cut again (such nodes lie above the previous cut,
 // so nesting holds). A target triangle count is met by a search over epsilon on the count
 // estimate (input triangles minus those that degenerate in collapsed nodes), corrected by what

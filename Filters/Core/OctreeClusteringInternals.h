@@ -107,6 +107,11 @@ struct EvaluationScratch
   std::vector<double> Related;   // planes of the related triangle set (unit normal, offset)
 };
 
+// Synthesis::Duplicate: the same clusters as an earlier kept triangle, in the same order (up to
+// rotation) or in the opposite order.
+constexpr unsigned char SameDuplicate = 1;
+constexpr unsigned char OppositeDuplicate = 2;
+
 // A level being built: clusters (cut nodes) and the previous level's triangles re-indexed.
 struct Synthesis
 {
@@ -115,7 +120,7 @@ struct Synthesis
   std::vector<Id> PointCluster; // previous point -> cluster
   std::vector<Id> Triangles;    // 3 clusters per kept triangle
   std::vector<Id> From;         // kept triangle -> previous triangle
-  std::vector<unsigned char> Duplicate;
+  std::vector<unsigned char> Duplicate; // 0, or Same/OppositeDuplicate of an earlier triangle
   std::vector<unsigned char> Changed; // cluster is not exactly one previous point
 
   /// Whether kept triangle j may have folded or pinched: not a duplicate, with a changed cluster.
@@ -141,13 +146,13 @@ struct OctreeClustering::Internals
   // Per internal node: the full evaluation, and the epsilon from which the node or an ancestor
   // is a cluster (Activation).
   std::vector<octree::NodeState> State;
-  // Per internal node: refused as a cluster because it folded a level (MarkFolds). Unlike
-  // pinches (State Inadmissible for good), a fold refusal can be lifted (ClearRefusals) when a
-  // later level finds almost nothing left to merge: on a rough surface the refusals can leave
-  // only the octree's roots, while the coarser clusters around a refused node at the later
-  // epsilon may no longer fold it. Nesting holds either way: a refused node lies above the cut
-  // it was refused for (and Commit lifts every mark from the clusters of the level it keeps,
-  // which a later trial may have marked).
+  // Per internal node: refused as a cluster because it folded a level (MarkFolds, MarkFins).
+  // Unlike pinches (State Inadmissible for good), a fold refusal can be lifted (ClearRefusals)
+  // when a later level finds almost nothing left to merge: on a rough surface the refusals can
+  // leave only the octree's roots, while the coarser clusters around a refused node at the
+  // later epsilon may no longer fold it. Nesting holds either way: a refused node lies above
+  // the cut it was refused for (and Commit lifts every mark from the clusters of the level it
+  // keeps, which a later trial may have marked).
   std::vector<unsigned char> Refused;
   std::vector<Id> RefusedNodes;
   std::vector<float> Thr; // the smallest epsilon at which the node may be a cluster
@@ -224,6 +229,7 @@ struct OctreeClustering::Internals
   Id ReindexTriangles(octree::Synthesis& s) const;
   void MarkDuplicates(octree::Synthesis& s) const;
   Id MarkFolds(octree::Synthesis& s);
+  Id MarkFins(octree::Synthesis& s);
   Id MarkPinches(octree::Synthesis& s);
   // Mark the changed clusters among `clusters` as not mergeable; returns how many were. With
   // SplitFully, also every node between them and the previous level's points inside them.

@@ -142,7 +142,9 @@ void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
             const Id bmax = std::max(b[0], std::max(b[1], b[2]));
             if (bmax == amax && std::int64_t(b[0]) + b[1] + b[2] - k - bmax == amid)
             {
-              s.Duplicate[grouped[x]] = 1;
+              const bool same = (a[0] == b[0] && a[1] == b[1]) ||
+                (a[0] == b[1] && a[1] == b[2]) || (a[0] == b[2] && a[1] == b[0]);
+              s.Duplicate[grouped[x]] = same ? SameDuplicate : OppositeDuplicate;
               break;
             }
           }
@@ -215,6 +217,26 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
   for (Id j = 0; j < kept; ++j)
   {
     if (folded[j])
+    {
+      marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
+    }
+  }
+  return this->MarkChanged(s, marks, false);
+}
+
+//------------------------------------------------------------------------------
+// Fins: two kept triangles on the same three clusters in opposite order, the two sides of a
+// thin part folded onto each other. Removing the second as a duplicate left the first facing
+// one side only: a hole, a non-manifold vertex or a triangle whose correspondence has the
+// wrong orientation (a rough terrain and sphere had each). Like folds, the changed clusters
+// of the second are refused.
+Id OctreeClustering::Internals::MarkFins(Synthesis& s)
+{
+  std::vector<Id> marks;
+  const Id kept = static_cast<Id>(s.From.size());
+  for (Id j = 0; j < kept; ++j)
+  {
+    if (s.Duplicate[j] == OppositeDuplicate)
     {
       marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
     }
@@ -577,7 +599,7 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
     // passes of the gradual kind.)
     this->SplitFully = pass >= this->Options.FlipPasses;
     const Id folds = this->MarkFolds(s); // before the pinches, which may make marks lasting
-    const Id marked = folds + this->MarkPinches(s);
+    const Id marked = folds + this->MarkFins(s) + this->MarkPinches(s);
     if (marked == 0)
     {
       break;
