@@ -57,13 +57,14 @@
  * that would keep no triangle ends the hierarchy (with a warning).
  *
  * Synthesis. Triangles are re-indexed to the representatives, degenerate and duplicate
- * triangles removed (of two with the same three points, the first is kept), orientation kept.
- * A kept triangle whose normal opposes the input surface around its three clusters, and an edge
- * that three or more kept triangles share (clusters that folded the surface onto itself), mark
- * the clusters that changed as not mergeable and the level is cut again. Vertex clustering may
- * change topology: a part thinner than a cluster can shrink to an edge or a single flap (whose
- * edges are then boundary edges); a cluster whose triangles all vanish sends its points to the
- * nearest neighbouring cluster.
+ * triangles removed (of two with the same three points in the same order, the first is kept),
+ * orientation kept. A kept triangle whose normal opposes the input surface around its three
+ * clusters, two on the same three points in opposite order (a thin part folded onto itself),
+ * and an edge that three or more kept triangles share (clusters that folded the surface onto
+ * itself) mark the clusters that changed as not mergeable, and the level is cut again. Vertex
+ * clustering may still change topology: a part thinner than a cluster can shrink to an edge and
+ * vanish; a cluster whose triangles all vanish sends its points to the nearest neighbouring
+ * cluster.
  *
  * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input
  * gives a hierarchy of one empty level, without error; polygons and strips are triangulated; vertex and line
