@@ -12,6 +12,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -21,6 +22,10 @@ vtkStandardNewMacro(vtkTriangleCollapseDecimation);
 namespace
 {
 // Progress shares: validation, the collapses, building the output, measuring.
+// A level's estimated error counts as a jump above ErrorJumpFactor times what the fall in its
+// triangle count explains, measured from at least ErrorJumpFloor of the bounding diagonal.
+constexpr double ErrorJumpFactor = 8.0;
+constexpr double ErrorJumpFloor = 1e-4;
 constexpr double CollapseStart = 0.05;
 constexpr double CollapseEnd = 0.85;
 constexpr double MeasureStart = 0.9;
@@ -173,8 +178,39 @@ int vtkTriangleCollapseDecimation::RequestData(
 
   meshlod::HierarchyBuilder builder;
   builder.SetLevelZero(mesh);
+  // A level whose estimated error jumps far beyond what its triangle count explains (on a
+  // smooth surface the error grows about as the count falls) was made of collapses that had
+  // only costly choices left: a broken input (a locked seam, non-manifold parts) forced by the
+  // count. Reported, not prevented: nothing tells such a level from a healthy coarse one before
+  // it is made.
+  double lo[3], hi[3];
+  mesh.Mesh.GetBounds(lo, hi);
+  const double diagonal =
+    std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+      (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  double previousError = 0.0;
+  std::int64_t previousTriangles = mesh.Mesh.GetNumberOfTriangles();
+  int levelIndex = 0, jumpLevel = -1;
+  double jumpError = 0.0, jumpPrevious = 0.0;
   meshlod::TriangleCollapseCallbacks callbacks;
-  callbacks.EmitLevel = [&](meshlod::LevelData& level) { builder.AppendLevel(std::move(level)); };
+  callbacks.EmitLevel = [&](meshlod::LevelData& level) {
+    ++levelIndex;
+    const double error = level.EstimatedError;
+    const std::int64_t triangles = level.Mesh.GetNumberOfTriangles();
+    const double reference = std::max(previousError, ErrorJumpFloor * diagonal);
+    const double explained =
+      static_cast<double>(previousTriangles) / static_cast<double>(std::max<std::int64_t>(1, triangles));
+    // (Not level 1: a noisy input's first collapses already move vertices by its noise.)
+    if (jumpLevel < 0 && levelIndex > 1 && error > ErrorJumpFactor * explained * reference)
+    {
+      jumpLevel = levelIndex;
+      jumpError = error;
+      jumpPrevious = previousError;
+    }
+    previousError = error;
+    previousTriangles = triangles;
+    builder.AppendLevel(std::move(level));
+  };
   callbacks.Progress = [this](double fraction) {
     this->UpdateProgress(CollapseStart + (CollapseEnd - CollapseStart) * fraction);
     return !this->GetAbortExecute();
@@ -210,6 +246,26 @@ int vtkTriangleCollapseDecimation::RequestData(
                     << (this->MaximumError > 0.0 ? "MaximumError reached"
                                                  : "no legal collapse left")
                     << ").");
+  }
+  if (jumpLevel > 0)
+  {
+    std::ostringstream jump;
+    jump << "Level " << jumpLevel << "'s estimated error, " << jumpError << " ("
+         << (diagonal > 0.0 ? 100.0 * jumpError / diagonal : 0.0)
+         << "% of the bounding diagonal), is ";
+    if (jumpPrevious > 0.0)
+    {
+      jump << jumpError / jumpPrevious << " times the level before's";
+    }
+    else
+    {
+      jump << "where the level before's was 0";
+    }
+    vtkWarningMacro(<< jump.str()
+                    << ", far more than its triangle count explains: its last collapses had only "
+                       "costly choices left, and it may be badly distorted. Inputs with locked "
+                       "seams or non-manifold parts do this when pushed to a low count; ask for "
+                       "a smaller TargetReduction.");
   }
   if (this->ComputeLevelError)
   {
