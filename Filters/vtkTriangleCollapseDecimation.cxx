@@ -183,11 +183,7 @@ int vtkTriangleCollapseDecimation::RequestData(
   // only costly choices left: a broken input (a locked seam, non-manifold parts) forced by the
   // count. Reported, not prevented: nothing tells such a level from a healthy coarse one before
   // it is made.
-  double lo[3], hi[3];
-  mesh.Mesh.GetBounds(lo, hi);
-  const double diagonal =
-    std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-      (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const double diagonal = mesh.Mesh.BoundingDiagonal();
   double previousError = 0.0;
   std::int64_t previousTriangles = mesh.Mesh.GetNumberOfTriangles();
   int levelIndex = 0, jumpLevel = -1;
@@ -198,8 +194,8 @@ int vtkTriangleCollapseDecimation::RequestData(
     const double error = level.EstimatedError;
     const std::int64_t triangles = level.Mesh.GetNumberOfTriangles();
     const double reference = std::max(previousError, ErrorJumpFloor * diagonal);
-    const double explained =
-      static_cast<double>(previousTriangles) / static_cast<double>(std::max<std::int64_t>(1, triangles));
+    const double explained = static_cast<double>(previousTriangles) /
+      static_cast<double>(std::max<std::int64_t>(1, triangles));
     // (Not level 1: a noisy input's first collapses already move vertices by its noise.)
     if (jumpLevel < 0 && levelIndex > 1 && error > ErrorJumpFactor * explained * reference)
     {

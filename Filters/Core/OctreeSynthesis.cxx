@@ -11,6 +11,26 @@ namespace meshlod
 {
 using namespace octree;
 
+namespace
+{
+// The clusters of the kept triangles j for which flagged(j) holds, three per triangle.
+template <typename Flagged>
+std::vector<Id> ClustersOf(const Synthesis& s, Flagged flagged)
+{
+  std::vector<Id> clusters;
+  const Id kept = static_cast<Id>(s.From.size());
+  for (Id j = 0; j < kept; ++j)
+  {
+    if (flagged(j))
+    {
+      const auto first = s.Triangles.begin() + 3 * j;
+      clusters.insert(clusters.end(), first, first + 3);
+    }
+  }
+  return clusters;
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 // Clusters of every vertex and previous point, and the representatives.
 void OctreeClustering::Internals::AssignClusters(Synthesis& s)
@@ -213,15 +233,7 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
         folded[j] = Dot(surface, after) > 0.0 ? 0 : 1;
       }
     });
-  std::vector<Id> marks; // the clusters of the folded triangles
-  for (Id j = 0; j < kept; ++j)
-  {
-    if (folded[j])
-    {
-      marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
-    }
-  }
-  return this->MarkChanged(s, marks, false);
+  return this->MarkChanged(s, ClustersOf(s, [&](Id j) { return folded[j] != 0; }), false);
 }
 
 //------------------------------------------------------------------------------
@@ -232,16 +244,8 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
 // of the second are refused.
 Id OctreeClustering::Internals::MarkFins(Synthesis& s)
 {
-  std::vector<Id> marks;
-  const Id kept = static_cast<Id>(s.From.size());
-  for (Id j = 0; j < kept; ++j)
-  {
-    if (s.Duplicate[j] == OppositeDuplicate)
-    {
-      marks.insert(marks.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
-    }
-  }
-  return this->MarkChanged(s, marks, false);
+  const auto fin = [&](Id j) { return s.Duplicate[j] == OppositeDuplicate; };
+  return this->MarkChanged(s, ClustersOf(s, fin), false);
 }
 
 //------------------------------------------------------------------------------
