@@ -38,7 +38,7 @@ void Quadric::MinimizeRegularized(const double origin[3],
   double relativeTolerance) const
 {
   // With x = o + y the gradient A (o + y) + b = 0 gives A y = -(A o + b); A + eps I is
-  // positive definite, so a Cholesky factorisation always exists.
+  // positive definite, so its L D L^T factorisation always exists.
   const double* q = this->Q;
   const double* o = origin;
   const double r0 = -(q[0] * o[0] + q[1] * o[1] + q[2] * o[2] + q[6]);
@@ -53,24 +53,28 @@ void Quadric::MinimizeRegularized(const double origin[3],
     return;
   }
   const double eps = relativeTolerance * trace;
-  // Cholesky L L^T of the regularised matrix.
-  const double l00 = std::sqrt(q[0] + eps);
-  const double l10 = q[1] / l00;
-  const double l20 = q[2] / l00;
-  const double d11 = q[3] + eps - l10 * l10;
-  const double l11 = std::sqrt(d11 > 0.0 ? d11 : eps);
-  const double l21 = (q[4] - l20 * l10) / l11;
-  const double d22 = q[5] + eps - l20 * l20 - l21 * l21;
-  const double l22 = std::sqrt(d22 > 0.0 ? d22 : eps);
-  // Forward then back substitution.
-  const double i00 = 1.0 / l00, i11 = 1.0 / l11, i22 = 1.0 / l22;
+  // L D L^T of the regularised matrix (L unit lower triangular): the same factorisation as
+  // Cholesky's without its three square roots, which sit on the critical path of every
+  // candidate's solve. A pivot that rounding leaves at or below zero is taken as eps.
+  const double m00 = q[0] + eps, m11 = q[3] + eps, m22 = q[5] + eps;
+  const double d0 = m00;
+  const double i0 = 1.0 / d0;
+  const double l10 = q[1] * i0;
+  const double l20 = q[2] * i0;
+  const double d1Raw = m11 - l10 * q[1];
+  const double i1 = 1.0 / (d1Raw > 0.0 ? d1Raw : eps);
+  const double c21 = q[4] - l20 * q[1];
+  const double l21 = c21 * i1;
+  const double d2Raw = m22 - l20 * q[2] - l21 * c21;
+  const double i2 = 1.0 / (d2Raw > 0.0 ? d2Raw : eps);
+  // Forward substitution, scaling by D^-1, back substitution.
   auto solve = [&](double s0, double s1, double s2, double y[3]) {
-    const double z0 = s0 * i00;
-    const double z1 = (s1 - l10 * z0) * i11;
-    const double z2 = (s2 - l20 * z0 - l21 * z1) * i22;
-    y[2] = z2 * i22;
-    y[1] = (z1 - l21 * y[2]) * i11;
-    y[0] = (z0 - l10 * y[1] - l20 * y[2]) * i00;
+    const double z0 = s0;
+    const double z1 = s1 - l10 * z0;
+    const double z2 = s2 - l20 * z0 - l21 * z1;
+    y[2] = z2 * i2;
+    y[1] = z1 * i1 - l21 * y[2];
+    y[0] = z0 * i0 - l10 * y[1] - l20 * y[2];
   };
   double y[3];
   solve(r0, r1, r2, y);

@@ -70,7 +70,7 @@ struct VTKFILTERSMESHLOD_EXPORT Quadric
   /// Root-mean-square distance to the planes, sqrt(v^T Q v / Weight()); 0 without planes.
   double RmsDistance(const double v[3]) const;
 
-  /// The minimiser found by one regularised 3x3 Cholesky solve, (A + eps I) y = -(A o + b) with
+  /// The minimiser found by one regularised 3x3 L D L^T solve, (A + eps I) y = -(A o + b) with
   /// eps = relativeTolerance * trace(A) and result o + y, refined twice on the same factors
   /// (see Quadric.cxx). Along eigenvectors whose eigenvalue is well above eps this is the exact
   /// minimiser (to rounding, also between nearly parallel planes); along (nearly) null
