@@ -24,22 +24,41 @@ SurfaceFitResult FitQuadraticHeightField(
   }
   const Eigen::Vector3d u = n.cross(Eigen::Vector3d::Unit(axis)).normalized();
   const Eigen::Vector3d v = n.cross(u);
-  const Eigen::Vector3d c(origin[0], origin[1], origin[2]);
 
-  Eigen::Matrix<double, 6, 6> normalMatrix = Eigen::Matrix<double, 6, 6>::Zero();
-  Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
+  // The normal equations, summed by hand: the lower triangle of sum row row^T and sum row d for
+  // row = (u^2, u v, v^2, u, v, 1). (Eigen's rank update, general for any size, took several
+  // times as long on these 6x6 sums.)
+  double lower[6][6] = {};
+  double sums[6] = { 0, 0, 0, 0, 0, 0 };
   const double inverseScale = 1.0 / scale;
   for (int j = 0; j < count; ++j)
   {
-    const Eigen::Vector3d p = (Eigen::Vector3d(xyz[3 * j], xyz[3 * j + 1], xyz[3 * j + 2]) - c) *
-      inverseScale;
-    const double pu = p.dot(u), pv = p.dot(v), pd = p.dot(n);
-    Eigen::Matrix<double, 6, 1> row;
-    row << pu * pu, pu * pv, pv * pv, pu, pv, 1.0;
-    normalMatrix.selfadjointView<Eigen::Lower>().rankUpdate(row);
-    rhs += row * pd;
+    const double* x = xyz + 3 * j;
+    const double p[3] = { (x[0] - origin[0]) * inverseScale, (x[1] - origin[1]) * inverseScale,
+      (x[2] - origin[2]) * inverseScale };
+    const double pu = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
+    const double pv = p[0] * v[0] + p[1] * v[1] + p[2] * v[2];
+    const double pd = p[0] * n[0] + p[1] * n[1] + p[2] * n[2];
+    const double row[6] = { pu * pu, pu * pv, pv * pv, pu, pv, 1.0 };
+    for (int r = 0; r < 6; ++r)
+    {
+      for (int q = 0; q <= r; ++q)
+      {
+        lower[r][q] += row[r] * row[q];
+      }
+      sums[r] += row[r] * pd;
+    }
   }
-  normalMatrix.triangularView<Eigen::Upper>() = normalMatrix.transpose();
+  Eigen::Matrix<double, 6, 6> normalMatrix;
+  Eigen::Matrix<double, 6, 1> rhs;
+  for (int r = 0; r < 6; ++r)
+  {
+    for (int q = 0; q <= r; ++q)
+    {
+      normalMatrix(r, q) = normalMatrix(q, r) = lower[r][q];
+    }
+    rhs[r] = sums[r];
+  }
   const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solver(normalMatrix);
   // LDLT solves a singular system quietly (zero pivots give zero components), and its rcond()
   // estimate does not always see it: test the pivots themselves. Points on one line, or too
