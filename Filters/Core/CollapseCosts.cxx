@@ -309,8 +309,8 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
 }
 
 //------------------------------------------------------------------------------
-double CollapseCostModel::BalancedHeight(const Id* tri, const double centroid[3],
-  const double normal[3], const SurfaceFitResult& fit) const
+double CollapseCostModel::BalancedHeight(const std::vector<Id>& rimEdges,
+  const double centroid[3], const double normal[3], const SurfaceFitResult& fit) const
 {
   // The new triangles join the collapse point p = c + h n to the stencil boundary polygon. Over
   // one of them, (p, a, b) seen in the fit's frame, the mean of the linear triangle is the mean
@@ -328,32 +328,16 @@ double CollapseCostModel::BalancedHeight(const Id* tri, const double centroid[3]
     }
   };
   double weighted = 0.0, total = 0.0;
-  for (int k = 0; k < 3; ++k)
+  for (std::size_t e = 0; e + 1 < rimEdges.size(); e += 2)
   {
-    this->State.ForEachTriangle(tri[k], [&](Id s) {
-      const Id* st = this->State.Mesh.Triangle(s);
-      int members = 0, corner = 0;
-      for (int j = 0; j < 3; ++j)
-      {
-        if (st[j] == tri[0] || st[j] == tri[1] || st[j] == tri[2])
-        {
-          ++members;
-          corner = j;
-        }
-      }
-      if (members != 1)
-      {
-        return; // a dying triangle
-      }
-      double ua, va, da, ub, vb, db;
-      frame(this->State.Mesh.Point(st[(corner + 1) % 3]), ua, va, da);
-      frame(this->State.Mesh.Point(st[(corner + 2) % 3]), ub, vb, db);
-      const double area = 0.5 * std::abs(ua * vb - va * ub);
-      const double surface = fit.At(0.5 * ua, 0.5 * va) + fit.At(0.5 * ub, 0.5 * vb) +
-        fit.At(0.5 * (ua + ub), 0.5 * (va + vb));
-      weighted += area * (surface - da - db);
-      total += area;
-    });
+    double ua, va, da, ub, vb, db;
+    frame(this->State.Mesh.Point(rimEdges[e]), ua, va, da);
+    frame(this->State.Mesh.Point(rimEdges[e + 1]), ub, vb, db);
+    const double area = 0.5 * std::abs(ua * vb - va * ub);
+    const double surface = fit.At(0.5 * ua, 0.5 * va) + fit.At(0.5 * ub, 0.5 * vb) +
+      fit.At(0.5 * (ua + ub), 0.5 * (va + vb));
+    weighted += area * (surface - da - db);
+    total += area;
   }
   return total > 0.0 ? weighted / total : fit.Height;
 }
@@ -380,7 +364,9 @@ void CollapseCostModel::FitSurface(
   // the corner and those followers are all its fan's vertices; an open fan also needs the
   // vertices that precede it. (Fewer duplicates to sort: this sort was a tenth of the run.)
   std::vector<Id>& stencil = scratch.Vertices;
+  std::vector<Id>& rimEdges = scratch.RimEdges;
   stencil.clear();
+  rimEdges.clear();
   for (int k = 0; k < 3; ++k)
   {
     const Id corner = tri[k];
@@ -389,10 +375,17 @@ void CollapseCostModel::FitSurface(
     this->State.ForEachTriangle(corner, [&](Id s) {
       const Id* st = this->State.Mesh.Triangle(s);
       const int c = CornerOf(st, corner);
-      stencil.push_back(st[(c + 1) % 3]);
+      const Id next = st[(c + 1) % 3], previous = st[(c + 2) % 3];
+      stencil.push_back(next);
       if (open)
       {
-        stencil.push_back(st[(c + 2) % 3]);
+        stencil.push_back(previous);
+      }
+      const auto member = [&](Id x) { return x == tri[0] || x == tri[1] || x == tri[2]; };
+      if (!member(next) && !member(previous))
+      {
+        rimEdges.push_back(next); // a ring triangle: its far edge bounds a new triangle
+        rimEdges.push_back(previous);
       }
     });
   }
@@ -459,7 +452,7 @@ void CollapseCostModel::FitSurface(
   double height = 0.0;
   if (fit.Valid && place)
   {
-    const double balanced = this->BalancedHeight(tri, centroid, c.Normal, fit);
+    const double balanced = this->BalancedHeight(rimEdges, centroid, c.Normal, fit);
     height = std::max(-scale, std::min(scale, balanced));
   }
   c.Kappa = fit.Valid ? fit.AbsoluteCurvature : 0.0;

@@ -48,6 +48,7 @@ struct CostScratch
 {
   std::vector<Id> Vertices;
   std::vector<double> Points;
+  std::vector<Id> RimEdges; // curvature method: the far edges of the ring triangles, (a, b) pairs
   /// After a collapse every triangle around the survivor is evaluated again, and each edge
   /// from the survivor belongs to two of them: between BeginSpokes(v) and EndSpokes() the
   /// solutions of edges from v are kept and reused (they are the same numbers either way).
@@ -109,10 +110,11 @@ private:
   // point on the normal through the centroid (see BalancedHeight).
   void FitSurface(
     const Id* tri, CollapseCandidate& candidate, CostScratch& scratch, bool place) const;
-  // The height along the normal through the centroid at which the new triangles lie on the
+  // The height along the normal through the centroid at which the new triangles, from the
+  // collapse point to the far edges of the ring triangles (FitSurface gathers them), lie on the
   // fitted surface on average.
-  double BalancedHeight(const Id* tri, const double centroid[3], const double normal[3],
-    const SurfaceFitResult& fit) const;
+  double BalancedHeight(const std::vector<Id>& rimEdges, const double centroid[3],
+    const double normal[3], const SurfaceFitResult& fit) const;
 
   const TriangleCollapseOptions& Options;
   const CollapseMesh& State;
