@@ -367,6 +367,7 @@ void CollapseCostModel::FitSurface(
   std::vector<Id>& rimEdges = scratch.RimEdges;
   stencil.clear();
   rimEdges.clear();
+  const auto member = [&](Id x) { return x == tri[0] || x == tri[1] || x == tri[2]; };
   for (int k = 0; k < 3; ++k)
   {
     const Id corner = tri[k];
@@ -381,7 +382,6 @@ void CollapseCostModel::FitSurface(
       {
         stencil.push_back(previous);
       }
-      const auto member = [&](Id x) { return x == tri[0] || x == tri[1] || x == tri[2]; };
       if (!member(next) && !member(previous))
       {
         rimEdges.push_back(next); // a ring triangle: its far edge bounds a new triangle

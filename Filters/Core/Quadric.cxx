@@ -57,8 +57,7 @@ void Quadric::MinimizeRegularized(const double origin[3],
   // Cholesky's without its three square roots, which sit on the critical path of every
   // candidate's solve. A pivot that rounding leaves at or below zero is taken as eps.
   const double m00 = q[0] + eps, m11 = q[3] + eps, m22 = q[5] + eps;
-  const double d0 = m00;
-  const double i0 = 1.0 / d0;
+  const double i0 = 1.0 / m00; // q[0] >= 0, so the first pivot is at least eps
   const double l10 = q[1] * i0;
   const double l20 = q[2] * i0;
   const double d1Raw = m11 - l10 * q[1];
