@@ -359,10 +359,11 @@ void CollapseCostModel::FitSurface(
     }
   }
 
-  // The stencil: every vertex of the triangles around the three corners (current positions).
-  // Around an interior vertex each neighbour follows it in exactly one triangle of its fan, so
-  // the corner and those followers are all its fan's vertices; an open fan also needs the
-  // vertices that precede it. (Fewer duplicates to sort: this sort was a tenth of the run.)
+  // The stencil: every vertex of the triangles around the three corners (current positions):
+  // each corner and, from every triangle of its fan, the two other vertices. (Not the corner
+  // three times per triangle: fewer duplicates to sort, and this sort was a tenth of the run.
+  // Only the vertices that follow the corner would do around a consistently oriented closed
+  // fan, but not across the seam of a non-orientable surface.)
   std::vector<Id>& stencil = scratch.Vertices;
   std::vector<Id>& rimEdges = scratch.RimEdges;
   stencil.clear();
@@ -371,17 +372,13 @@ void CollapseCostModel::FitSurface(
   for (int k = 0; k < 3; ++k)
   {
     const Id corner = tri[k];
-    const bool open = this->State.IsBoundary(corner) || this->State.IsLocked(corner);
     stencil.push_back(corner);
     this->State.ForEachTriangle(corner, [&](Id s) {
       const Id* st = this->State.Mesh.Triangle(s);
       const int c = CornerOf(st, corner);
       const Id next = st[(c + 1) % 3], previous = st[(c + 2) % 3];
       stencil.push_back(next);
-      if (open)
-      {
-        stencil.push_back(previous);
-      }
+      stencil.push_back(previous);
       if (!member(next) && !member(previous))
       {
         rimEdges.push_back(next); // a ring triangle: its far edge bounds a new triangle
