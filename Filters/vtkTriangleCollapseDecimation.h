@@ -41,24 +41,30 @@
  *   (Benchmarks/RESULTS.md).
  *
  * A collapse is made only when it is legal (paper 000, section 3, generalised to open
- * meshes): no vertex involved is non-manifold (such vertices are locked), the merged vertex's
- * neighbourhood is one disk or half-disk (no pinch, no non-manifold edge, no duplicate triangle,
- * same genus; tested without regard to winding, so non-orientable surfaces such as a Moebius
- * strip or Boy's surface simplify like any other), no neighbour apex drops to valence 3 (paper 000's "no new cycle" rule; it holds
- * for triangle collapses, and for edge collapses in the IndependentSets schedule only: an edge
- * collapse removes a valence-3 vertex like any other, as in vtkQuadricDecimation), the
- * stencil boundary polygon projected on the triangle's plane is star-shaped around the collapse
- * point, no triangle's normal turns by more than MaximumNormalDeviation (unless it ends within
- * that angle of the input surface's facing: collapses that smooth a noisy scan turn its
- * triangles towards the surface), and no triangle comes to face
- * away from the original surface its corners stand for (the summed area vectors of the input
- * triangles merged into them; without this, many small turns can add up to a fold at coarse
- * levels; one that faces away already, as many do on a very noisy scan, may stay so). Zero-area input triangles (coincident points, as marching cubes makes where the
- * surface passes through a sample) are collapsed, not kept. A triangle refused
- * only because a neighbour apex has a low valence gets the edge swap of paper 000 (figure 3):
- * the shared edge is swapped and one of the two new triangles collapses; swap and collapse are
- * made as one merge of three vertices joined by two edges, which keeps every level's
- * correspondence exact (GetNumberOfSwaps()).
+ * meshes):
+ * - no vertex involved is non-manifold (such vertices are locked);
+ * - the merged vertex's neighbourhood is one disk or half-disk (no pinch, no non-manifold
+ *   edge, no duplicate triangle, same genus), tested without regard to winding, so that
+ *   non-orientable surfaces such as a Moebius strip or Boy's surface simplify like any other;
+ * - no neighbour apex drops to valence 3 (paper 000's "no new cycle" rule; it holds for
+ *   triangle collapses, and for edge collapses in the IndependentSets schedule only: an edge
+ *   collapse removes a valence-3 vertex like any other, as in vtkQuadricDecimation);
+ * - the stencil boundary polygon projected on the triangle's plane is star-shaped around the
+ *   collapse point (on a mesh that cannot be oriented consistently: no new triangle changes
+ *   side of that plane, since across the seam a triangle's winding says nothing about it);
+ * - no triangle's normal turns by more than MaximumNormalDeviation, unless it ends within that
+ *   angle of the input surface's facing (collapses that smooth a noisy scan turn its triangles
+ *   towards the surface);
+ * - no triangle comes to face away from the original surface its corners stand for (the
+ *   summed area vectors of the input triangles merged into them; without this, many small
+ *   turns can add up to a fold at coarse levels); one that faces away already, as many do on
+ *   a very noisy scan, may stay so.
+ * Zero-area input triangles (coincident points, as marching cubes makes where the surface
+ * passes through a sample) are collapsed, not kept. A triangle refused only because a
+ * neighbour apex has a low valence gets the edge swap of paper 000 (figure 3): the shared edge
+ * is swapped and one of the two new triangles collapses; swap and collapse are made as one
+ * merge of three vertices joined by two edges, which keeps every level's correspondence exact
+ * (GetNumberOfSwaps()).
  *
  * Two schedules order the collapses (SetSchedule):
  * - Greedy (the default): one collapse at a time from a priority queue, cheapest first, with the

@@ -440,9 +440,13 @@ Legality CollapseMesh::IsLegal(
         return Legality::Illegal;
       }
     }
-    if (planeNormal != nullptr && rules.RequireStarShaped && Dot(after, planeNormal) <= 0.0)
+    if (planeNormal != nullptr && rules.RequireStarShaped)
     {
-      return Legality::Illegal;
+      const double side = rules.StarShapedBySide && Dot(before, planeNormal) < 0.0 ? -1.0 : 1.0;
+      if (side * Dot(after, planeNormal) <= 0.0)
+      {
+        return Legality::Illegal;
+      }
     }
     // Facing away is refused only for a triangle that faced the right way before: on a very
     // noisy input many triangles face away already (a sphere with radial noise of two thirds

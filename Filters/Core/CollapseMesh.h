@@ -51,6 +51,13 @@ struct CollapseRules
   /// Paper 000 condition (3): the stencil boundary polygon, projected on the collapsing
   /// triangle's plane, must be star-shaped around the projected collapse point.
   bool RequireStarShaped = true;
+  /// For a mesh that is not consistently oriented (a non-orientable surface: Boy's surface, a
+  /// Moebius strip), where a ring triangle across the seam winds the other way round the merged
+  /// vertex, so that by its orientation alone it lies below the collapsing triangle's plane:
+  /// condition (3) then asks instead that no new triangle changes side of that plane (or comes
+  /// to lie edge-on). Refusing the seam's triangles stopped the curvature method on Boy's
+  /// surface (13,804 triangles) at 944 triangles, asked for 138.
+  bool StarShapedBySide = false;
   /// No ring triangle may come to face away from the original surface its corners stand for
   /// (CollapseMesh::Facing); one that faces away already (noise) may stay so. The per-collapse
   /// normal test alone lets many small turns add up to a fold at coarse levels.

@@ -48,6 +48,8 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
     this->OriginalPoints = mesh.Points; // the fits use the ancestral (original) points
   }
   this->InitialTriangles = mesh.GetNumberOfTriangles();
+  // (The input's parts were oriented consistently where they can be: see ReadInputMesh.)
+  this->Rules.StarShapedBySide = !topology.IsConsistentlyOriented(mesh);
   this->Tracker.Initialize(mesh.GetNumberOfPoints(), curvature);
   this->State.Initialize(std::move(mesh), std::move(topology), options.BoundaryWeight);
   this->Rules.MinimumNormalCosine =

@@ -923,8 +923,14 @@ void TestNoisySurface()
 // 17.9% of the diagonal and an RMS distance of 5.3% (vtkQuadricDecimation: 0.53% and 0.10%),
 // Boy's surface at 214 with 23.4% and 5.2% (1.54% and 0.30%). Now: 1.16x and 1.00x, 0.82x and
 // 1.05x vtkQuadricDecimation's.
+// The curvature method's triangle collapses also met paper 000's star-shape test, which judged
+// a ring triangle across the seam by its orientation: the Moebius strip stopped at 277
+// triangles (21x vtkQuadricDecimation's Hausdorff and 24x its RMS distance), Boy's surface at
+// 452 (18x, 11x). On such a mesh the test now asks that no new triangle changes side of the
+// collapsing triangle's plane: both reach 1%, at 4.8x and 5.9x, and 3.3x and 3.2x (the
+// curvature method's usual distance from vtkQuadricDecimation on isosurfaces).
 template <typename Surface>
-void CheckNonOrientable(const char* name)
+void CheckNonOrientable(const char* name, bool curvature)
 {
   vtkNew<Surface> surface;
   vtkNew<vtkParametricFunctionSource> source;
@@ -942,6 +948,10 @@ void CheckNonOrientable(const char* name)
   vtkNew<vtkTriangleCollapseDecimation> filter;
   filter->SetInputData(input);
   filter->SetTargetReduction(0.99);
+  if (curvature)
+  {
+    filter->SetMethodToCurvature();
+  }
   filter->Update();
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
   // Level 0, the validated input: stitched (manifold) and not orientable.
@@ -954,15 +964,19 @@ void CheckNonOrientable(const char* name)
   MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
   MESHLOD_CHECK_EQ(report.NonManifoldVertices, 0);
   MESHLOD_CHECK_EQ(report.EulerCharacteristic, fine.EulerCharacteristic);
-  const PeerComparison c = CompareWithQuadricDecimation(input, coarse, name);
-  MESHLOD_CHECK_LE(c.Ours.Hausdorff, 2.0 * c.Theirs.Hausdorff);
-  MESHLOD_CHECK_LE(c.Ours.Rms, 1.5 * c.Theirs.Rms);
+  const std::string label = std::string(name) + (curvature ? ", curvature method" : "");
+  const PeerComparison c = CompareWithQuadricDecimation(input, coarse, label);
+  MESHLOD_CHECK_LE(c.Ours.Hausdorff, (curvature ? 8.0 : 2.0) * c.Theirs.Hausdorff);
+  MESHLOD_CHECK_LE(c.Ours.Rms, (curvature ? 8.0 : 1.5) * c.Theirs.Rms);
 }
 
 void TestNonOrientable()
 {
-  CheckNonOrientable<vtkParametricMobius>("Moebius strip");
-  CheckNonOrientable<vtkParametricBoy>("Boy's surface");
+  for (const bool curvature : { false, true })
+  {
+    CheckNonOrientable<vtkParametricMobius>("Moebius strip", curvature);
+    CheckNonOrientable<vtkParametricBoy>("Boy's surface", curvature);
+  }
 }
 
 // The Moebius strip with its normals: they differ across the seam, which then stays open with
