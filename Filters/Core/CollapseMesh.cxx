@@ -442,8 +442,10 @@ Legality CollapseMesh::IsLegal(
     }
     if (planeNormal != nullptr && rules.RequireStarShaped)
     {
-      const double side = rules.StarShapedBySide && Dot(before, planeNormal) < 0.0 ? -1.0 : 1.0;
-      if (side * Dot(after, planeNormal) <= 0.0)
+      const double beforeSide = Dot(before, planeNormal);
+      const double side = rules.StarShapedBySide && beforeSide < 0.0 ? -1.0 : 1.0;
+      const bool stays = rules.LetWrongSideStay && !rules.StarShapedBySide && beforeSide <= 0.0;
+      if (side * Dot(after, planeNormal) <= 0.0 && !stays)
       {
         return Legality::Illegal;
       }

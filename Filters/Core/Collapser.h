@@ -59,6 +59,23 @@ public:
   /// The triangle was re-weighted for another reason: it is no longer waiting.
   void Unpark(Id t) { this->ParkedAt[t] = -1; }
 
+  /// Call release(t) for every live waiting triangle, changed or not (the rules changed); the
+  /// lot is empty afterwards.
+  template <typename F>
+  void ReleaseAll(const CollapseMesh& state, F&& release)
+  {
+    for (const Id t : this->Waiting)
+    {
+      const bool waiting = this->ParkedAt[t] >= 0 && state.IsAlive(t);
+      this->ParkedAt[t] = -1;
+      if (waiting)
+      {
+        release(t);
+      }
+    }
+    this->Waiting.clear();
+  }
+
   /// Every vertex of triangle t changed (position, neighbours) at `now`.
   void Touch(const Id* t, std::int64_t now)
   {
@@ -174,6 +191,21 @@ private:
   // level's target), take the triangle's cheapest edge instead when that is legal (star and c
   // then describe the edge).
   void LandOnTarget(Id t, std::int64_t needed, Star& star, CollapseCandidate& c) const;
+
+  // A run that finds nothing legal before its last target relaxes the star-shape test once
+  // (CollapseRules::LetWrongSideStay) and gives every refused triangle to release(t) again;
+  // false when it was relaxed already (or the test is off): the run is stuck.
+  template <typename F>
+  bool RelaxForStall(F&& release)
+  {
+    if (this->Rules.LetWrongSideStay || !this->Rules.RequireStarShaped || this->Finished())
+    {
+      return false;
+    }
+    this->Rules.LetWrongSideStay = true;
+    this->Lot.ReleaseAll(this->State, release);
+    return true;
+  }
 
   // Emit levels whose target is reached; returns false on abort.
   bool AfterProgress();

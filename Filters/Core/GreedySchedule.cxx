@@ -66,7 +66,7 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
       nextRelease = this->Clock +
         std::max<std::int64_t>(ParkedRetryCollapses,
           static_cast<std::int64_t>(this->Lot.GetNumberOfWaiting() / ParkedRetryShare));
-      if (heap.Empty())
+      if (heap.Empty() && !(this->RelaxForStall(release) && !heap.Empty()))
       {
         return StepsEnd::Stuck;
       }

@@ -274,8 +274,9 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     {
       this->Lot.Release(this->State, markDirty);
     }
-    // Stuck when nothing could be chosen and no refused triangle has a changed neighbourhood.
-    if (count == 0 && dirty.empty())
+    // Stuck when nothing could be chosen and no refused triangle has a changed neighbourhood
+    // (unless the star-shape test can still be relaxed).
+    if (count == 0 && dirty.empty() && !(this->RelaxForStall(markDirty) && !dirty.empty()))
     {
       break; // nothing collapsible (or allowed by MaximumError) is left
     }

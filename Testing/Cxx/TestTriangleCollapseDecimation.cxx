@@ -860,7 +860,7 @@ void TestHighValenceFan()
 // A sphere of 19,600 triangles with uniform radial noise of `amplitude` (relative to the
 // radius): every level within 2x vtkQuadricDecimation's errors at the same count, the last at
 // its target.
-void CheckNoisySphere(double amplitude)
+vtkSmartPointer<vtkPolyData> NoisySphere(double amplitude)
 {
   vtkNew<vtkSphereSource> source;
   source->SetThetaResolution(100);
@@ -868,10 +868,16 @@ void CheckNoisySphere(double amplitude)
   vtkNew<vtkCleanPolyData> clean; // renumbers the points: the noise below depends on it
   clean->SetInputConnection(source->GetOutputPort());
   clean->Update();
-  vtkNew<vtkPolyData> sphere;
+  auto sphere = vtkSmartPointer<vtkPolyData>::New();
   sphere->DeepCopy(clean->GetOutput());
   sphere->GetPointData()->Initialize();
   testing::PerturbRadially(sphere, amplitude, 3);
+  return sphere;
+}
+
+void CheckNoisySphere(double amplitude)
+{
+  vtkSmartPointer<vtkPolyData> sphere = NoisySphere(amplitude);
   const vtkIdType triangles = sphere->GetNumberOfPolys();
   vtkNew<vtkTriangleCollapseDecimation> filter;
   filter->SetInputData(sphere);
@@ -914,6 +920,35 @@ void TestNoisySurface()
   // 17% against vtkQuadricDecimation's 2.2%). Now: RMS 0.60%, 1.19%, 1.81% against 0.59%,
   // 1.21%, 1.86%.
   CheckNoisySphere(0.2);
+}
+
+// The curvature method's triangle collapses must also pass paper 000's star-shape test, which
+// on a noisy surface refuses most of them once triangles are large: on the sphere with radii
+// perturbed by up to 8% it stopped at 5,144 of 19,600 triangles, asked for 196. A run that
+// would stop short now relaxes the test once (a ring triangle already on the wrong side of the
+// plane may stay there) and goes on: this sphere reaches 1% at 2.3x vtkQuadricDecimation's
+// Hausdorff and 2.0x its RMS distance. Runs that reach their targets under the strict test
+// are unchanged.
+void TestNoisySurfaceCurvature()
+{
+  const double amplitude = 0.08;
+  vtkSmartPointer<vtkPolyData> sphere = NoisySphere(amplitude);
+  const vtkIdType triangles = sphere->GetNumberOfPolys();
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  filter->SetInputData(sphere);
+  filter->SetMethodToCurvature();
+  filter->SetTargetReduction(0.99);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  vtkPolyData* coarse = Level(h, h->GetNumberOfBlocks() - 1);
+  MESHLOD_CHECK_LE(coarse->GetNumberOfPolys(), triangles / 100 + 3);
+  const testing::MeshReport report = testing::InspectMesh(coarse);
+  MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
+  MESHLOD_CHECK_EQ(report.EulerCharacteristic, 2);
+  const PeerComparison c = CompareWithQuadricDecimation(
+    sphere, coarse, "noisy sphere (" + std::to_string(amplitude) + "), curvature method");
+  MESHLOD_CHECK_LE(c.Ours.Hausdorff, 4.0 * c.Theirs.Hausdorff);
+  MESHLOD_CHECK_LE(c.Ours.Rms, 4.0 * c.Theirs.Rms);
 }
 
 // Non-orientable surfaces (a Moebius strip, Boy's surface) cannot be oriented consistently:
@@ -1130,6 +1165,7 @@ int TestTriangleCollapseDecimation(int, char*[])
   TestHighValenceFan();
   TestFarFromOrigin();
   TestNoisySurface();
+  TestNoisySurfaceCurvature();
   TestNonOrientable();
   TestErrorJumpWarning();
   TestExtrudedSolid();
