@@ -50,12 +50,12 @@
  *   triangle collapses, and for edge collapses in the IndependentSets schedule only: an edge
  *   collapse removes a valence-3 vertex like any other, as in vtkQuadricDecimation);
  * - the stencil boundary polygon projected on the triangle's plane is star-shaped around the
- *   collapse point (on a mesh that cannot be oriented consistently: no new triangle changes
- *   side of that plane, since across the seam a triangle's winding says nothing about it).
- *   A run that finds no legal collapse left before its last target relaxes this test once: a
- *   ring triangle already on the wrong side may stay there (on noisy or rough input the
- *   strict test stops the curvature method far short of its target; runs that reach their
- *   targets under it are unchanged);
+ *   collapse point (on a mesh with a part that cannot be oriented consistently: no new
+ *   triangle changes side of that plane, since across the seam a triangle's winding says
+ *   nothing about it). On other meshes a run that finds no legal collapse left before its
+ *   last target relaxes this test once: a ring triangle already on the wrong side may stay
+ *   there (on noisy or rough input the strict test stops the curvature method far short of
+ *   its target; runs that reach their targets under it are unchanged);
  * - no triangle's normal turns by more than MaximumNormalDeviation, unless it ends within that
  *   angle of the input surface's facing (collapses that smooth a noisy scan turn its triangles
  *   towards the surface);

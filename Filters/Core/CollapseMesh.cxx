@@ -444,7 +444,7 @@ Legality CollapseMesh::IsLegal(
     {
       const double beforeSide = Dot(before, planeNormal);
       const double side = rules.StarShapedBySide && beforeSide < 0.0 ? -1.0 : 1.0;
-      const bool stays = rules.LetWrongSideStay && !rules.StarShapedBySide && beforeSide <= 0.0;
+      const bool stays = rules.LetWrongSideStay && beforeSide <= 0.0;
       if (side * Dot(after, planeNormal) <= 0.0 && !stays)
       {
         return Legality::Illegal;

@@ -56,11 +56,13 @@ struct CollapseRules
   /// vertex, so that by its orientation alone it lies below the collapsing triangle's plane:
   /// condition (3) then asks instead that no new triangle changes side of that plane (or comes
   /// to lie edge-on). Refusing the seam's triangles stopped the curvature method on Boy's
-  /// surface (13,804 triangles) at 944 triangles, asked for 138.
+  /// surface (13,804 triangles) at 944 triangles, asked for 138. Set for the whole mesh when
+  /// any part of it cannot be oriented consistently.
   bool StarShapedBySide = false;
   /// Condition (3) relaxed: a ring triangle on the wrong side of the collapsing triangle's
   /// plane already may stay there (the others must still not cross it). Off at first; the
-  /// collapser turns it on when a run would otherwise stop short of its target. On a rough or
+  /// collapser turns it on when a run would otherwise stop short of its target (not with
+  /// StarShapedBySide, where no side is the wrong one). On a rough or
   /// noisy surface the strict test refuses most triangle collapses once triangles are large:
   /// the curvature method stopped on a noisy terrain at 36,211 triangles, asked for 1,555, and
   /// on a noisy sphere with holes at 14,759, asked for 781.

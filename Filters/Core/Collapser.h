@@ -194,11 +194,13 @@ private:
 
   // A run that finds nothing legal before its last target relaxes the star-shape test once
   // (CollapseRules::LetWrongSideStay) and gives every refused triangle to release(t) again;
-  // false when it was relaxed already (or the test is off): the run is stuck.
+  // false when it was relaxed already, or there is nothing to relax (the test is off, or it
+  // judges sides only: CollapseRules::StarShapedBySide): the run is stuck.
   template <typename F>
   bool RelaxForStall(F&& release)
   {
-    if (this->Rules.LetWrongSideStay || !this->Rules.RequireStarShaped || this->Finished())
+    if (this->Rules.LetWrongSideStay || !this->Rules.RequireStarShaped ||
+      this->Rules.StarShapedBySide || this->Finished())
     {
       return false;
     }
