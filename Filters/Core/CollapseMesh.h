@@ -62,10 +62,10 @@ struct CollapseRules
   /// Condition (3) relaxed: a ring triangle on the wrong side of the collapsing triangle's
   /// plane already may stay there (the others must still not cross it). Off at first; the
   /// collapser turns it on when a run would otherwise stop short of its target (not with
-  /// StarShapedBySide, where no side is the wrong one). On a rough or
-  /// noisy surface the strict test refuses most triangle collapses once triangles are large:
-  /// the curvature method stopped on a noisy terrain at 36,211 triangles, asked for 1,555, and
-  /// on a noisy sphere with holes at 14,759, asked for 781.
+  /// StarShapedBySide, where no side is the wrong one). On a rough or noisy surface the strict
+  /// test refuses most triangle collapses once triangles are large: the curvature method
+  /// stopped on a noisy terrain at 36,211 triangles, asked for 1,555, and on a noisy sphere
+  /// with holes at 14,759, asked for 781.
   bool LetWrongSideStay = false;
   /// No ring triangle may come to face away from the original surface its corners stand for
   /// (CollapseMesh::Facing); one that faces away already (noise) may stay so. The per-collapse

@@ -59,23 +59,6 @@ public:
   /// The triangle was re-weighted for another reason: it is no longer waiting.
   void Unpark(Id t) { this->ParkedAt[t] = -1; }
 
-  /// Call release(t) for every live waiting triangle, changed or not (the rules changed); the
-  /// lot is empty afterwards.
-  template <typename F>
-  void ReleaseAll(const CollapseMesh& state, F&& release)
-  {
-    for (const Id t : this->Waiting)
-    {
-      const bool waiting = this->ParkedAt[t] >= 0 && state.IsAlive(t);
-      this->ParkedAt[t] = -1;
-      if (waiting)
-      {
-        release(t);
-      }
-    }
-    this->Waiting.clear();
-  }
-
   /// Every vertex of triangle t changed (position, neighbours) at `now`.
   void Touch(const Id* t, std::int64_t now)
   {
@@ -87,6 +70,39 @@ public:
   template <typename F>
   void Release(const CollapseMesh& state, F&& release)
   {
+    this->ReleaseIf(state,
+      [&](Id t) {
+        bool changed = false;
+        const Id* tri = state.Mesh.Triangle(t);
+        const std::int32_t since = this->ParkedAt[t];
+        for (int k = 0; k < 3 && !changed; ++k)
+        {
+          state.ForEachTriangle(tri[k], [&](Id n) {
+            const Id* nt = state.Mesh.Triangle(n);
+            changed = changed || this->ChangedAt[nt[0]] > since ||
+              this->ChangedAt[nt[1]] > since || this->ChangedAt[nt[2]] > since;
+          });
+        }
+        return changed;
+      },
+      release);
+  }
+
+  /// Call release(t) for every live waiting triangle, changed or not (the rules changed); the
+  /// lot is empty afterwards.
+  template <typename F>
+  void ReleaseAll(const CollapseMesh& state, F&& release)
+  {
+    this->ReleaseIf(state, [](Id) { return true; }, release);
+  }
+
+  std::size_t GetNumberOfWaiting() const { return this->Waiting.size(); }
+
+private:
+  // Release the live waiting triangles for which leave(t) holds; drop the dead ones.
+  template <typename Leave, typename F>
+  void ReleaseIf(const CollapseMesh& state, Leave&& leave, F&& release)
+  {
     std::size_t kept = 0;
     for (const Id t : this->Waiting)
     {
@@ -95,18 +111,7 @@ public:
         this->ParkedAt[t] = -1;
         continue;
       }
-      bool changed = false;
-      const Id* tri = state.Mesh.Triangle(t);
-      const std::int32_t since = this->ParkedAt[t];
-      for (int k = 0; k < 3 && !changed; ++k)
-      {
-        state.ForEachTriangle(tri[k], [&](Id n) {
-          const Id* nt = state.Mesh.Triangle(n);
-          changed = changed || this->ChangedAt[nt[0]] > since || this->ChangedAt[nt[1]] > since ||
-            this->ChangedAt[nt[2]] > since;
-        });
-      }
-      if (changed)
+      if (leave(t))
       {
         this->ParkedAt[t] = -1;
         release(t);
@@ -119,9 +124,6 @@ public:
     this->Waiting.resize(kept);
   }
 
-  std::size_t GetNumberOfWaiting() const { return this->Waiting.size(); }
-
-private:
   static std::int32_t Stamp(std::int64_t now)
   {
     return static_cast<std::int32_t>(
