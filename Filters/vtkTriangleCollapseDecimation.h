@@ -42,10 +42,21 @@
  *
  * A collapse is made only when it is legal (paper 000, section 3, generalised to open
  * meshes):
- * - no vertex involved is non-manifold (such vertices are locked);
+ * - no vertex involved is non-manifold, except on a curve where several sheets meet (as
+ *   between the regions of a segmented volume): a vertex at a regular point of such a curve
+ *   (two of its edges with the same number k > 2 of triangles, the others with two, its
+ *   triangles in k fans from one of those edges to the other) may merge with its neighbour
+ *   along the curve or absorb a neighbour inside a sheet, by edge collapses only, under the
+ *   link condition (the members' common neighbours are only the apexes of the dying
+ *   triangles), so that the sheets, the curve and every other edge's triangle count stay; its
+ *   position minimises the merged planes of all its sheets, which hold it to the curve. Other
+ *   non-manifold vertices (where curves meet or end, bow ties) are locked; the curvature
+ *   method, which collapses triangles, leaves every curve as it is;
  * - the merged vertex's neighbourhood is one disk or half-disk (no pinch, no non-manifold
  *   edge, no duplicate triangle, same genus), tested without regard to winding, so that
  *   non-orientable surfaces such as a Moebius strip or Boy's surface simplify like any other;
+ *   on a boundary and next to a non-manifold vertex, the link condition too (a hole of three
+ *   edges stays open, a bow tie keeps both wings);
  * - no neighbour apex drops to valence 3 (paper 000's "no new cycle" rule; it holds for
  *   triangle collapses, and for edge collapses in the IndependentSets schedule only: an edge
  *   collapse removes a valence-3 vertex like any other, as in vtkQuadricDecimation);
@@ -82,7 +93,9 @@
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
  *   around what changed.
  * Either way, output levels are snapshots taken when the triangle count reaches each level's
- * target; the collapses between two levels are composed. On the benchmark meshes both reach
+ * target; the collapses between two levels are composed. (A collapse along a curve where k
+ * sheets meet removes k triangles, so such a mesh's level may end up to k - 1 triangles below
+ * its target.) On the benchmark meshes both reach
  * about the same error per triangle (RMS within 2%, Hausdorff distances within the few tens of
  * percent by which a maximum varies between runs; Benchmarks/RESULTS.md); Greedy is the
  * default because it is about twice as fast, on one thread and on two. On CAD-like solids
@@ -123,7 +136,8 @@
  * data differ, an attribute seam such as a cube's split normals, stay apart, with a warning);
  * triangles wound against the rest of their connected part are flipped (each orientable part
  * keeps the orientation most of its triangles have; a warning gives the count); non-manifold
- * vertices that remain are kept but locked. The computation runs about the centre of the
+ * vertices that remain are kept but locked, except on curves where sheets meet (see the
+ * collapse rules above). The computation runs about the centre of the
  * bounding box, so meshes far from the origin lose no accuracy.
  *
  * The data-parallel parts (initial weights, the greedy rounds' cells, re-weighting and legality

@@ -135,9 +135,9 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   const double* p[3];
   for (int k = 0; k < 3; ++k)
   {
-    if (this->State.IsLocked(members[k]))
+    if (this->State.IsLocked(members[k]) || this->State.IsCurve(members[k]))
     {
-      return false;
+      return false; // where sheets meet, only edges collapse
     }
     p[k] = this->State.Mesh.Point(members[k]);
   }
@@ -227,6 +227,23 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
   }
   const double* pa = this->State.Mesh.Point(a);
   const double* pb = this->State.Mesh.Point(b);
+  if (!this->State.EdgeMayMerge(a, b))
+  {
+    // Never legal (see CollapseMesh::EdgeMayMerge): priced out, so that a triangle with a
+    // legal edge besides does not wait on this one.
+    e.Cost = Infinity;
+    e.Weight = 0.0;
+    e.Other = other;
+    for (int i = 0; i < 3; ++i)
+    {
+      e.Position[i] = 0.5 * (pa[i] + pb[i]);
+    }
+    if (spoke)
+    {
+      scratch->Spokes.push_back(e);
+    }
+    return;
+  }
   const Quadric q = this->State.Quadrics[a] + this->State.Quadrics[b];
   const double middle[3] = { 0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]) };
   q.MinimizeRegularized(middle, e.Position);
@@ -300,8 +317,8 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
   }
   CollapseCandidate triangle;
   CostScratch unused;
-  this->EvaluateTriple(tri, triangle, unused);
-  if (triangle.Cost * this->Options.TriangleCostFactor <= limit)
+  if (this->EvaluateTriple(tri, triangle, unused) &&
+    triangle.Cost * this->Options.TriangleCostFactor <= limit)
   {
     c = triangle;
   }

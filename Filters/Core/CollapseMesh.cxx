@@ -49,6 +49,102 @@ int CountMembers(const Id* tri, const Id* members, int count)
   }
   return n;
 }
+
+// Whether non-manifold vertex v is a regular point of a curve of non-manifold edges (see
+// FlagCurve): two edges with the same k > 2 triangles, every other edge with two, and k fans of
+// triangles (joined across v's manifold edges) each running from one of the two to the other.
+// `ends` and `fan` are scratch.
+bool IsRegularCurveVertex(const TriangleMesh& mesh, const VertexTriangleAdjacency& adj, Id v,
+  std::vector<std::pair<Id, Id>>& ends, std::vector<Id>& fan)
+{
+  const Id first = adj.Begin(v);
+  const Id count = adj.Count(v);
+  ends.clear(); // (neighbour, index of the triangle in v's row), for both edges of it at v
+  for (Id i = 0; i < count; ++i)
+  {
+    const Id* tri = mesh.Triangle(adj.Triangles[first + i]);
+    const int c = CornerOf(tri, v);
+    ends.emplace_back(tri[(c + 1) % 3], i);
+    ends.emplace_back(tri[(c + 2) % 3], i);
+  }
+  std::sort(ends.begin(), ends.end());
+  // Union of the triangles across each manifold edge (two triangles on it); the two curve
+  // edges by their neighbour.
+  fan.resize(static_cast<std::size_t>(count));
+  std::iota(fan.begin(), fan.end(), 0);
+  const auto root = [&](Id i) {
+    while (fan[i] != i)
+    {
+      i = fan[i] = fan[fan[i]];
+    }
+    return i;
+  };
+  Id curve[2] = { InvalidId, InvalidId };
+  std::size_t sheets = 0;
+  int curves = 0;
+  for (std::size_t i = 0; i < ends.size();)
+  {
+    std::size_t run = 1;
+    while (i + run < ends.size() && ends[i + run].first == ends[i].first)
+    {
+      ++run;
+    }
+    if (run == 2)
+    {
+      fan[root(ends[i].second)] = root(ends[i + 1].second);
+    }
+    else if (run < 2 || curves == 2 || (curves == 1 && run != sheets))
+    {
+      return false; // a boundary edge, a third curve edge, or curve edges of unequal counts
+    }
+    else
+    {
+      curve[curves++] = ends[i].first;
+      sheets = run;
+    }
+    i += run;
+  }
+  if (curves != 2)
+  {
+    return false;
+  }
+  // Each fan must hold exactly one triangle on each curve edge; then there are k fans.
+  std::vector<std::pair<Id, Id>>& touches = ends; // reused: (fan root, which curve edge)
+  touches.clear();
+  for (Id i = 0; i < count; ++i)
+  {
+    const Id* tri = mesh.Triangle(adj.Triangles[first + i]);
+    for (int e = 0; e < 2; ++e)
+    {
+      if (CornerOf(tri, curve[e]) >= 0)
+      {
+        touches.emplace_back(root(i), e);
+      }
+    }
+  }
+  std::sort(touches.begin(), touches.end());
+  if (touches.size() != 2 * sheets)
+  {
+    return false;
+  }
+  for (std::size_t i = 0; i < touches.size(); i += 2)
+  {
+    if (touches[i].first != touches[i + 1].first || touches[i].second != 0 ||
+      touches[i + 1].second != 1)
+    {
+      return false; // a fan from one curve edge back to it, or one reaching neither
+    }
+  }
+  // Every triangle is in a fan that touches the curve: no closed fan (bow tie) besides.
+  for (Id i = 0; i < count; ++i)
+  {
+    if (!std::binary_search(touches.begin(), touches.end(), std::make_pair(root(i), Id(0))))
+    {
+      return false;
+    }
+  }
+  return true;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -86,11 +182,19 @@ void CollapseMesh::Initialize(
 
   const VertexTriangleAdjacency& adj = topology.VertexTriangles;
   vtkSMPTools::For(0, nv, [&](Id begin, Id end) {
+    std::vector<std::pair<Id, Id>> ends;
+    std::vector<Id> fan;
     for (Id v = begin; v < end; ++v)
     {
       const VertexKind kind = topology.VertexKinds[v];
-      this->Flags[v] = kind == VertexKind::NonManifold ? FlagLocked
-                                                       : (kind == VertexKind::Boundary ? FlagBoundary : 0);
+      if (kind == VertexKind::NonManifold)
+      {
+        this->Flags[v] = IsRegularCurveVertex(mesh, adj, v, ends, fan) ? FlagCurve : FlagLocked;
+      }
+      else
+      {
+        this->Flags[v] = kind == VertexKind::Boundary ? FlagBoundary : 0;
+      }
       Quadric q;
       double facing[3] = { 0, 0, 0 };
       for (Id i = adj.Begin(v); i < adj.End(v); ++i)
@@ -110,7 +214,10 @@ void CollapseMesh::Initialize(
           facing[i] += normal[i] / 6.0; // a third of the area vector (normal is twice it)
         }
         // Boundary edges of t at v get a plane through the edge, perpendicular to t, so that
-        // the boundary resists moving sideways.
+        // the boundary resists moving sideways. (A curve where sheets meet needs none: the
+        // planes of the sheets, in different directions, hold a vertex to it; planes through
+        // its edges as well would keep it at every wiggle of the input's curve: on a smoothed
+        // segmentation, 1.7 times the RMS distance at the coarse levels.)
         const int c = CornerOf(tri, v);
         for (const int e : { c, (c + 2) % 3 })
         {
@@ -160,7 +267,7 @@ void CollapseMesh::RebuildRows()
 //------------------------------------------------------------------------------
 int CollapseMesh::Valence(Id v, std::vector<Id>& scratch) const
 {
-  if (!this->IsLocked(v))
+  if (!this->IsLocked(v) && !this->IsCurve(v))
   {
     // A manifold fan: as many neighbours as triangles, plus one when the fan is open.
     return this->TriangleCounts[v] + (this->IsBoundary(v) ? 1 : 0);
@@ -239,9 +346,20 @@ bool CollapseMesh::GatherStar(const Id* members, int count, Star& star) const
       }
     });
   }
-  // Each edge between members has at most two triangles (members are manifold), so a triangle
-  // collapse kills at most 4 triangles and an edge collapse at most 2.
-  return !star.Foreign && !star.Dying.empty() && static_cast<int>(star.Dying.size()) <= (count == 3 ? 4 : 2);
+  // Each edge between manifold members has at most two triangles, so a triangle collapse kills
+  // at most 4 triangles and an edge collapse at most 2; an edge along a curve where sheets meet
+  // kills one per sheet (IsLegal checks it is such an edge).
+  bool curve = false;
+  for (int m = 0; m < count; ++m)
+  {
+    curve = curve || this->IsCurve(star.Members[m]);
+  }
+  if (curve && count == 3)
+  {
+    return false; // only edge collapses touch such a curve
+  }
+  const std::size_t most = count == 3 ? 4 : 2;
+  return !star.Foreign && !star.Dying.empty() && (curve || star.Dying.size() <= most);
 }
 
 //------------------------------------------------------------------------------
@@ -326,6 +444,130 @@ bool LinkIsSimple(const std::vector<Id>& ends, bool boundary,
 } // namespace
 
 //------------------------------------------------------------------------------
+bool CollapseMesh::MergeKeepsLinks(const Star& star, bool alongCurve) const
+{
+  // (vertex, code) for every far corner of a ring triangle (code: the member's bit) and the
+  // apex of every dying triangle with two members (code: their bits, shifted by 3).
+  const auto bit = [&](Id v) {
+    int b = 0;
+    for (int m = 0; m < star.MemberCount; ++m)
+    {
+      b |= star.Members[m] == v ? 1 << m : 0;
+    }
+    return b;
+  };
+  std::vector<std::pair<Id, Id>>& seen = star.LinkIncidence;
+  seen.clear();
+  for (std::size_t i = 0; i < star.Ring.size(); ++i)
+  {
+    const Id* tri = this->Mesh.Triangle(star.Ring[i]);
+    const int c = star.RingCorner[i];
+    const int member = bit(tri[c]);
+    seen.emplace_back(tri[(c + 1) % 3], member);
+    seen.emplace_back(tri[(c + 2) % 3], member);
+  }
+  for (const Id d : star.Dying)
+  {
+    const Id* tri = this->Mesh.Triangle(d);
+    const int mask = bit(tri[0]) | bit(tri[1]) | bit(tri[2]);
+    for (int k = 0; k < 3; ++k)
+    {
+      if (bit(tri[k]) == 0)
+      {
+        seen.emplace_back(tri[k], mask << 3);
+      }
+    }
+  }
+  std::sort(seen.begin(), seen.end());
+  for (std::size_t i = 0; i < seen.size();)
+  {
+    const Id p = seen[i].first;
+    int joined = 0; // members joined to p
+    int linked[3] = { 0, 0, 0 }; // per member, the members it shares a dying triangle at p with
+    int triangles[3] = { 0, 0, 0 }; // on the edge from each member to p
+    int dying = 0;
+    for (; i < seen.size() && seen[i].first == p; ++i)
+    {
+      const int code = static_cast<int>(seen[i].second);
+      const int members = code < 8 ? code : code >> 3;
+      joined |= members;
+      dying += code < 8 ? 0 : 1;
+      for (int m = 0; m < 3; ++m)
+      {
+        triangles[m] += (members >> m) & 1;
+        linked[m] |= code < 8 || !((members >> m) & 1) ? 0 : members;
+      }
+    }
+    // The members joined to p must be connected through dying triangles at p (for two members:
+    // one on both); else p would join the merged vertex twice over, a pinch.
+    int reached = joined & -joined; // its lowest member
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      for (int m = 0; m < 3; ++m)
+      {
+        reached |= (reached >> m) & 1 ? linked[m] : 0;
+      }
+    }
+    if (reached != joined)
+    {
+      return false;
+    }
+    // p's edges to the members become one edge, with their triangles less the dying ones (each
+    // was on two of those edges). None left: p, a bow tie, would lose a wing (both its edges to
+    // two members were boundary edges of the dying triangle alone).
+    if (dying > 0 && triangles[0] + triangles[1] + triangles[2] - 2 * dying < 1)
+    {
+      return false;
+    }
+    if (alongCurve && triangles[0] > 2 && triangles[1] > 2)
+    {
+      return false; // the curve runs round the dying triangle: its two edges would become one
+    }
+  }
+  // Two ring triangles of different members on the same far edge would become one triangle
+  // twice.
+  std::vector<std::pair<Id, Id>>& far = seen;
+  far.clear();
+  for (std::size_t i = 0; i < star.Ring.size(); ++i)
+  {
+    const Id* tri = this->Mesh.Triangle(star.Ring[i]);
+    const int c = star.RingCorner[i];
+    const Id u = tri[(c + 1) % 3], w = tri[(c + 2) % 3];
+    far.emplace_back(std::min(u, w), std::max(u, w));
+  }
+  std::sort(far.begin(), far.end());
+  return std::adjacent_find(far.begin(), far.end()) == far.end();
+}
+
+//------------------------------------------------------------------------------
+bool CollapseMesh::CurveMergeIsValid(const Star& star) const
+{
+  // Two kinds of merge keep the sheets and the curves where they meet: along the curve (both
+  // members on it, the edge between them one of its edges, with a triangle of each sheet on
+  // it), and a sheet's inner vertex into a curve vertex across a manifold edge. Each then is a
+  // boundary edge collapse or an inner one within every sheet involved, and the link condition
+  // (MergeKeepsLinks: the members' common neighbours are only the apexes of the dying
+  // triangles) makes it keep each sheet's topology and every other edge's triangle count: apex
+  // p's edges to the two members become one edge with their counts added less the two of the
+  // dying triangle.
+  if (star.MemberCount != 2)
+  {
+    return false;
+  }
+  const Id a = star.Members[0], b = star.Members[1];
+  if (this->IsBoundary(a) || this->IsBoundary(b))
+  {
+    return false;
+  }
+  const bool along = this->IsCurve(a) && this->IsCurve(b);
+  if (along ? star.Dying.size() < 3 : star.Dying.size() != 2)
+  {
+    return false; // across a sheet between two curve points (a pinch), or not a manifold edge
+  }
+  return this->MergeKeepsLinks(star, along);
+}
+
+//------------------------------------------------------------------------------
 Legality CollapseMesh::IsLegal(
   const Star& star, const double x[3], const double* planeNormal, const CollapseRules& rules) const
 {
@@ -335,10 +577,15 @@ Legality CollapseMesh::IsLegal(
   {
     return Legality::Illegal;
   }
-  bool boundary = false;
+  bool boundary = false, curve = false;
   for (int m = 0; m < star.MemberCount; ++m)
   {
     boundary = boundary || this->IsBoundary(star.Members[m]);
+    curve = curve || this->IsCurve(star.Members[m]);
+  }
+  if (curve && !this->CurveMergeIsValid(star))
+  {
+    return Legality::Illegal;
   }
 
   // Link of the merged vertex: ring triangle (member, u, w) contributes the edge {u, w}. A
@@ -349,14 +596,30 @@ Legality CollapseMesh::IsLegal(
   // edges refused every collapse along that seam.
   std::vector<Id>& ends = star.LinkScratch;
   ends.resize(2 * ringSize);
+  std::uint8_t linkFlags = 0;
   for (std::size_t i = 0; i < ringSize; ++i)
   {
     const Id* tri = this->Mesh.Triangle(star.Ring[i]);
     const int c = star.RingCorner[i];
     ends[2 * i] = tri[(c + 1) % 3];
     ends[2 * i + 1] = tri[(c + 2) % 3];
+    linkFlags |= this->Flags[ends[2 * i]] | this->Flags[ends[2 * i + 1]];
   }
-  if (!LinkIsSimple(ends, boundary, star.LinkIncidence))
+  for (const Id p : star.Apexes)
+  {
+    linkFlags |= this->Flags[p];
+  }
+  if (!curve && !LinkIsSimple(ends, boundary, star.LinkIncidence))
+  {
+    return Legality::Illegal;
+  }
+  // On a boundary or next to a non-manifold vertex one simple cycle or path of the link does
+  // not show that the merge keeps the topology: a triangle collapse with two members on a
+  // hole of three edges closed the hole (the members' other boundary gave the path its two
+  // ends), and one with a dying triangle's apex where two boundary loops touch (a bow tie)
+  // closed one of the loops. The link condition does.
+  if (!curve && (boundary || (linkFlags & (FlagLocked | FlagCurve)) != 0) &&
+    !this->MergeKeepsLinks(star, false))
   {
     return Legality::Illegal;
   }
@@ -456,7 +719,8 @@ Legality CollapseMesh::IsLegal(
     // huge triangles, which cut whole caps off (Hausdorff 17% against vtkQuadricDecimation's
     // 2.2% on that sphere, stopped at 3.3% of its triangles asked for 1%).
     // (A triangle degenerate before has no side: it may not come to face away.)
-    if (rules.KeepFacing && Dot(after, facing) <= 0.0 &&
+    // (Not where sheets meet: there the facings of sheets of every direction add up.)
+    if (rules.KeepFacing && !curve && Dot(after, facing) <= 0.0 &&
       (Dot(before, facing) > 0.0 || !(before2 > tiny)))
     {
       return Legality::Illegal;

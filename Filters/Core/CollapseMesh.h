@@ -29,8 +29,15 @@ namespace meshlod
 /// Per-vertex flags.
 enum VertexFlag : std::uint8_t
 {
-  FlagLocked = 1,   // never moves or merges (non-manifold vertices)
+  FlagLocked = 1,   // never moves or merges (non-manifold vertices other than FlagCurve's)
   FlagBoundary = 2, // on a boundary edge
+  // On a curve of non-manifold edges (where several sheets meet, as between the regions of a
+  // segmented volume), at a regular point of it: exactly two of its edges have more than two
+  // triangles, the same number k of them, every other edge two, and its triangles form k fans
+  // each running from one of those edges to the other. Such a vertex may merge with its
+  // neighbour along the curve or with a neighbour inside one of the sheets, by edge collapses
+  // only (CollapseMesh::IsLegal); the curve keeps its sheets.
+  FlagCurve = 4,
 };
 
 /// Geometric and topological rules a collapse must pass.
@@ -124,6 +131,32 @@ public:
   bool IsAlive(Id t) const { return this->Mesh.Triangles[3 * static_cast<std::size_t>(t)] != InvalidId; }
   bool IsLocked(Id v) const { return (this->Flags[v] & FlagLocked) != 0; }
   bool IsBoundary(Id v) const { return (this->Flags[v] & FlagBoundary) != 0; }
+  bool IsCurve(Id v) const { return (this->Flags[v] & FlagCurve) != 0; }
+
+  /// False for an edge whose collapse the vertices' kinds alone forbid: a curve vertex (see
+  /// FlagCurve) merges only along its curve (an edge of more than two triangles) or with a
+  /// neighbour that is on no boundary and no curve. (Locked vertices are excluded earlier.)
+  bool EdgeMayMerge(Id a, Id b) const
+  {
+    const bool ca = this->IsCurve(a), cb = this->IsCurve(b);
+    if (!ca && !cb)
+    {
+      return true;
+    }
+    if (this->IsBoundary(a) || this->IsBoundary(b))
+    {
+      return false;
+    }
+    return !(ca && cb) || this->TrianglesOnEdge(a, b) > 2;
+  }
+
+  /// Live triangles containing both a and b.
+  int TrianglesOnEdge(Id a, Id b) const
+  {
+    int count = 0;
+    this->ForEachTriangle(a, [&](Id t) { count += CornerOf(this->Mesh.Triangle(t), b) >= 0 ? 1 : 0; });
+    return count;
+  }
 
   /// Call f(t) for every live triangle around live vertex v.
   template <typename F>
@@ -154,9 +187,11 @@ public:
   bool GatherStar(const Id* members, int count, Star& star) const;
 
   /// Whether merging the star's members at x keeps a manifold mesh of the same topology with no
-  /// flipped triangle (see CollapseRules). The members need not form a triangle: three members
-  /// joined by a path of two edges are the triangle collapse that follows an edge swap. `planeNormal` is the normal of the collapsing
-  /// triangle (for the star-shape test); may be null for edge collapses.
+  /// flipped triangle (see CollapseRules); with a FlagCurve member, whether it keeps the same
+  /// sheets meeting along the same curves (CurveMergeIsValid). The members need not form a
+  /// triangle: three members joined by a path of two edges are the triangle collapse that
+  /// follows an edge swap. `planeNormal` is the normal of the collapsing triangle (for the
+  /// star-shape test); may be null for edge collapses.
   Legality IsLegal(
     const Star& star, const double x[3], const double* planeNormal, const CollapseRules& rules) const;
 
@@ -168,6 +203,13 @@ public:
   void RebuildRows();
 
 private:
+  /// The topology test of an edge collapse with a FlagCurve member (see IsLegal).
+  bool CurveMergeIsValid(const Star& star) const;
+  /// The link condition: every vertex joined to two members is the apex of a dying triangle on
+  /// those two, and no two ring triangles become one; with `alongCurve`, no apex is joined to
+  /// both members by edges of more than two triangles.
+  bool MergeKeepsLinks(const Star& star, bool alongCurve) const;
+
   VertexTriangleAdjacency Rows; // as of the last rebuild
   std::vector<Id> TriangleCounts; // per vertex, live triangles around it
   std::vector<Id> ChainNext;
