@@ -242,6 +242,11 @@ struct OctreeClustering::Internals
   // The best of a few trial levels for a target count (see MakeLevelForTriangleCount); returns
   // its count, 0 when none has a triangle.
   Id SearchLevel(Id targetTriangles, ClusterLevel& best);
+  /// When the search's best level keeps `count` triangles, a quarter or more above what was
+  /// asked (a target the surface cannot reach): the smallest
+  /// epsilon (between the current level's and best's) that keeps at most a tenth more; replaces
+  /// best with that trial and returns its count.
+  Id BackOff(Id count, ClusterLevel& best);
   void Finalize(octree::Synthesis& s, ClusterLevel& level) const;
   void Commit(const ClusterLevel& level);
 };

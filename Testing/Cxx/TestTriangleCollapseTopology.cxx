@@ -6,6 +6,7 @@
 #include "MeshLODHierarchyChecks.h"
 #include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestCheck.h"
+#include "MeshLODTestMeshes.h"
 
 #include "vtkCellArray.h"
 #include "vtkMath.h"
@@ -102,75 +103,6 @@ vtkSmartPointer<vtkPolyData> GridWithTinyHoles(int n, int holes, std::uint32_t s
   return grid;
 }
 
-// A unit sphere with its equatorial disk inside: three sheets (the two hemispheres and the
-// disk) meet along the equator, every equator edge has three triangles. Latitude rings of
-// `around` points, `rings` of them between the poles (odd, the middle one the equator), and
-// the disk in rings of the same points; Euler characteristic 2 + 1 - 0 = 3.
-vtkSmartPointer<vtkPolyData> SphereWithEquatorialDisk(int around, int rings, int diskRings)
-{
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> triangles;
-  const auto angle = [&](int i) { return 2.0 * vtkMath::Pi() * i / around; };
-  const vtkIdType north = points->InsertNextPoint(0.0, 0.0, 1.0);
-  std::vector<vtkIdType> ringStart;
-  for (int r = 1; r <= rings; ++r)
-  {
-    const double polar = vtkMath::Pi() * r / (rings + 1);
-    ringStart.push_back(points->GetNumberOfPoints());
-    for (int i = 0; i < around; ++i)
-    {
-      points->InsertNextPoint(
-        std::sin(polar) * std::cos(angle(i)), std::sin(polar) * std::sin(angle(i)), std::cos(polar));
-    }
-  }
-  const vtkIdType south = points->InsertNextPoint(0.0, 0.0, -1.0);
-  const auto at = [&](vtkIdType start, int i) { return start + (i % around); };
-  for (int i = 0; i < around; ++i)
-  {
-    const vtkIdType cap[3] = { north, at(ringStart[0], i), at(ringStart[0], i + 1) };
-    triangles->InsertNextCell(3, cap);
-    const vtkIdType bottom[3] = { south, at(ringStart.back(), i + 1), at(ringStart.back(), i) };
-    triangles->InsertNextCell(3, bottom);
-  }
-  // Quads between rings, and between the disk's rings (the outermost is the equator).
-  const auto band = [&](vtkIdType upper, vtkIdType lower) {
-    for (int i = 0; i < around; ++i)
-    {
-      const vtkIdType a = at(upper, i), b = at(upper, i + 1), c = at(lower, i), d = at(lower, i + 1);
-      const vtkIdType first[3] = { a, c, d }, second[3] = { a, d, b };
-      triangles->InsertNextCell(3, first);
-      triangles->InsertNextCell(3, second);
-    }
-  };
-  for (std::size_t r = 0; r + 1 < ringStart.size(); ++r)
-  {
-    band(ringStart[r], ringStart[r + 1]);
-  }
-  const vtkIdType equator = ringStart[ringStart.size() / 2];
-  vtkIdType outer = equator;
-  for (int k = diskRings - 1; k >= 1; --k)
-  {
-    const double radius = static_cast<double>(k) / diskRings;
-    const vtkIdType inner = points->GetNumberOfPoints();
-    for (int i = 0; i < around; ++i)
-    {
-      points->InsertNextPoint(radius * std::cos(angle(i)), radius * std::sin(angle(i)), 0.0);
-    }
-    band(inner, outer);
-    outer = inner;
-  }
-  const vtkIdType centre = points->InsertNextPoint(0.0, 0.0, 0.0);
-  for (int i = 0; i < around; ++i)
-  {
-    const vtkIdType fan[3] = { centre, at(outer, i + 1), at(outer, i) };
-    triangles->InsertNextCell(3, fan);
-  }
-  vtkNew<vtkPolyData> mesh;
-  mesh->SetPoints(points);
-  mesh->SetPolys(triangles);
-  return mesh;
-}
-
 // Small holes and notches: a triangle collapse with two corners on a hole of three edges (and
 // its third on another boundary) used to close the hole, and one next to a bow tie (where a
 // notch's corner touches another) to cut its wing off: on this grid the Euler characteristic
@@ -207,7 +139,7 @@ void TestTinyHoles()
 void TestSheetsMeetingAlongCurve()
 {
   const int around = 96;
-  vtkSmartPointer<vtkPolyData> input = SphereWithEquatorialDisk(around, 47, 24);
+  vtkSmartPointer<vtkPolyData> input = testing::MakeSphereWithEquatorialDisk(around, 47, 24);
   const vtkIdType n = input->GetNumberOfPolys();
   const testing::MeshReport in = testing::InspectMesh(input);
   MESHLOD_CHECK_EQ(in.EulerCharacteristic, 3);

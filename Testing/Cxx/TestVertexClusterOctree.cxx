@@ -406,6 +406,48 @@ void TestUnreachableCount()
 }
 
 //------------------------------------------------------------------------------
+// A count the surface cannot reach, here because the vertices where three sheets meet (a
+// sphere with its equatorial disk) never merge: the search's epsilon would merge all that may
+// merge, at an error far beyond what a few more triangles need. The level backs off to the
+// smallest epsilon that keeps at most a tenth more triangles than that.
+void TestUnreachableCountError()
+{
+  vtkSmartPointer<vtkPolyData> input = testing::MakeSphereWithEquatorialDisk(96, 47, 24);
+  const vtkIdType n = input->GetNumberOfPolys();
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->SetInputData(input);
+  filter->SetLevelModeToTargetTriangleCounts();
+  filter->AddTargetTriangleCount(n / 10);
+  filter->AddTargetTriangleCount(n / 100);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
+  if (h->GetNumberOfBlocks() != 3)
+  {
+    return;
+  }
+  CheckTriangles(h);
+  SurfaceDistanceOptions options;
+  options.SamplesPerSurface = 20000;
+  SurfaceDistance d[3];
+  for (unsigned int i = 1; i < 3; ++i)
+  {
+    vtkPolyData* level = Level(h, i);
+    d[i] = MeasureSurfaceDistance(input, level, options);
+    std::cerr << "  sphere with an equatorial disk (" << n << " triangles), level " << i << ": "
+              << level->GetNumberOfPolys() << " triangles, Hausdorff " << d[i].HausdorffPercent()
+              << "%, RMS " << d[i].RmsPercent() << "%\n";
+  }
+  // Level 2 (asked 1%) keeps a few fewer triangles than level 1 (asked 10%, reached about
+  // that), so its error stays near level 1's: it was 2.1 times its RMS and Hausdorff distances
+  // (1,482 triangles) before the back-off, 1.1 and 1.0 times after it (1,542).
+  MESHLOD_CHECK_LT(Level(h, 2)->GetNumberOfPolys(), Level(h, 1)->GetNumberOfPolys());
+  MESHLOD_CHECK_GT(Level(h, 2)->GetNumberOfPolys(), n / 100);
+  MESHLOD_CHECK_LE(d[2].Rms, 1.3 * d[1].Rms);
+  MESHLOD_CHECK_LE(d[2].Hausdorff, 1.3 * d[1].Hausdorff);
+}
+
+//------------------------------------------------------------------------------
 // Open boundaries: every boundary point of every level lies on the input's boundary.
 std::vector<std::array<double, 6>> BoundarySegments(vtkPolyData* poly)
 {
@@ -946,6 +988,7 @@ int TestVertexClusterOctree(int, char*[])
   TestHierarchy();
   TestTargetCounts();
   TestUnreachableCount();
+  TestUnreachableCountError();
   TestBoundaries();
   TestNonManifold();
   TestRoughPlane();

@@ -63,6 +63,12 @@ vtkSmartPointer<vtkPolyData> MakeFan(int n);
 /// in [0, 1) from vtkMinimalStandardRandomSequence with `seed`, in point order (for surfaces
 /// centred at the origin).
 void PerturbRadially(vtkPolyData* mesh, double amplitude, int seed);
+
+/// A unit sphere with its equatorial disk inside: three sheets (the two hemispheres and the
+/// disk) meet along the equator, each of whose edges has three triangles. Latitude rings of
+/// `around` points, `rings` of them between the poles (odd: the middle one is the equator), and
+/// the disk in `diskRings` rings of the same points; Euler characteristic 2 + 1 - 0 = 3.
+vtkSmartPointer<vtkPolyData> MakeSphereWithEquatorialDisk(int around, int rings, int diskRings);
 /// The output of `source` triangulated (vtkTriangleFilter) and cleaned (vtkCleanPolyData:
 /// exactly coincident points merged), as a new data set.
 vtkSmartPointer<vtkPolyData> TriangulateAndClean(vtkAlgorithm* source);
