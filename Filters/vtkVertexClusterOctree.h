@@ -47,7 +47,8 @@
  *   terrain asked for 10% and 1% got 18% and 9%; when the trials miss, the one nearest the
  *   target in ratio is kept, never a level cut at the octree's roots because it is nearer in
  *   difference, and when that one keeps a quarter or more above the target, the epsilon backs
- *   off to the smallest that keeps at most a tenth more triangles than it: the search's epsilon
+ *   off to the smallest that keeps at most a tenth more triangles than it (giving back at most
+ *   three quarters of what the level removes from the one before): the search's epsilon
  *   merges all that may merge, at an error far beyond what a few more triangles need; on the
  *   smoothed surfaces of a segmented volume asked for 1%, 8,985 triangles at 0.10% RMS instead
  *   of 8,175 at 1.36%); a count between two that consecutive epsilons give (levels cut one cluster

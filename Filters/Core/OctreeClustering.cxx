@@ -134,15 +134,18 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
   // A target the surface cannot reach (non-manifold vertices never merge, folds are refused):
   // the search ends at an epsilon that merges whatever may merge, far beyond what that count
   // needs. On the surfaces of a segmented volume (three sheets along curves) that level had
-  // 28 times the RMS distance of one with a tenth more triangles. Bisect the epsilon (on a log
-  // scale) for the smallest that keeps about as few.
-  // (An epsilon beyond the octree's size merges all it ever will: the search's can be the
-  // largest float.)
-  const Id enough = count + count / 10;
+  // 13 times the RMS distance of one with a tenth more triangles. Bisect the epsilon (on a log
+  // scale, to within 5%) for the smallest that keeps about as few: at most a tenth more, and
+  // never more than three quarters of what the level removes from the previous one back (so
+  // that it still makes progress). An epsilon beyond the octree's size merges all it ever will
+  // (the search's can be the largest float); four decades below the search's, and below the
+  // previous level's, it merges next to nothing.
+  const Id previous = this->PreviousTriangles();
+  const Id enough = count + std::min(count / 10, 3 * (previous - count) / 4);
   double high = std::min(best.Epsilon, 2.0 * this->Tree.Size);
-  double low = this->CurrentEpsilon > 0.0 ? this->CurrentEpsilon : 1e-9 * this->Tree.Size;
+  double low = std::max(this->CurrentEpsilon, 1e-4 * high);
   ClusterLevel trial;
-  for (int step = 0; step < 16 && high > 1.05 * low; ++step)
+  for (int step = 0; step < 8 && high > 1.05 * low; ++step)
   {
     const double middle = std::sqrt(low * high);
     const Id triangles = this->TryLevel(middle, trial);
@@ -151,6 +154,10 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
       best = std::move(trial);
       count = triangles;
       high = middle;
+    }
+    else if (triangles == 0)
+    {
+      high = middle; // merged away whole: still too large
     }
     else
     {

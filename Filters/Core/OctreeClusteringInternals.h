@@ -243,9 +243,9 @@ struct OctreeClustering::Internals
   // its count, 0 when none has a triangle.
   Id SearchLevel(Id targetTriangles, ClusterLevel& best);
   /// When the search's best level keeps `count` triangles, a quarter or more above what was
-  /// asked (a target the surface cannot reach): the smallest
-  /// epsilon (between the current level's and best's) that keeps at most a tenth more; replaces
-  /// best with that trial and returns its count.
+  /// asked (a target the surface cannot reach): the smallest epsilon (between the current
+  /// level's and best's) that keeps at most a tenth more, giving back at most three quarters of
+  /// what the level removes; replaces best with that trial and returns its count.
   Id BackOff(Id count, ClusterLevel& best);
   void Finalize(octree::Synthesis& s, ClusterLevel& level) const;
   void Commit(const ClusterLevel& level);
