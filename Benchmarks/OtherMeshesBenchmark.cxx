@@ -7,11 +7,11 @@
 // RESULTS.md.
 //
 //   OtherMeshesBenchmark [samples]   (surface samples per side for the distances, default 100000)
+#include "MeshLODHierarchyChecks.h"
 #include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestMeshes.h"
 #include "vtkTriangleCollapseDecimation.h"
 
-#include "vtkCellArray.h"
 #include "vtkCylinderSource.h"
 #include "vtkDiscreteFlyingEdges3D.h"
 #include "vtkImageData.h"
@@ -35,8 +35,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
-#include <map>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -128,21 +126,7 @@ vtkSmartPointer<vtkPolyData> SegmentedBalls(int size)
 // V - E + F over the points the triangles use.
 long long EulerCharacteristic(vtkPolyData* mesh)
 {
-  std::set<std::pair<vtkIdType, vtkIdType>> edges;
-  std::set<vtkIdType> used;
-  vtkIdType n;
-  const vtkIdType* ids;
-  for (vtkIdType c = 0; c < mesh->GetNumberOfPolys(); ++c)
-  {
-    mesh->GetPolys()->GetCellAtId(c, n, ids);
-    for (int k = 0; k < 3; ++k)
-    {
-      used.insert(ids[k]);
-      edges.insert({ std::min(ids[k], ids[(k + 1) % 3]), std::max(ids[k], ids[(k + 1) % 3]) });
-    }
-  }
-  return static_cast<long long>(used.size()) - static_cast<long long>(edges.size()) +
-    static_cast<long long>(mesh->GetNumberOfPolys());
+  return static_cast<long long>(meshlod::testing::InspectMesh(mesh).EulerCharacteristic);
 }
 
 std::vector<TestMesh> Meshes()
