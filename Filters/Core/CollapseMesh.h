@@ -205,9 +205,10 @@ public:
 private:
   /// The topology test of an edge collapse with a FlagCurve member (see IsLegal).
   bool CurveMergeIsValid(const Star& star) const;
-  /// The link condition: every vertex joined to two members is the apex of a dying triangle on
-  /// those two, and no two ring triangles become one; with `alongCurve`, no apex is joined to
-  /// both members by edges of more than two triangles.
+  /// The link condition: the members joined to any other vertex are connected through dying
+  /// triangles at it (for two members: one dying triangle has both), the edge that its edges
+  /// to them become keeps a triangle, and no two ring triangles become one; with `alongCurve`,
+  /// no apex is joined to both members by edges of more than two triangles.
   bool MergeKeepsLinks(const Star& star, bool alongCurve) const;
 
   VertexTriangleAdjacency Rows; // as of the last rebuild
