@@ -1,0 +1,107 @@
+"""vtkTriangleCollapseDecimation from Python on a segmented volume: three labelled balls,
+vtkDiscreteFlyingEdges3D, points merged (the faces between two labels then come twice, which the
+filter drops). The sheets meet along curves of edges with three triangles; every level must
+keep the topology (Euler characteristic, no boundary, the same kinds of edges) and the coarsest
+must reach its target."""
+
+import sys
+from collections import Counter
+
+from vtkmodules.vtkCommonCore import vtkShortArray
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkFiltersCore import vtkCleanPolyData
+from vtkmodules.vtkFiltersGeneral import vtkDiscreteFlyingEdges3D
+
+import meshlod
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("CHECK failed:", what)
+
+
+def labelled_balls(size):
+    """Labels 1, 2, 3 of three overlapping balls (the first listed wins), 0 outside."""
+    balls = ((-0.3, 0.0, 0.0, 0.55), (0.3, 0.0, 0.0, 0.55), (0.0, 0.35, 0.1, 0.45))
+    image = vtkImageData()
+    image.SetDimensions(size, size, size)
+    spacing = 2.0 / (size - 1)
+    image.SetSpacing(spacing, spacing, spacing)
+    image.SetOrigin(-1.0, -1.0, -1.0)
+    labels = vtkShortArray()
+    labels.SetName("label")
+    labels.SetNumberOfTuples(size ** 3)
+    index = 0
+    for k in range(size):
+        z = -1.0 + k * spacing
+        for j in range(size):
+            y = -1.0 + j * spacing
+            for i in range(size):
+                x = -1.0 + i * spacing
+                label = 0
+                for b, (cx, cy, cz, r) in reversed(list(enumerate(balls))):
+                    if (x - cx) ** 2 + (y - cy) ** 2 + (z - cz) ** 2 < r * r:
+                        label = b + 1
+                labels.SetValue(index, label)
+                index += 1
+    image.GetPointData().SetScalars(labels)
+    return image
+
+
+def edge_counts(poly):
+    """Triangles per edge, and the Euler characteristic over the points in use."""
+    ids = poly.GetPolys().GetConnectivityArray()
+    corners = [int(ids.GetTuple1(i)) for i in range(ids.GetNumberOfTuples())]
+    edges = Counter()
+    for t in range(0, len(corners), 3):
+        a, b, c = corners[t:t + 3]
+        for u, v in ((a, b), (b, c), (c, a)):
+            edges[(min(u, v), max(u, v))] += 1
+    euler = len(set(corners)) - len(edges) + len(corners) // 3
+    return Counter(edges.values()), euler
+
+
+def main():
+    contour = vtkDiscreteFlyingEdges3D()
+    contour.SetInputData(labelled_balls(48))
+    contour.GenerateValues(3, 1, 3)
+    contour.ComputeNormalsOff()
+    contour.ComputeGradientsOff()
+    contour.ComputeScalarsOff()
+    merged = vtkCleanPolyData()
+    merged.SetInputConnection(contour.GetOutputPort())
+
+    decimate = meshlod.vtkTriangleCollapseDecimation()
+    decimate.SetInputConnection(merged.GetOutputPort())
+    decimate.SetTargetReduction(0.99)
+    decimate.GlobalWarningDisplayOff()  # it reports the duplicated faces it drops
+    decimate.Update()
+    hierarchy = decimate.GetHierarchy()
+    levels = [hierarchy.GetBlock(i) for i in range(hierarchy.GetNumberOfBlocks())]
+    check(len(levels) >= 6, "at least 6 levels, got %d" % len(levels))
+    kinds, euler = edge_counts(levels[0])
+    print("level 0: %d triangles, edges by triangle count %s, Euler characteristic %d"
+          % (levels[0].GetNumberOfPolys(), dict(kinds), euler))
+    check(kinds.get(3, 0) > 0, "level 0 has curves where three sheets meet")
+    check(kinds.get(1, 0) == 0, "level 0 has no boundary")
+    target = levels[0].GetNumberOfPolys() // 100
+    previous = levels[0].GetNumberOfPolys()
+    for i, level in enumerate(levels[1:], 1):
+        counts, chi = edge_counts(level)
+        print("level %d: %d triangles, edges %s, Euler characteristic %d"
+              % (i, level.GetNumberOfPolys(), dict(counts), chi))
+        check(level.GetNumberOfPolys() < previous, "level %d has fewer triangles" % i)
+        previous = level.GetNumberOfPolys()
+        check(chi == euler, "level %d keeps the Euler characteristic" % i)
+        check(set(counts) <= set(kinds), "level %d has no new kind of edge" % i)
+        check(counts.get(3, 0) > 0, "level %d keeps the curves" % i)
+    check(levels[-1].GetNumberOfPolys() <= target + 2,
+          "the coarsest level reaches 1%%: %d, asked %d" % (levels[-1].GetNumberOfPolys(), target))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
