@@ -48,8 +48,9 @@
  * collapse: it removes the two triangles of that edge (one on a boundary; a large cluster may
  * remove more at once), so a closed manifold only reaches counts of its levels' parity. The
  * points of a cluster join in an order that keeps every intermediate mesh manifold (each join
- * is checked); a join that no order can make valid is passed through and its count is not
- * reachable. When the count is not reachable, the output has the largest reachable count
+ * is checked; where k sheets meet along a curve, as on a segmented volume's surfaces, the
+ * merged point must keep k fans, and a join along the curve removes k triangles); a join that
+ * no order can make valid is passed through and its count is not reachable. When the count is not reachable, the output has the largest reachable count
  * below it. Counts
  * above the finest level's or below the coarsest level's are clamped to them, with a warning.
  * CollapseFraction geomorphs the next collapse: the points of the next step that removes

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <functional>
 #include <limits>
+#include <utility>
 
 namespace meshlod
 {
@@ -48,9 +49,75 @@ Id Find(std::vector<Id>& parent, Id p)
 // members, with corners replaced by their classes and degenerate ones left out, give link edges
 // u -> w that form one cycle of at least three edges or one path, each vertex leaving and
 // entering at most once.
+//
+// With `sheets` k > 2, the vertex may instead be on a curve where k sheets meet (as between the
+// regions of a segmented volume), as one of its points is: its link edges, without regard to
+// direction (the sheets' orientations need not agree), then form k paths between its two
+// neighbours on the curve, so those two are on k link edges each, every other link vertex on
+// two, all connected, and no link edge twice.
+bool HasSheetFans(const std::vector<Id>& from, const std::vector<Id>& to, int sheets)
+{
+  const size_t n = from.size();
+  std::vector<std::pair<Id, Id>> edges(n);
+  std::vector<Id> ends;
+  for (size_t i = 0; i < n; ++i)
+  {
+    edges[i] = { std::min(from[i], to[i]), std::max(from[i], to[i]) };
+    ends.push_back(from[i]);
+    ends.push_back(to[i]);
+  }
+  std::sort(edges.begin(), edges.end());
+  if (n == 0 || std::adjacent_find(edges.begin(), edges.end()) != edges.end())
+  {
+    return false;
+  }
+  std::sort(ends.begin(), ends.end());
+  int curveNeighbours = 0;
+  for (size_t i = 0; i < ends.size();)
+  {
+    size_t j = i;
+    while (j < ends.size() && ends[j] == ends[i])
+    {
+      ++j;
+    }
+    const int degree = static_cast<int>(j - i);
+    if (degree == sheets)
+    {
+      ++curveNeighbours;
+    }
+    else if (degree != 2)
+    {
+      return false;
+    }
+    i = j;
+  }
+  if (curveNeighbours != 2)
+  {
+    return false;
+  }
+  // Connected: grow from one end over the link edges.
+  std::vector<Id> reached(1, ends.front());
+  for (bool grew = true; grew;)
+  {
+    grew = false;
+    for (const auto& e : edges)
+    {
+      const bool a = std::find(reached.begin(), reached.end(), e.first) != reached.end();
+      const bool b = std::find(reached.begin(), reached.end(), e.second) != reached.end();
+      if (a != b)
+      {
+        reached.push_back(a ? e.second : e.first);
+        grew = true;
+      }
+    }
+  }
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+  return reached.size() == ends.size();
+}
+
 bool HasOneFan(const Id* triangles, const VertexTriangleAdjacency& adjacency,
   std::vector<Id>& parent, const std::vector<Id>& members, Id merged, std::vector<Id>& from,
-  std::vector<Id>& to)
+  std::vector<Id>& to, int sheets)
 {
   from.clear();
   to.clear();
@@ -72,6 +139,10 @@ bool HasOneFan(const Id* triangles, const VertexTriangleAdjacency& adjacency,
       from.push_back(c[(k + 1) % 3]);
       to.push_back(c[(k + 2) % 3]);
     }
+  }
+  if (sheets > 2 && HasSheetFans(from, to, sheets))
+  {
+    return true;
   }
   const size_t n = from.size();
   size_t start = 0;
@@ -193,6 +264,44 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       parent[Find(parent, p)] = Find(parent, settledOn[t]);
     }
   }
+  // Per target, the sheets meeting at the one of its points on a curve where more than two
+  // meet (the most triangles on one edge of a point), else 1.
+  std::vector<int> sheetsOf(numberOfTargets, 1);
+  std::vector<Id> neighbours;
+  auto countSheets = [&](Id p) {
+    neighbours.clear();
+    for (Id i = adjacency.Begin(p); i < adjacency.End(p); ++i)
+    {
+      const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[i]);
+      for (int k = 0; k < 3; ++k)
+      {
+        if (tri[k] != p)
+        {
+          neighbours.push_back(tri[k]);
+        }
+      }
+    }
+    std::sort(neighbours.begin(), neighbours.end());
+    int most = 0;
+    for (size_t i = 0; i < neighbours.size();)
+    {
+      size_t j = i;
+      while (j < neighbours.size() && neighbours[j] == neighbours[i])
+      {
+        ++j;
+      }
+      most = std::max(most, static_cast<int>(j - i));
+      i = j;
+    }
+    return most > 2 ? most : 1;
+  };
+  for (Id t = 0; t < numberOfTargets; ++t)
+  {
+    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
+    {
+      sheetsOf[t] = std::max(sheetsOf[t], countSheets(targetPoints[i]));
+    }
+  }
   std::vector<Id> members, from, to, joined;
   // Whether the points settled on target t (and `extra`, when given) form one vertex with one
   // fan; `extra` must already point at the class root.
@@ -206,8 +315,8 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
         members.push_back(q);
       }
     }
-    return HasOneFan(
-      triangles, adjacency, parent, members, Find(parent, settledOn[t]), from, to);
+    return HasOneFan(triangles, adjacency, parent, members, Find(parent, settledOn[t]), from,
+      to, sheetsOf[t]);
   };
   // Whether settling p now leaves a valid mesh (p's target keeps one fan).
   auto validWith = [&](Id p) {
