@@ -45,16 +45,27 @@ Id Find(std::vector<Id>& parent, Id p)
   return p;
 }
 
-// Whether the vertex `merged` (a class of the union-find) has one fan: the triangles around its
-// members, with corners replaced by their classes and degenerate ones left out, give link edges
-// u -> w that form one cycle of at least three edges or one path, each vertex leaving and
-// entering at most once.
-//
-// With `sheets` k > 2, the vertex may instead be on a curve where k sheets meet (as between the
-// regions of a segmented volume), as one of its points is: its link edges, without regard to
-// direction (the sheets' orientations need not agree), then form k paths between its two
-// neighbours on the curve, so those two are on k link edges each, every other link vertex on
-// two, all connected, and no link edge twice.
+// Calls f(length) for each run of equal values in the sorted `values`.
+template <typename F>
+void ForEachRun(const std::vector<Id>& values, F&& f)
+{
+  for (size_t i = 0; i < values.size();)
+  {
+    size_t j = i;
+    while (j < values.size() && values[j] == values[i])
+    {
+      ++j;
+    }
+    f(static_cast<int>(j - i));
+    i = j;
+  }
+}
+
+// Whether a merged vertex's link edges from[i] -> to[i] show it on a curve where `sheets` k > 2
+// sheets meet (as between the regions of a segmented volume): without regard to direction (the
+// sheets' orientations need not agree), they form k paths between its two neighbours on the
+// curve, so those two are on k link edges each, every other link vertex on two, all connected,
+// and no link edge twice.
 bool HasSheetFans(const std::vector<Id>& from, const std::vector<Id>& to, int sheets)
 {
   const size_t n = from.size();
@@ -72,26 +83,12 @@ bool HasSheetFans(const std::vector<Id>& from, const std::vector<Id>& to, int sh
     return false;
   }
   std::sort(ends.begin(), ends.end());
-  int curveNeighbours = 0;
-  for (size_t i = 0; i < ends.size();)
-  {
-    size_t j = i;
-    while (j < ends.size() && ends[j] == ends[i])
-    {
-      ++j;
-    }
-    const int degree = static_cast<int>(j - i);
-    if (degree == sheets)
-    {
-      ++curveNeighbours;
-    }
-    else if (degree != 2)
-    {
-      return false;
-    }
-    i = j;
-  }
-  if (curveNeighbours != 2)
+  int curveNeighbours = 0, others = 0; // link vertices on `sheets` link edges, on neither that nor 2
+  ForEachRun(ends, [&](int degree) {
+    curveNeighbours += degree == sheets ? 1 : 0;
+    others += degree != sheets && degree != 2 ? 1 : 0;
+  });
+  if (curveNeighbours != 2 || others != 0)
   {
     return false;
   }
@@ -115,9 +112,13 @@ bool HasSheetFans(const std::vector<Id>& from, const std::vector<Id>& to, int sh
   return reached.size() == ends.size();
 }
 
+// Whether the vertex `merged` (a class of the union-find) has one fan: the triangles around its
+// members, with corners replaced by their classes and degenerate ones left out, give link edges
+// u -> w that form one cycle of at least three edges or one path, each vertex leaving and
+// entering at most once. Those link edges are left in `from` and `to`.
 bool HasOneFan(const Id* triangles, const VertexTriangleAdjacency& adjacency,
   std::vector<Id>& parent, const std::vector<Id>& members, Id merged, std::vector<Id>& from,
-  std::vector<Id>& to, int sheets)
+  std::vector<Id>& to)
 {
   from.clear();
   to.clear();
@@ -139,10 +140,6 @@ bool HasOneFan(const Id* triangles, const VertexTriangleAdjacency& adjacency,
       from.push_back(c[(k + 1) % 3]);
       to.push_back(c[(k + 2) % 3]);
     }
-  }
-  if (sheets > 2 && HasSheetFans(from, to, sheets))
-  {
-    return true;
   }
   const size_t n = from.size();
   size_t start = 0;
@@ -265,8 +262,9 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     }
   }
   // Per target, the sheets meeting at the one of its points on a curve where more than two
-  // meet (the most triangles on one edge of a point), else 1.
-  std::vector<int> sheetsOf(numberOfTargets, 1);
+  // meet (the most triangles on one edge of a point), else 1; 0 until asked for (only when a
+  // step fails the one-fan test, so that a manifold mesh never counts them).
+  std::vector<int> sheetsOf(numberOfTargets, 0);
   std::vector<Id> neighbours;
   auto countSheets = [&](Id p) {
     neighbours.clear();
@@ -283,25 +281,20 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     }
     std::sort(neighbours.begin(), neighbours.end());
     int most = 0;
-    for (size_t i = 0; i < neighbours.size();)
-    {
-      size_t j = i;
-      while (j < neighbours.size() && neighbours[j] == neighbours[i])
-      {
-        ++j;
-      }
-      most = std::max(most, static_cast<int>(j - i));
-      i = j;
-    }
+    ForEachRun(neighbours, [&](int triangles) { most = std::max(most, triangles); });
     return most > 2 ? most : 1;
   };
-  for (Id t = 0; t < numberOfTargets; ++t)
-  {
-    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
+  auto sheetsAt = [&](Id t) {
+    if (sheetsOf[t] == 0)
     {
-      sheetsOf[t] = std::max(sheetsOf[t], countSheets(targetPoints[i]));
+      sheetsOf[t] = 1;
+      for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
+      {
+        sheetsOf[t] = std::max(sheetsOf[t], countSheets(targetPoints[i]));
+      }
     }
-  }
+    return sheetsOf[t];
+  };
   std::vector<Id> members, from, to, joined;
   // Whether the points settled on target t (and `extra`, when given) form one vertex with one
   // fan; `extra` must already point at the class root.
@@ -315,8 +308,14 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
         members.push_back(q);
       }
     }
-    return HasOneFan(triangles, adjacency, parent, members, Find(parent, settledOn[t]), from,
-      to, sheetsOf[t]);
+    if (HasOneFan(
+          triangles, adjacency, parent, members, Find(parent, settledOn[t]), from, to))
+    {
+      return true;
+    }
+    // HasOneFan left the merged vertex's link edges in from and to.
+    const int sheets = sheetsAt(t);
+    return sheets > 2 && HasSheetFans(from, to, sheets);
   };
   // Whether settling p now leaves a valid mesh (p's target keeps one fan).
   auto validWith = [&](Id p) {
