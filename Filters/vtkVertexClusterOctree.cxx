@@ -240,11 +240,13 @@ void vtkVertexClusterOctree::WarnIfCountMissed(
                              << reached
                              << ": the epsilon search found none that keeps fewer (clusters that "
                                 "would flip triangles or pinch edges are split again, which on a "
-                                "rough or noisy surface adds many triangles back; non-manifold "
-                                "vertices and separate components do not merge), or none that "
-                                "keeps fewer at an error near that of this count (a level a "
-                                "quarter or more above its target may keep up to a tenth more "
-                                "triangles than the fewest found, for a smaller epsilon).");
+                                "rough or noisy surface adds many triangles back; curves of "
+                                "non-manifold edges shorten only so far, and the vertices where "
+                                "they meet or end, bow ties and separate components do not "
+                                "merge), or none that keeps fewer at an error near that of this "
+                                "count (a level a quarter or more above its target may keep up "
+                                "to a tenth more triangles than the fewest found, or half more "
+                                "at under a quarter of the error, for a smaller epsilon).");
   }
 }
 

@@ -41,17 +41,18 @@
  *   found by a search; the count is met within 0.2% (or 2 triangles) where the cluster tree
  *   allows, and a miss by more than 2% (or 2 triangles) is reported by a warning naming the
  *   count reached and why: a count below what collapsing every mergeable cluster gives
- *   (clusters that would flip triangles, non-manifold vertices and separate components stop
- *   the merging; on a rough or noisy surface, splitting the clusters that fold adds back so
+ *   (clusters that would flip triangles, the vertices where curves of non-manifold edges meet
+ *   or end, bow ties and separate components stop the merging; on a rough or noisy surface, splitting the clusters that fold adds back so
  *   many triangles that counts well above the target are all the search finds: a noisy
  *   terrain asked for 10% and 1% got 18% and 9%; when the trials miss, the one nearest the
  *   target in ratio is kept, never a level cut at the octree's roots because it is nearer in
  *   difference, and when that one keeps a quarter or more above the target, the epsilon backs
- *   off to the smallest that keeps at most a tenth more triangles than it (giving back at most
- *   three quarters of what the level removes from the one before): the search's epsilon
- *   merges all that may merge, at an error far beyond what a few more triangles need; on the
- *   smoothed surfaces of a segmented volume asked for 1%, 8,985 triangles at 0.10% RMS instead
- *   of 8,175 at 1.36%); a count between two that consecutive epsilons give (levels cut one cluster
+ *   off to the smallest that keeps at most a tenth more triangles than it, or at most half
+ *   more at under a quarter of its error (giving back at most three quarters of what the
+ *   level removes from the one before): the search's epsilon merges all that may merge, at an
+ *   error far beyond what a few more triangles need; on the surfaces of a segmented volume
+ *   asked for 1%, whose curves merge only so far, 3,376 triangles at 0.68% Hausdorff distance
+ *   instead of 2,423 at 4.6%); a count between two that consecutive epsilons give (levels cut one cluster
  *   tree, so counts move in steps of whole clusters; many clusters of exactly zero error, as in
  *   an exactly flat region, merge at any epsilon: bound the clusters with MaximumCellSize to
  *   keep more); a count at or above the previous level's (a level never refines).
@@ -78,9 +79,13 @@
  * with a warning; points on boundary or non-manifold edges that coincide up to rounding (1e-12
  * of the bounding diagonal) and carry the same point data are stitched (an attribute seam stays
  * open, with a warning); triangles wound against the rest of their connected part are
- * flipped (each orientable part keeps its majority orientation). Non-manifold vertices (several
- * fans, or on an edge with more than two triangles) are locked: they never move or merge, so
- * clustering does not make the non-manifold configuration worse.
+ * flipped (each orientable part keeps its majority orientation). Where k > 2 sheets meet along
+ * a curve of non-manifold edges (the surfaces between the regions of a segmented volume), a
+ * cluster may hold one open piece of one curve, with the curve going on outside it at both
+ * ends, and every level keeps each curve with k triangles on each of its edges: the curves
+ * shorten, no sheet or curve vanishes and no two are joined (a trial level where one would is
+ * cut again below the clusters concerned, as for folds). The other non-manifold vertices,
+ * where curves meet or end and bow ties, are locked: they never move or merge.
  * Optional input (port 1): a vtkImageData texture (unsigned char RGB or RGBA scalars) for an
  * input with texture coordinates.
  *

@@ -151,14 +151,15 @@ void ClusterTree::Builder::Attach(Id child, Id parent, NodeStore& store)
   Building leaf;
   const Building* from = &leaf;
   Id count = 1;
-  std::uint8_t locked = 0;
+  std::uint8_t locked = 0, curve = 0;
   if (child < tree.NV)
   {
     this->Tree.LeafParent[child] = parent;
     double normal[3];
     tree.VertexQuadric(child, leaf.Q, normal);
     tree.RelativePoint(child, leaf.Sum);
-    locked = tree.Topology->VertexKinds[child] == VertexKind::NonManifold ? 1 : 0;
+    locked = tree.IsLocked(child) ? 1 : 0;
+    curve = tree.IsCurve(child) ? 1 : 0;
   }
   else
   {
@@ -167,6 +168,7 @@ void ClusterTree::Builder::Attach(Id child, Id parent, NodeStore& store)
     from = &store.WorkOf(child);
     count = record.Count;
     locked = record.Locked;
+    curve = record.Curve;
   }
   ClusterNode& node = store.Record(parent);
   Building& work = store.Work[parent - store.Base];
@@ -177,6 +179,7 @@ void ClusterTree::Builder::Attach(Id child, Id parent, NodeStore& store)
   }
   node.Count += count;
   node.Locked |= locked;
+  node.Curve |= curve;
 }
 
 //------------------------------------------------------------------------------
@@ -541,6 +544,33 @@ void ClusterTree::RelatedQuadric(Id node,
 }
 
 //------------------------------------------------------------------------------
+void ClusterTree::FindCurves()
+{
+  this->Curves.clear();
+  const TriangleTopology& topology = *this->Topology;
+  if (topology.CountVertices(VertexKind::NonManifold) == 0)
+  {
+    return;
+  }
+  this->Curves.resize(this->NV);
+  vtkSMPTools::For(0,
+    this->NV,
+    [&](Id begin, Id end)
+    {
+      std::vector<std::pair<Id, Id>> ends;
+      std::vector<Id> fan;
+      for (Id v = begin; v < end; ++v)
+      {
+        if (topology.VertexKinds[v] == VertexKind::NonManifold)
+        {
+          IsRegularCurveVertex(
+            *this->Mesh, topology.VertexTriangles, v, ends, fan, &this->Curves[v]);
+        }
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
 void ClusterTree::Build(const TriangleMesh& mesh,
   const TriangleTopology& topology,
   const ClusterTreeOptions& options)
@@ -553,6 +583,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   this->LeafParent.assign(this->NV, InvalidId);
   this->ComputeFrame();
   const Id nv = this->NV;
+  this->FindCurves();
   Builder builder(*this);
   builder.Morton.resize(nv);
   vtkSMPTools::For(0,

@@ -48,7 +48,8 @@ struct ClusterNode
   Id Dies = 0;             // triangles that degenerate when this node (or an ancestor) is collapsed
   float E1 = 0.0f;         // e1 error: sqrt(min Q1 / weight of Q1)
   std::uint8_t Depth = 0;  // binary splits of the cell the node forms in
-  std::uint8_t Locked = 0; // holds a locked (non-manifold) vertex
+  std::uint8_t Locked = 0; // holds a locked vertex (non-manifold, not a regular curve point)
+  std::uint8_t Curve = 0;  // holds a regular point of a curve where sheets meet
 };
 
 class VTKFILTERSMESHLOD_EXPORT ClusterTree
@@ -76,6 +77,16 @@ public:
   std::vector<Id> Order;          // depth-first vertex order
   std::vector<Id> PosOf;          // vertex -> position in Order
   int Depth = 0;                  // deepest node
+  /// Per vertex, its curve neighbours and sheet count when it is a regular point of a curve
+  /// where sheets meet (IsRegularCurveVertex; Sheets 0 otherwise). Empty when the mesh has no
+  /// such vertex (a manifold mesh), so that it costs nothing there.
+  std::vector<CurveVertex> Curves;
+
+  bool IsCurve(Id v) const { return !this->Curves.empty() && this->Curves[v].Sheets > 0; }
+  bool IsLocked(Id v) const
+  {
+    return this->Topology->VertexKinds[v] == VertexKind::NonManifold && !this->IsCurve(v);
+  }
 
   Id NumberOfInternalNodes() const { return static_cast<Id>(this->Nodes.size()); }
   bool IsLeaf(Id node) const { return node < this->NV; }
@@ -167,6 +178,7 @@ public:
 private:
   struct Builder;
   void ComputeFrame();
+  void FindCurves();
   void ComputeOrder();
 };
 

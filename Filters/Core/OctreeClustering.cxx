@@ -131,17 +131,24 @@ bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLeve
 //------------------------------------------------------------------------------
 Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
 {
-  // A target the surface cannot reach (non-manifold vertices never merge, folds are refused):
+  // A target the surface cannot reach (junctions of curves never merge, folds are refused):
   // the search ends at an epsilon that merges whatever may merge, far beyond what that count
   // needs. On the surfaces of a segmented volume (three sheets along curves) that level had
   // 13 times the RMS distance of one with a tenth more triangles. Bisect the epsilon (on a log
-  // scale, to within 5%) for the smallest that keeps about as few: at most a tenth more, and
-  // never more than three quarters of what the level removes from the previous one back (so
-  // that it still makes progress). An epsilon beyond the octree's size merges all it ever will
-  // (the search's can be the largest float); four decades below the search's, and below the
-  // previous level's, it merges next to nothing.
+  // scale, to within 5%) for the smallest that keeps about as few: at most a tenth more, or at
+  // most half more when its error is under a quarter of the search level's (the count is on a
+  // plateau: on the segmented volume, curves that may merge no further kept 2,423 triangles at
+  // 4.6% Hausdorff distance, 3,376 at 0.68%; where the count follows the error, as on a rough
+  // surface, a quarter of the error costs about four times the triangles, and only the tenth
+  // applies). Never more than three quarters of what the level removes from the previous one
+  // come back (so that it still makes progress). An epsilon beyond the octree's size merges
+  // all it ever will (the search's can be the largest float); four decades below the search's,
+  // and below the previous level's, it merges next to nothing.
   const Id previous = this->PreviousTriangles();
-  const Id enough = count + std::min(count / 10, 3 * (previous - count) / 4);
+  const Id giveBack = 3 * (previous - count) / 4;
+  const Id close = count + std::min(count / 10, giveBack);
+  const Id plateau = count + std::min(count / 2, giveBack);
+  const double plateauError = best.EstimatedError / 4.0;
   double high = std::min(best.Epsilon, 2.0 * this->Tree.Size);
   double low = std::max(this->CurrentEpsilon, 1e-4 * high);
   ClusterLevel trial;
@@ -149,7 +156,8 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
   {
     const double middle = std::sqrt(low * high);
     const Id triangles = this->TryLevel(middle, trial);
-    if (triangles > 0 && triangles <= enough)
+    if (triangles > 0 &&
+      (triangles <= close || (triangles <= plateau && trial.EstimatedError <= plateauError)))
     {
       best = std::move(trial);
       count = triangles;

@@ -15,7 +15,9 @@
 // A node may become one cluster (all its vertices replaced by one representative) when
 //   - its cell is no larger than MaximumCellSize and it has at most MaximumPointsPerCell
 //     vertices (both optional),
-//   - it holds no locked vertex (non-manifold vertices never merge),
+//   - it holds no locked vertex (non-manifold vertices other than regular points of curves
+//     where sheets meet never merge), and its curve points, if any, form one open piece of one
+//     curve that goes on outside the node at both ends (CurveMayMerge),
 //   - no triangle joining it to the outside flips when its inside vertex moves to the
 //     representative (triangles whose two outside vertices share a cell of the node's size are
 //     not counted: they fall into one neighbouring cluster and vanish),
@@ -46,7 +48,11 @@
 // triangle whose normal opposes the input surface around its clusters, or two on the same
 // clusters in opposite order (a thin part folded onto itself), marks the clusters that
 // changed as not mergeable, and the level is cut again (such nodes lie above the previous cut,
-// so nesting holds). A target triangle count is met by a search over epsilon on the count
+// so nesting holds). Where sheets meet along curves, the same holds for a triangle folded
+// against the previous level's triangle it comes from (the surface normal at a curve sums
+// every sheet's), for a curve edge left with fewer triangles than its curve has sheets, and for
+// a closed curve down to two clusters; an edge the curve's k triangles share is not a pinch.
+// A target triangle count is met by a search over epsilon on the count
 // estimate (input triangles minus those that degenerate in collapsed nodes), corrected by what
 // a trial level actually keeps; the trial closest to the target in ratio is kept. Nodes refused
 // for a fold stay refused at later levels, unless a level would otherwise keep under a quarter
@@ -108,8 +114,8 @@ struct VTKFILTERSMESHLOD_EXPORT ClusterLevel
 class VTKFILTERSMESHLOD_EXPORT OctreeClustering
 {
 public:
-  /// `mesh` and `topology` must outlive this object. Locked vertices (non-manifold ones by
-  /// default) never merge.
+  /// `mesh` and `topology` must outlive this object. Locked vertices (non-manifold ones other
+  /// than regular curve points) never merge.
   OctreeClustering(const TriangleMesh& mesh,
     const TriangleTopology& topology,
     const OctreeClusteringOptions& options);

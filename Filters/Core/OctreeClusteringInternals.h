@@ -113,6 +113,25 @@ constexpr unsigned char SameDuplicate = 1;
 constexpr unsigned char OppositeDuplicate = 2;
 
 // A level being built: clusters (cut nodes) and the previous level's triangles re-indexed.
+// An edge between two clusters on a curve where Sheets sheets meet.
+struct CurveEdge
+{
+  Id Low, High;
+  int Sheets;
+  bool operator<(const CurveEdge& o) const
+  {
+    if (this->Low != o.Low)
+    {
+      return this->Low < o.Low;
+    }
+    return this->High != o.High ? this->High < o.High : this->Sheets < o.Sheets;
+  }
+  bool operator==(const CurveEdge& o) const
+  {
+    return this->Low == o.Low && this->High == o.High && this->Sheets == o.Sheets;
+  }
+};
+
 struct Synthesis
 {
   std::vector<Id> Cut;          // cluster -> node, in depth-first order
@@ -210,6 +229,7 @@ struct OctreeClustering::Internals
   void MovedNormal(Id item, const double v0[3], double moved[3]) const;
   void AddCrossingTerms(const double v0[3], const octree::EvaluationScratch& crossing, Quadric& q) const;
   bool HasFlip(const double v0[3], const octree::EvaluationScratch& crossing, int depth) const;
+  bool CurveMayMerge(Id node) const;
   void Evaluate(Id index, octree::EvaluationScratch& scratch);
   void ProjectOnBoundary(const std::vector<Id>& edges, double v0[3]) const;
   void RepresentativeOf(Id node, double out[3]) const;
@@ -228,9 +248,12 @@ struct OctreeClustering::Internals
   void AssignClusters(octree::Synthesis& s);
   Id ReindexTriangles(octree::Synthesis& s) const;
   void MarkDuplicates(octree::Synthesis& s) const;
+  bool OnCurve(Id node) const;
+  void PreviousNormal(Id t, double normal[3]) const;
   Id MarkFolds(octree::Synthesis& s);
   Id MarkFins(octree::Synthesis& s);
   Id MarkPinches(octree::Synthesis& s);
+  std::vector<octree::CurveEdge> CurveEdgesOf(std::vector<Id>& shrunk) const;
   // Mark the changed clusters among `clusters` as not mergeable; returns how many were. With
   // SplitFully, also every node between them and the previous level's points inside them.
   // `lasting`: for good (pinches), otherwise as a fold refusal (Refused).

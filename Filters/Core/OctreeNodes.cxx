@@ -129,6 +129,61 @@ void OctreeClustering::Internals::ProjectOnBoundary(const std::vector<Id>& edges
 }
 
 //------------------------------------------------------------------------------
+// Where sheets meet along curves, a cluster holding curve points must hold one piece of one
+// curve, with the curve going on outside it at both ends: then the curve keeps its course through
+// the cluster's representative. Two pieces (of one curve or two) would be joined at one point,
+// and a whole closed curve would shrink to a point, both changes of topology. (Junctions, where
+// curves meet, are locked; every other curve point is on two curve edges.) The test walks the
+// piece from an end and must meet every curve point of the node on the way.
+bool OctreeClustering::Internals::CurveMayMerge(Id node) const
+{
+  if (this->Tree.Internal(node).Curve == 0)
+  {
+    return true;
+  }
+  const ClusterTree& tree = this->Tree;
+  Id points = 0, start = InvalidId;
+  const Id first = tree.Position(node);
+  for (Id pos = first; pos < first + tree.Count(node); ++pos)
+  {
+    const Id v = tree.Order[pos];
+    if (tree.IsCurve(v))
+    {
+      ++points;
+      const Id* next = tree.Curves[v].Neighbours;
+      if (start == InvalidId && (!tree.Contains(node, next[0]) || !tree.Contains(node, next[1])))
+      {
+        start = v;
+      }
+    }
+  }
+  if (start == InvalidId)
+  {
+    return false; // a closed curve lies wholly inside
+  }
+  Id walked = 1;
+  for (Id previous = InvalidId, v = start;; ++walked)
+  {
+    const Id* next = tree.Curves[v].Neighbours;
+    const Id step = tree.Contains(node, next[0]) && next[0] != previous ? next[0]
+      : (tree.Contains(node, next[1]) && next[1] != previous ? next[1] : InvalidId);
+    if (step == InvalidId)
+    {
+      // The other end: its second curve edge leads outside too (both, for a single point).
+      const int leads =
+        (tree.Contains(node, next[0]) ? 0 : 1) + (tree.Contains(node, next[1]) ? 0 : 1);
+      return walked == points && leads == (walked == 1 ? 2 : 1);
+    }
+    if (!tree.IsCurve(step) || walked > points)
+    {
+      return false;
+    }
+    previous = v;
+    v = step;
+  }
+}
+
+//------------------------------------------------------------------------------
 // The representative and error of a node (§2.3, §3), and whether it may be a cluster.
 void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
 {
@@ -237,8 +292,9 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   error = std::max(error, 0.5 * farthest);
   std::copy_n(v0, 3, slot);
   slot[6] = static_cast<float>(error); // as a threshold, in single precision
-  this->State[index] =
-    this->HasFlip(v0, crossing, n.Depth) ? NodeState::Inadmissible : NodeState::Admissible;
+  this->State[index] = this->HasFlip(v0, crossing, n.Depth) || !this->CurveMayMerge(node)
+    ? NodeState::Inadmissible
+    : NodeState::Admissible;
   this->UpdateThreshold(index);
 }
 

@@ -174,6 +174,25 @@ void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
 }
 
 //------------------------------------------------------------------------------
+bool OctreeClustering::Internals::OnCurve(Id node) const
+{
+  return this->Tree.IsLeaf(node) ? this->Tree.IsCurve(node)
+                                  : this->Tree.Internal(node).Curve != 0;
+}
+
+// The normal (not normalised) of triangle t of the previous level, at its points' positions.
+void OctreeClustering::Internals::PreviousNormal(Id t, double normal[3]) const
+{
+  const Id* tri = this->PreviousTriangleData() + 3 * t;
+  double p[3][3];
+  for (int c = 0; c < 3; ++c)
+  {
+    this->RepresentativeOf(this->NodeOfPoint(tri[c]), p[c]);
+  }
+  Normal(p[0], p[1], p[2], normal);
+}
+
+//------------------------------------------------------------------------------
 // Folds: a kept triangle whose normal opposes the input surface around its three clusters.
 // The clusters of such a triangle that changed are marked as not mergeable (they lie above the
 // previous cut, so the levels still nest). Returns the number of nodes marked.
@@ -219,11 +238,21 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
         }
         const Id* tri = s.Triangles.data() + 3 * j;
         double surface[3] = { 0.0, 0.0, 0.0 }, after[3];
-        for (int c = 0; c < 3; ++c)
+        if (this->OnCurve(s.Cut[tri[0]]) || this->OnCurve(s.Cut[tri[1]]) ||
+          this->OnCurve(s.Cut[tri[2]]))
         {
-          for (int i = 0; i < 3; ++i)
+          // The surface normal at a curve point sums the sheets meeting there, which may
+          // point anywhere: the triangle's own sheet is compared, as the previous level had it.
+          this->PreviousNormal(s.From[j], surface);
+        }
+        else
+        {
+          for (int c = 0; c < 3; ++c)
           {
-            surface[i] += normals[3 * tri[c] + i];
+            for (int i = 0; i < 3; ++i)
+            {
+              surface[i] += normals[3 * tri[c] + i];
+            }
           }
         }
         Normal(s.Reps.data() + 3 * tri[0],
@@ -309,6 +338,58 @@ Id OctreeClustering::Internals::MarkChanged(Synthesis& s,
 }
 
 //------------------------------------------------------------------------------
+// The edges between clusters that curve edges of the input join (a curve where sheets meet),
+// with the curve's sheet count, sorted; empty on a mesh without such curves. `shrunk` receives
+// the clusters whose two curve edges lead to the same cluster: a closed curve down to two
+// clusters, which its sheets no longer keep apart (a sheet inside it would vanish, and the
+// curve with it, without an edge of unusual count to tell).
+std::vector<CurveEdge> OctreeClustering::Internals::CurveEdgesOf(std::vector<Id>& shrunk) const
+{
+  std::vector<CurveEdge> edges;
+  shrunk.clear();
+  const ClusterTree& tree = this->Tree;
+  if (tree.Curves.empty())
+  {
+    return edges;
+  }
+  for (Id v = 0; v < this->NV; ++v)
+  {
+    if (!tree.IsCurve(v))
+    {
+      continue;
+    }
+    for (const Id w : tree.Curves[v].Neighbours)
+    {
+      const Id a = this->ClusterOfVertex[v], b = this->ClusterOfVertex[w];
+      if (a != b)
+      {
+        edges.push_back(CurveEdge{ a, b, tree.Curves[v].Sheets });
+      }
+    }
+  }
+  // Each curve cluster has two curve edges leading out (CurveMayMerge), both listed from it.
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i)
+  {
+    if (edges[i] == edges[i + 1])
+    {
+      shrunk.push_back(edges[i].Low);
+      shrunk.push_back(edges[i].High);
+    }
+  }
+  for (CurveEdge& e : edges)
+  {
+    if (e.High < e.Low)
+    {
+      std::swap(e.Low, e.High);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+//------------------------------------------------------------------------------
 // Pinches: an edge that three or more kept triangles share, where one of them has a changed
 // cluster (clusters that merged folded part of the surface onto itself). Like folds, the changed
 // clusters of the triangles on such an edge are marked as not mergeable. The edges are grouped
@@ -347,6 +428,16 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
     });
   }
   auto triangleOf = [&](std::size_t x) { return static_cast<Id>(entries[x] & 0xffffffffu); };
+  std::vector<Id> marks; // the clusters of the triangles on pinched edges, and shrunk curves
+  const std::vector<CurveEdge> curveEdges = this->CurveEdgesOf(marks);
+  // An edge that is the image of curve edges keeps the curve's k triangles: not a pinch.
+  auto onCurve = [&](Id low, Id high, std::size_t run)
+  {
+    const CurveEdge key{ low, high, 0 };
+    const auto it = std::lower_bound(curveEdges.begin(), curveEdges.end(), key);
+    return it != curveEdges.end() && it->Low == low && it->High == high &&
+      static_cast<std::size_t>(it->Sheets) == run;
+  };
   // pinched[x]: entry x is on an edge with three or more triangles, one of them involved.
   std::vector<unsigned char> pinched(entries.size(), 0);
   vtkSMPTools::For(0,
@@ -365,7 +456,7 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
           {
             watched = watched || s.Involved(triangleOf(y));
           }
-          if (y - x > 2 && watched)
+          if (y - x > 2 && watched && !onCurve(k, static_cast<Id>(entries[x] >> 32), y - x))
           {
             std::fill(pinched.begin() + x, pinched.begin() + y, 1);
           }
@@ -373,7 +464,23 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
         }
       }
     });
-  std::vector<Id> marks; // the clusters of the triangles on pinched edges
+  // A curve edge that kept fewer triangles than its curve has sheets: the curve was cut open
+  // there (a sheet along it vanished, or two of its triangles became one).
+  for (const CurveEdge& e : curveEdges)
+  {
+    const auto first = entries.begin() + offsets[e.Low];
+    const auto last = entries.begin() + offsets[e.Low + 1];
+    const std::uint64_t key = static_cast<std::uint64_t>(e.High) << 32;
+    const auto from = std::lower_bound(first, last, key);
+    const auto to = std::lower_bound(from, last, key + (std::uint64_t(1) << 32));
+    if (to - from != e.Sheets)
+    {
+      marks.push_back(e.Low);
+      marks.push_back(e.High);
+      std::fill(
+        pinched.begin() + (from - entries.begin()), pinched.begin() + (to - entries.begin()), 1);
+    }
+  }
   for (std::size_t x = 0; x < pinched.size(); ++x)
   {
     if (pinched[x])

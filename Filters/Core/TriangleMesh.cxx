@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 
 namespace meshlod
@@ -441,6 +442,109 @@ void CompactMesh(const TriangleMesh& in, TriangleMesh& out, CompactionMaps& maps
       }
     }
   });
+}
+
+//------------------------------------------------------------------------------
+bool IsRegularCurveVertex(const TriangleMesh& mesh,
+  const VertexTriangleAdjacency& adj,
+  Id v,
+  std::vector<std::pair<Id, Id>>& ends,
+  std::vector<Id>& fan,
+  CurveVertex* curveVertex)
+{
+  const Id first = adj.Begin(v);
+  const Id count = adj.Count(v);
+  ends.clear(); // (neighbour, index of the triangle in v's row), for both edges of it at v
+  for (Id i = 0; i < count; ++i)
+  {
+    const Id* tri = mesh.Triangle(adj.Triangles[first + i]);
+    const int c = CornerOf(tri, v);
+    ends.emplace_back(tri[(c + 1) % 3], i);
+    ends.emplace_back(tri[(c + 2) % 3], i);
+  }
+  std::sort(ends.begin(), ends.end());
+  // Union of the triangles across each manifold edge (two triangles on it); the two curve
+  // edges by their neighbour.
+  fan.resize(static_cast<std::size_t>(count));
+  std::iota(fan.begin(), fan.end(), 0);
+  const auto root = [&](Id i) {
+    while (fan[i] != i)
+    {
+      i = fan[i] = fan[fan[i]];
+    }
+    return i;
+  };
+  Id curve[2] = { InvalidId, InvalidId };
+  std::size_t sheets = 0;
+  int curves = 0;
+  for (std::size_t i = 0; i < ends.size();)
+  {
+    std::size_t run = 1;
+    while (i + run < ends.size() && ends[i + run].first == ends[i].first)
+    {
+      ++run;
+    }
+    if (run == 2)
+    {
+      fan[root(ends[i].second)] = root(ends[i + 1].second);
+    }
+    else if (run < 2 || curves == 2 || (curves == 1 && run != sheets))
+    {
+      return false; // a boundary edge, a third curve edge, or curve edges of unequal counts
+    }
+    else
+    {
+      curve[curves++] = ends[i].first;
+      sheets = run;
+    }
+    i += run;
+  }
+  if (curves != 2)
+  {
+    return false;
+  }
+  // Each fan must hold exactly one triangle on each curve edge; then there are k fans.
+  std::vector<std::pair<Id, Id>>& touches = ends; // reused: (fan root, which curve edge)
+  touches.clear();
+  for (Id i = 0; i < count; ++i)
+  {
+    const Id* tri = mesh.Triangle(adj.Triangles[first + i]);
+    for (int e = 0; e < 2; ++e)
+    {
+      if (CornerOf(tri, curve[e]) >= 0)
+      {
+        touches.emplace_back(root(i), e);
+      }
+    }
+  }
+  std::sort(touches.begin(), touches.end());
+  if (touches.size() != 2 * sheets)
+  {
+    return false;
+  }
+  for (std::size_t i = 0; i < touches.size(); i += 2)
+  {
+    if (touches[i].first != touches[i + 1].first || touches[i].second != 0 ||
+      touches[i + 1].second != 1)
+    {
+      return false; // a fan from one curve edge back to it, or one reaching neither
+    }
+  }
+  // Every triangle is in a fan that touches the curve: no closed fan (bow tie) besides.
+  for (Id i = 0; i < count; ++i)
+  {
+    if (!std::binary_search(touches.begin(), touches.end(), std::make_pair(root(i), Id(0))))
+    {
+      return false;
+    }
+  }
+  if (curveVertex)
+  {
+    curveVertex->Neighbours[0] = curve[0];
+    curveVertex->Neighbours[1] = curve[1];
+    curveVertex->Sheets = static_cast<int>(sheets);
+  }
+  return true;
 }
 
 } // namespace meshlod

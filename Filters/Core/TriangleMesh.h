@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace meshlod
@@ -148,6 +149,26 @@ inline int CornerOf(const Id* tri, Id v)
 {
   return tri[0] == v ? 0 : (tri[1] == v ? 1 : (tri[2] == v ? 2 : -1));
 }
+
+/// A regular point of a curve where k > 2 sheets meet (see IsRegularCurveVertex).
+struct CurveVertex
+{
+  Id Neighbours[2] = { InvalidId, InvalidId }; // the two vertices joined to it along the curve
+  int Sheets = 0;                              // k: the triangles on each of its two curve edges
+};
+
+/// Whether non-manifold vertex v is a regular point of a curve of non-manifold edges: two edges
+/// with the same k > 2 triangles, every other edge with two, and k fans of triangles (joined
+/// across v's manifold edges) each running from one of the two to the other. The surfaces
+/// between the regions of a segmented volume are made of such curves, the vertices where they
+/// meet or end excepted. `ends` and `fan` are scratch; `curveVertex`, when given, receives the
+/// curve neighbours and k.
+VTKFILTERSMESHLOD_EXPORT bool IsRegularCurveVertex(const TriangleMesh& mesh,
+  const VertexTriangleAdjacency& adj,
+  Id v,
+  std::vector<std::pair<Id, Id>>& ends,
+  std::vector<Id>& fan,
+  CurveVertex* curveVertex = nullptr);
 
 /// Result of a compaction: the kept mesh and the maps from old to new ids.
 struct VTKFILTERSMESHLOD_EXPORT CompactionMaps

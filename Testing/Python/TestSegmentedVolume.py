@@ -1,8 +1,10 @@
-"""vtkTriangleCollapseDecimation from Python on a segmented volume: three labelled balls,
-vtkDiscreteFlyingEdges3D, points merged (the faces between two labels then come twice, which the
-filter drops). The sheets meet along curves of edges with three triangles; every level must
-keep the topology (Euler characteristic, no boundary, the same kinds of edges), the coarsest
-must reach its target, and vtkLODGeomorph must give exact counts between the levels."""
+"""vtkTriangleCollapseDecimation and vtkVertexClusterOctree from Python on a segmented volume:
+three labelled balls, vtkDiscreteFlyingEdges3D, points merged (the faces between two labels then
+come twice, which the filters drop). The sheets meet along curves of edges with three
+triangles; every level must keep the topology (Euler characteristic, no boundary, the same
+kinds of edges, the curves), the coarsest must reach its target (the octree: come near it
+without the error of a level that crushes the sheets), and vtkLODGeomorph must give exact
+counts between the levels."""
 
 import sys
 from collections import Counter
@@ -64,6 +66,57 @@ def edge_counts(poly):
     return Counter(edges.values()), euler
 
 
+def check_topology(levels, name):
+    """Every level after the first keeps level 0's Euler characteristic, kinds of edges and
+    curves, with fewer triangles than the level before it."""
+    kinds, euler = edge_counts(levels[0])
+    print("%s level 0: %d triangles, edges by triangle count %s, Euler characteristic %d"
+          % (name, levels[0].GetNumberOfPolys(), dict(kinds), euler))
+    check(kinds.get(3, 0) > 0, "level 0 has curves where three sheets meet")
+    check(kinds.get(1, 0) == 0, "level 0 has no boundary")
+    previous = levels[0].GetNumberOfPolys()
+    for i, level in enumerate(levels[1:], 1):
+        counts, chi = edge_counts(level)
+        print("%s level %d: %d triangles, edges %s, Euler characteristic %d"
+              % (name, i, level.GetNumberOfPolys(), dict(counts), chi))
+        check(level.GetNumberOfPolys() < previous, "%s level %d has fewer triangles" % (name, i))
+        previous = level.GetNumberOfPolys()
+        check(chi == euler, "%s level %d keeps the Euler characteristic" % (name, i))
+        check(set(counts) <= set(kinds), "%s level %d has no new kind of edge" % (name, i))
+        check(counts.get(3, 0) > 0, "%s level %d keeps the curves" % (name, i))
+
+
+def check_octree(merged):
+    """The octree's clusters may hold one open piece of a curve each, so its levels come near
+    their targets, a tenth and a hundredth of the input's 15,597 triangles (before, curve points
+    never merged and both levels kept over 3,100 triangles). The 1% level cannot be reached
+    without merging the curves further than they may; it then backs off to an error near what
+    its count warrants (without that, 726 triangles at 5.8 times level 1's error)."""
+    octree = meshlod.vtkVertexClusterOctree()
+    octree.SetInputConnection(merged.GetOutputPort())
+    octree.SetLevelModeToTargetTriangleCounts()
+    octree.GlobalWarningDisplayOff()  # the duplicated faces, and the count missed at 1%
+    merged.Update()
+    total = merged.GetOutput().GetNumberOfPolys()
+    octree.AddTargetTriangleCount(total // 10)
+    octree.AddTargetTriangleCount(total // 100)
+    octree.Update()
+    hierarchy = octree.GetHierarchy()
+    levels = [hierarchy.GetBlock(i) for i in range(hierarchy.GetNumberOfBlocks())]
+    check(len(levels) == 3, "octree: 3 levels, got %d" % len(levels))
+    if len(levels) != 3:
+        return
+    check_topology(levels, "octree")
+    error = [level.GetFieldData().GetArray("EstimatedError").GetTuple1(0) for level in levels]
+    print("octree estimated errors: %s" % ["%.4g" % e for e in error])
+    check(levels[1].GetNumberOfPolys() <= 1.25 * (total // 10),
+          "octree level 1 near 10%%: %d, asked %d" % (levels[1].GetNumberOfPolys(), total // 10))
+    check(levels[2].GetNumberOfPolys() <= 0.75 * levels[1].GetNumberOfPolys(),
+          "octree level 2 well below level 1: %d" % levels[2].GetNumberOfPolys())
+    check(error[2] <= 2.5 * error[1], "octree level 2's error %.4g within 2.5 times level 1's %.4g"
+          % (error[2], error[1]))
+
+
 def main():
     contour = vtkDiscreteFlyingEdges3D()
     contour.SetInputData(labelled_balls(48))
@@ -82,22 +135,8 @@ def main():
     hierarchy = decimate.GetHierarchy()
     levels = [hierarchy.GetBlock(i) for i in range(hierarchy.GetNumberOfBlocks())]
     check(len(levels) >= 6, "at least 6 levels, got %d" % len(levels))
-    kinds, euler = edge_counts(levels[0])
-    print("level 0: %d triangles, edges by triangle count %s, Euler characteristic %d"
-          % (levels[0].GetNumberOfPolys(), dict(kinds), euler))
-    check(kinds.get(3, 0) > 0, "level 0 has curves where three sheets meet")
-    check(kinds.get(1, 0) == 0, "level 0 has no boundary")
+    check_topology(levels, "triangle collapse")
     target = levels[0].GetNumberOfPolys() // 100
-    previous = levels[0].GetNumberOfPolys()
-    for i, level in enumerate(levels[1:], 1):
-        counts, chi = edge_counts(level)
-        print("level %d: %d triangles, edges %s, Euler characteristic %d"
-              % (i, level.GetNumberOfPolys(), dict(counts), chi))
-        check(level.GetNumberOfPolys() < previous, "level %d has fewer triangles" % i)
-        previous = level.GetNumberOfPolys()
-        check(chi == euler, "level %d keeps the Euler characteristic" % i)
-        check(set(counts) <= set(kinds), "level %d has no new kind of edge" % i)
-        check(counts.get(3, 0) > 0, "level %d keeps the curves" % i)
     check(levels[-1].GetNumberOfPolys() <= target + 2,
           "the coarsest level reaches 1%%: %d, asked %d" % (levels[-1].GetNumberOfPolys(), target))
 
@@ -121,6 +160,8 @@ def main():
             near += 1 if asked - got <= 2 else 0
     print("exact counts between levels: %d of %d within 2 triangles" % (near, asked_counts))
     check(near >= 0.8 * asked_counts, "exact counts within 2 triangles: %d of %d" % (near, asked_counts))
+
+    check_octree(merged)
     return 1 if failures else 0
 
 
