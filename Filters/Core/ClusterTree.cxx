@@ -547,6 +547,7 @@ void ClusterTree::RelatedQuadric(Id node,
 void ClusterTree::FindCurves()
 {
   this->Curves.clear();
+  this->LockedEdges.clear();
   const TriangleTopology& topology = *this->Topology;
   if (topology.CountVertices(VertexKind::NonManifold) == 0)
   {
@@ -568,6 +569,43 @@ void ClusterTree::FindCurves()
         }
       }
     });
+  // Edges of more than two triangles between two locked vertices, each listed from its lower
+  // end (serial: few vertices are locked).
+  const VertexTriangleAdjacency& adj = topology.VertexTriangles;
+  std::vector<Id> others;
+  for (Id v = 0; v < this->NV; ++v)
+  {
+    if (!this->IsLocked(v))
+    {
+      continue;
+    }
+    others.clear();
+    for (Id i = adj.Begin(v); i < adj.End(v); ++i)
+    {
+      const Id* tri = this->Mesh->Triangle(adj.Triangles[i]);
+      for (int c = 0; c < 3; ++c)
+      {
+        if (tri[c] > v && this->IsLocked(tri[c]))
+        {
+          others.push_back(tri[c]);
+        }
+      }
+    }
+    std::sort(others.begin(), others.end());
+    for (std::size_t i = 0; i < others.size();)
+    {
+      std::size_t run = 1;
+      while (i + run < others.size() && others[i + run] == others[i])
+      {
+        ++run;
+      }
+      if (run > 2)
+      {
+        this->LockedEdges.push_back(LockedEdge{ v, others[i], static_cast<int>(run) });
+      }
+      i += run;
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

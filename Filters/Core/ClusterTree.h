@@ -81,6 +81,14 @@ public:
   /// where sheets meet (IsRegularCurveVertex; Sheets 0 otherwise). Empty when the mesh has no
   /// such vertex (a manifold mesh), so that it costs nothing there.
   std::vector<CurveVertex> Curves;
+  /// The input's edges of more than two triangles whose two ends are both locked (a curve of a
+  /// single edge between two junctions): ends, and the number of triangles on it.
+  struct LockedEdge
+  {
+    Id A, B;
+    int Sheets;
+  };
+  std::vector<LockedEdge> LockedEdges;
 
   bool IsCurve(Id v) const { return !this->Curves.empty() && this->Curves[v].Sheets > 0; }
   bool IsLocked(Id v) const

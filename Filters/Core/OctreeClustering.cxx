@@ -163,9 +163,11 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
       count = triangles;
       high = middle;
     }
-    else if (triangles == 0)
+    else if (triangles == 0 || triangles <= plateau)
     {
-      high = middle; // merged away whole: still too large
+      // Merged away whole, or few enough triangles but at too large an error: the epsilon is
+      // still too large.
+      high = middle;
     }
     else
     {

@@ -112,7 +112,6 @@ struct EvaluationScratch
 constexpr unsigned char SameDuplicate = 1;
 constexpr unsigned char OppositeDuplicate = 2;
 
-// A level being built: clusters (cut nodes) and the previous level's triangles re-indexed.
 // An edge between two clusters on a curve where Sheets sheets meet.
 struct CurveEdge
 {
@@ -132,6 +131,7 @@ struct CurveEdge
   }
 };
 
+// A level being built: clusters (cut nodes) and the previous level's triangles re-indexed.
 struct Synthesis
 {
   std::vector<Id> Cut;          // cluster -> node, in depth-first order

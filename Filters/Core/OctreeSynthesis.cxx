@@ -338,8 +338,9 @@ Id OctreeClustering::Internals::MarkChanged(Synthesis& s,
 }
 
 //------------------------------------------------------------------------------
-// The edges between clusters that curve edges of the input join (a curve where sheets meet),
-// with the curve's sheet count, sorted; empty on a mesh without such curves. `shrunk` receives
+// The edges between clusters that curve edges of the input join (a curve where sheets meet,
+// and the edges of more than two triangles between two locked vertices), with the number of
+// triangles each must keep, sorted; empty on a mesh without such curves. `shrunk` receives
 // the clusters whose two curve edges lead to the same cluster: a closed curve down to two
 // clusters, which its sheets no longer keep apart (a sheet inside it would vanish, and the
 // curve with it, without an edge of unusual count to tell).
@@ -383,6 +384,13 @@ std::vector<CurveEdge> OctreeClustering::Internals::CurveEdgesOf(std::vector<Id>
     {
       std::swap(e.Low, e.High);
     }
+  }
+  // A curve of one edge between two junctions: both ends stay (locked), the edge must keep
+  // its triangles too (two sheets' clusters merged across it would leave it looking manifold).
+  for (const ClusterTree::LockedEdge& e : tree.LockedEdges)
+  {
+    const Id a = this->ClusterOfVertex[e.A], b = this->ClusterOfVertex[e.B];
+    edges.push_back(CurveEdge{ std::min(a, b), std::max(a, b), e.Sheets });
   }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
