@@ -138,7 +138,7 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
   // scale, to within 5%) for the smallest that keeps about as few: at most a tenth more, or at
   // most half more when its error is under a quarter of the search level's (the count is on a
   // plateau: on the segmented volume, curves that may merge no further kept 2,423 triangles at
-  // 4.6% Hausdorff distance, 3,376 at 0.68%; where the count follows the error, as on a rough
+  // 4.6% Hausdorff distance, 3,245 at 0.79%; where the count follows the error, as on a rough
   // surface, a quarter of the error costs about four times the triangles, and only the tenth
   // applies). Never more than three quarters of what the level removes from the previous one
   // come back (so that it still makes progress). An epsilon beyond the octree's size merges
