@@ -91,6 +91,11 @@ public:
   std::vector<LockedEdge> LockedEdges;
 
   bool IsCurve(Id v) const { return !this->Curves.empty() && this->Curves[v].Sheets > 0; }
+  /// Whether a node (a vertex, or an internal node) holds a regular curve point.
+  bool HoldsCurve(Id node) const
+  {
+    return this->IsLeaf(node) ? this->IsCurve(node) : this->Internal(node).Curve != 0;
+  }
   bool IsLocked(Id v) const
   {
     return this->Topology->VertexKinds[v] == VertexKind::NonManifold && !this->IsCurve(v);

@@ -248,7 +248,6 @@ struct OctreeClustering::Internals
   void AssignClusters(octree::Synthesis& s);
   Id ReindexTriangles(octree::Synthesis& s) const;
   void MarkDuplicates(octree::Synthesis& s) const;
-  bool OnCurve(Id node) const;
   void PreviousNormal(Id t, double normal[3]) const;
   Id MarkFolds(octree::Synthesis& s);
   Id MarkFins(octree::Synthesis& s);

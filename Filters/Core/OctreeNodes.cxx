@@ -137,7 +137,7 @@ void OctreeClustering::Internals::ProjectOnBoundary(const std::vector<Id>& edges
 // piece from an end and must meet every curve point of the node on the way.
 bool OctreeClustering::Internals::CurveMayMerge(Id node) const
 {
-  if (this->Tree.Internal(node).Curve == 0)
+  if (!this->Tree.HoldsCurve(node))
   {
     return true;
   }

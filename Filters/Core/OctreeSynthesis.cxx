@@ -174,12 +174,6 @@ void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
 }
 
 //------------------------------------------------------------------------------
-bool OctreeClustering::Internals::OnCurve(Id node) const
-{
-  return this->Tree.IsLeaf(node) ? this->Tree.IsCurve(node)
-                                  : this->Tree.Internal(node).Curve != 0;
-}
-
 // The normal (not normalised) of triangle t of the previous level, at its points' positions.
 void OctreeClustering::Internals::PreviousNormal(Id t, double normal[3]) const
 {
@@ -238,8 +232,8 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
         }
         const Id* tri = s.Triangles.data() + 3 * j;
         double surface[3] = { 0.0, 0.0, 0.0 }, after[3];
-        if (this->OnCurve(s.Cut[tri[0]]) || this->OnCurve(s.Cut[tri[1]]) ||
-          this->OnCurve(s.Cut[tri[2]]))
+        if (this->Tree.HoldsCurve(s.Cut[tri[0]]) || this->Tree.HoldsCurve(s.Cut[tri[1]]) ||
+          this->Tree.HoldsCurve(s.Cut[tri[2]]))
         {
           // The surface normal at a curve point sums the sheets meeting there, which may
           // point anywhere: the triangle's own sheet is compared, as the previous level had it.

@@ -31,25 +31,7 @@ namespace
 using namespace meshlod;
 using testing::Level;
 
-using Edge = std::pair<vtkIdType, vtkIdType>;
-
-// Triangles on each edge of the mesh.
-std::map<Edge, int> EdgeTriangleCounts(vtkPolyData* mesh)
-{
-  std::map<Edge, int> counts;
-  vtkIdType n;
-  const vtkIdType* ids;
-  for (vtkIdType c = 0; c < mesh->GetNumberOfPolys(); ++c)
-  {
-    mesh->GetPolys()->GetCellAtId(c, n, ids);
-    for (int k = 0; k < 3; ++k)
-    {
-      const vtkIdType a = ids[k], b = ids[(k + 1) % 3];
-      ++counts[{ std::min(a, b), std::max(a, b) }];
-    }
-  }
-  return counts;
-}
+using testing::EdgeTriangleCounts;
 
 // A wavy square grid (n x n quads, two triangles each) with `holes` triangles taken out at
 // random, none within three quads of another along its row; some are on the border, where they

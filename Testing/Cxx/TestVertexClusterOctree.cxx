@@ -31,7 +31,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <set>
 #include <sstream>
 
@@ -450,15 +449,7 @@ void TestSheetsAlongCurve()
     // Each curve edge has three triangles and lies near the disk's plane z = 0: within 0.04%
     // of the radius at 10%, 4% at 1% (where the whole curve has 19 edges).
     const double off = i == 1 ? 1e-3 : 0.05;
-    std::map<std::pair<vtkIdType, vtkIdType>, int> edges;
-    for (const Triangle& t : Triangles(level))
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        ++edges[std::minmax(t[k], t[(k + 1) % 3])];
-      }
-    }
-    for (const auto& edge : edges)
+    for (const auto& edge : testing::EdgeTriangleCounts(level))
     {
       MESHLOD_CHECK(edge.second == 2 || edge.second == 3);
       if (edge.second == 3)

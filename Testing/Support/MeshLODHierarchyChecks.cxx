@@ -343,6 +343,20 @@ std::vector<TriangleIds> Triangles(vtkPolyData* mesh)
 }
 
 //------------------------------------------------------------------------------
+std::map<EdgeIds, int> EdgeTriangleCounts(vtkPolyData* mesh)
+{
+  std::map<EdgeIds, int> counts;
+  for (const TriangleIds& t : Triangles(mesh))
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ++counts[std::minmax(t[k], t[(k + 1) % 3])];
+    }
+  }
+  return counts;
+}
+
+//------------------------------------------------------------------------------
 vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, unsigned int i)
 {
   return vtkPolyData::SafeDownCast(hierarchy->GetBlock(i));

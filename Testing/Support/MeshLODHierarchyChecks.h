@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -57,6 +58,10 @@ vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, unsigned int i);
 /// The triangles of a mesh's polygons, in cell order (other polygons skipped).
 using TriangleIds = std::array<vtkIdType, 3>;
 std::vector<TriangleIds> Triangles(vtkPolyData* mesh);
+
+/// The number of triangles on each edge of a mesh (edge as its two point ids, smaller first).
+using EdgeIds = std::pair<vtkIdType, vtkIdType>;
+std::map<EdgeIds, int> EdgeTriangleCounts(vtkPolyData* mesh);
 
 /// Runs `make` with the Sequential vtkSMPTools backend, then with the backend that was in use
 /// (which is restored), and returns deep copies of both outputs: for "same output for any
