@@ -239,8 +239,9 @@ void vtkVertexClusterOctree::WarnIfCountMissed(
     vtkWarningMacro("Level " << level << ": asked for " << asked << " triangles, reached "
                              << reached
                              << ": the epsilon search found none that keeps fewer (clusters that "
-                                "would flip triangles or pinch edges are split again, which on a "
-                                "rough or noisy surface adds many triangles back; curves of "
+                                "would flip triangles, pinch edges or break a thin part are "
+                                "split again, which on a rough or noisy surface adds many "
+                                "triangles back; curves of "
                                 "non-manifold edges shorten only so far, and the vertices where "
                                 "they meet or end, bow ties and separate components do not "
                                 "merge), or none that keeps fewer at an error near that of this "

@@ -66,11 +66,13 @@
  * triangles removed (of two with the same three points in the same order, the first is kept),
  * orientation kept. A kept triangle whose normal opposes the input surface around its three
  * clusters, two on the same three points in opposite order (a thin part folded onto itself),
- * and an edge that three or more kept triangles share (clusters that folded the surface onto
- * itself) mark the clusters that changed as not mergeable, and the level is cut again. Vertex
- * clustering may still change topology: a part thinner than a cluster can shrink to an edge and
- * vanish; a cluster whose triangles all vanish sends its points to the nearest neighbouring
- * cluster.
+ * an edge that three or more kept triangles share (clusters that folded the surface onto
+ * itself), and a connected piece of the finer level that the kept triangles split into pieces
+ * that each keep triangles (a tube or rod whose whole cross-section fell into one cluster)
+ * mark the clusters that changed as not mergeable, and the level is cut again. Vertex
+ * clustering may still change topology: a piece that keeps no triangle at all (a small closed
+ * surface merged whole, a spike swallowed by the cluster around it) vanishes; a cluster whose
+ * triangles all vanish sends its points to the nearest neighbouring cluster.
  *
  * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input
  * gives a hierarchy of one empty level, without error; polygons and strips are triangulated; vertex and line

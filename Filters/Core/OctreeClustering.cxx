@@ -71,6 +71,7 @@ void OctreeClustering::BuildTree()
   impl.PointVertexCount.clear();
   impl.ClusterOfVertex.assign(impl.NV, InvalidId);
   impl.CurrentEpsilon = 0.0;
+  impl.LabelPreviousPieces();
 }
 
 bool OctreeClustering::MakeLevel(double epsilon, ClusterLevel& level)

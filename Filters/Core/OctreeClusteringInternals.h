@@ -193,6 +193,9 @@ struct OctreeClustering::Internals
   std::vector<Id> PointVertexCount;
   double CurrentEpsilon = 0.0;
   std::vector<Id> ClusterOfVertex;
+  // Per point of the current level: its connected piece (the piece's smallest point), for
+  // MarkBreaks.
+  std::vector<std::uint32_t> PreviousPiece;
 
   Internals(const TriangleMesh& mesh,
     const TriangleTopology& topology,
@@ -252,6 +255,8 @@ struct OctreeClustering::Internals
   Id MarkFolds(octree::Synthesis& s);
   Id MarkFins(octree::Synthesis& s);
   Id MarkPinches(octree::Synthesis& s);
+  Id MarkBreaks(octree::Synthesis& s);
+  void LabelPreviousPieces();
   std::vector<octree::CurveEdge> CurveEdgesOf(std::vector<Id>& shrunk) const;
   // Mark the changed clusters among `clusters` as not mergeable; returns how many were. With
   // SplitFully, also every node between them and the previous level's points inside them.

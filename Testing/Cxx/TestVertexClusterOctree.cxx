@@ -11,6 +11,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
+#include "vtkCleanPolyData.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
@@ -26,6 +27,8 @@
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
 #include "vtkTestErrorObserver.h"
+#include "vtkTriangleFilter.h"
+#include "vtkTubeFilter.h"
 
 #include <algorithm>
 #include <array>
@@ -801,6 +804,55 @@ void TestNoisySphereCounts()
   MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
 }
 
+// A thin tube wound into a helix (a capped tube: a sphere's topology), at target counts. Where a
+// cell held the tube's whole cross-section its triangles degenerated: the coarse level broke
+// into 7 capped pieces of tube (20 on a longer helix, 13.6% Hausdorff distance). Every level
+// must keep the tube in one closed piece.
+void TestThinTube()
+{
+  vtkNew<vtkPoints> axis;
+  vtkNew<vtkCellArray> line;
+  const int samples = 800;
+  line->InsertNextCell(samples);
+  for (int i = 0; i < samples; ++i)
+  {
+    const double t = 8.0 * vtkMath::Pi() * i / (samples - 1); // four turns
+    axis->InsertNextPoint(std::cos(t), std::sin(t), 0.15 * t);
+    line->InsertCellPoint(i);
+  }
+  vtkNew<vtkPolyData> helix;
+  helix->SetPoints(axis);
+  helix->SetLines(line);
+  vtkNew<vtkTubeFilter> tube;
+  tube->SetInputData(helix);
+  tube->SetRadius(0.05);
+  tube->SetNumberOfSides(12);
+  tube->CappingOn();
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(tube->GetOutputPort());
+  vtkNew<vtkCleanPolyData> clean; // the caps' points coincide with the tube's last rings
+  clean->SetInputConnection(triangles->GetOutputPort());
+  clean->Update();
+  vtkPolyData* mesh = clean->GetOutput();
+  MESHLOD_CHECK_EQ(testing::InspectMesh(mesh).EulerCharacteristic, 2);
+  vtkNew<vtkVertexClusterOctree> cluster;
+  vtkMultiBlockDataSet* h = AtTenthAndHundredth(cluster, mesh);
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    const testing::MeshReport r = testing::InspectMesh(Level(h, i));
+    const vtkIdType target = mesh->GetNumberOfPolys() / (i == 1 ? 10 : 100);
+    std::cerr << "thin tube, target " << target << ": " << r.Triangles << " triangles, Euler "
+              << r.EulerCharacteristic << "\n";
+    // Measured: 2512 and 148 triangles (asked 1919 and 191).
+    MESHLOD_CHECK_LE(std::abs(r.Triangles - target), target / 3);
+    MESHLOD_CHECK_EQ(r.EulerCharacteristic, 2); // one closed piece (7 pieces gave 14)
+    MESHLOD_CHECK_EQ(r.BoundaryEdges, 0);
+    MESHLOD_CHECK_EQ(r.NonManifoldEdges, 0);
+  }
+  MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
+}
+
 void TestHighValenceFan()
 {
   vtkSmartPointer<vtkPolyData> fan = testing::MakeFan(50000);
@@ -1009,6 +1061,7 @@ int TestVertexClusterOctree(int, char*[])
   TestNoisyTerrain();
   TestNoisyTerrainCounts();
   TestNoisySphereCounts();
+  TestThinTube();
   TestHighValenceFan();
   TestCellLimits();
   TestSettingsAndErrors();
