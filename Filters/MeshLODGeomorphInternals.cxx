@@ -4,6 +4,7 @@
 #include "Core/EdgeMerge.h"
 #include "MeshLODBlend.h"
 #include "MeshLODHierarchy.h"
+#include "MeshLODInputArrays.h"
 #include "MeshLODInputMesh.h"
 #include "MeshLODNearestCorrespondence.h"
 
@@ -27,6 +28,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -283,7 +285,8 @@ void DispatchPoints(vtkDataArray* points, Worker& worker)
 } // namespace
 
 //------------------------------------------------------------------------------
-std::string vtkLODGeomorph::Internals::Prepare(vtkMultiBlockDataSet* input, int requested)
+std::string vtkLODGeomorph::Internals::Prepare(
+  vtkMultiBlockDataSet* input, int requested, vtkLODGeomorph* self)
 {
   this->Levels.clear();
   this->Exact = ExactTopology();
@@ -296,7 +299,29 @@ std::string vtkLODGeomorph::Internals::Prepare(vtkMultiBlockDataSet* input, int 
   this->Levels.resize(n);
   for (unsigned int i = 0; i < n; ++i)
   {
-    this->Levels[i].Poly = vtkPolyData::SafeDownCast(input->GetBlock(i));
+    // A user-made level is held to what the filters check of their input: point ids in range
+    // (a bad one crashed the exact count and the nearest-vertex correspondence), arrays of the
+    // right length.
+    auto* poly = vtkPolyData::SafeDownCast(input->GetBlock(i));
+    const vtkIdType points = poly->GetNumberOfPoints();
+    for (vtkCellArray* cells : { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
+    {
+      const vtkIdType bad = meshlod::FirstCellWithBadId(cells, points);
+      if (bad >= 0)
+      {
+        this->Levels.clear();
+        std::ostringstream problem;
+        problem << "level " << i << " has a cell that refers to a point id outside [0, " << points
+                << ")";
+        return problem.str();
+      }
+    }
+    vtkSmartPointer<vtkPolyData> checked = meshlod::DropMismatchedArrays(poly, self);
+    if (checked != poly)
+    {
+      this->Levels[i].Checked = checked;
+    }
+    this->Levels[i].Poly = checked;
   }
   this->Mode = requested;
   if (this->Mode == AUTOMATIC)

@@ -40,7 +40,10 @@ struct MergedTopology
 // unchanged). Built lazily: only the levels and modes actually asked for pay.
 struct LevelCache
 {
-  vtkPolyData* Poly = nullptr;
+  vtkPolyData* Poly = nullptr; // the input's block, or Checked
+  // A shallow copy of the block without the data arrays whose tuple count is not its number of
+  // points or cells (a geomorph would read past their end); null when it has none.
+  vtkSmartPointer<vtkPolyData> Checked;
   std::vector<Id> TargetIds; // MorphTargetId, with morph data
   // With morph data: the next level's point data at this level's points (each point's values
   // where it goes, gathered once), so that every frame blends two arrays row by row instead of
@@ -94,7 +97,7 @@ struct vtkLODGeomorph::Internals
   std::vector<meshlod::geomorph::LevelCache> Levels;
   meshlod::geomorph::ExactTopology Exact;
 
-  std::string Prepare(vtkMultiBlockDataSet* input, int requested);
+  std::string Prepare(vtkMultiBlockDataSet* input, int requested, vtkLODGeomorph* self);
   bool EnsureTriangles(vtkLODGeomorph* self, int level, const char* purpose);
   bool EnsureSchedule(vtkLODGeomorph* self, int level);
   bool EnsureCorrespondence(vtkLODGeomorph* self, int level);

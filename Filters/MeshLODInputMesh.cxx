@@ -7,6 +7,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -97,34 +98,6 @@ void CopyTriangles(ArrayT* connectivity, std::vector<Id>& triangles)
       triangles[i] = static_cast<Id>(src[i]);
     }
   });
-}
-
-// The first cell of `cells` that refers to a point id outside [0, numberOfPoints), or -1.
-vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
-{
-  if (cells == nullptr || cells->GetNumberOfCells() == 0)
-  {
-    return -1;
-  }
-  double range[2];
-  cells->GetConnectivityArray()->GetRange(range, 0);
-  if (range[0] >= 0.0 && range[1] < static_cast<double>(numberOfPoints))
-  {
-    return -1;
-  }
-  for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
-  {
-    for (vtkIdType i = cells->GetOffsetsArray()->GetComponent(c, 0);
-         i < cells->GetOffsetsArray()->GetComponent(c + 1, 0); ++i)
-    {
-      const double id = cells->GetConnectivityArray()->GetComponent(i, 0);
-      if (id < 0.0 || id >= static_cast<double>(numberOfPoints))
-      {
-        return c;
-      }
-    }
-  }
-  return -1;
 }
 
 // Drop triangles that repeat a vertex id; returns how many were dropped.
@@ -401,6 +374,35 @@ vtkIdType DropDuplicateTriangles(
   return count;
 }
 } // namespace
+
+//------------------------------------------------------------------------------
+vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
+{
+  if (cells == nullptr || cells->GetNumberOfCells() == 0)
+  {
+    return -1;
+  }
+  vtkIdType bad = -1; // the first bad entry of the connectivity
+  auto scan = [&](auto* offsets, auto* connectivity)
+  {
+    const auto ids = vtk::DataArrayValueRange<1>(connectivity);
+    for (vtkIdType i = 0; i < ids.size() && bad < 0; ++i)
+    {
+      bad = (ids[i] < 0 || ids[i] >= numberOfPoints) ? i : -1;
+    }
+    if (bad < 0)
+    {
+      return vtkIdType(-1);
+    }
+    // The cell holding that entry: the last whose offset is at most its index.
+    const auto starts = vtk::DataArrayValueRange<1>(offsets);
+    const auto after = std::upper_bound(starts.begin(), starts.end(), bad);
+    return static_cast<vtkIdType>(after - starts.begin()) - 1;
+  };
+  return cells->IsStorage64Bit()
+    ? scan(cells->GetOffsetsArray64(), cells->GetConnectivityArray64())
+    : scan(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
+}
 
 //------------------------------------------------------------------------------
 vtkSmartPointer<vtkCellArray> MakeTriangleCells(const Id* triangles, Id numberOfTriangles)

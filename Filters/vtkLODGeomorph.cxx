@@ -133,7 +133,7 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
     impl.Input = input;
     impl.InputTime = inputTime;
     impl.RequestedCorrespondence = this->Correspondence;
-    impl.Problem = impl.Prepare(input, this->Correspondence);
+    impl.Problem = impl.Prepare(input, this->Correspondence, this);
   }
   if (!impl.Problem.empty())
   {

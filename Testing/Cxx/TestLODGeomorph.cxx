@@ -27,6 +27,7 @@
 #include "vtkTestErrorObserver.h"
 
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -261,7 +262,8 @@ void TestClamp(vtkMultiBlockDataSet* h)
   }
 }
 
-int ExpectError(vtkDataObject* input, const std::string& expected)
+int ExpectError(vtkDataObject* input, const std::string& expected,
+  const std::function<void(vtkLODGeomorph*)>& configure = nullptr)
 {
   vtkNew<vtkLODGeomorph> filter;
   vtkNew<vtkTest::ErrorObserver> observer;
@@ -269,6 +271,10 @@ int ExpectError(vtkDataObject* input, const std::string& expected)
   filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
   filter->SetInputData(input);
   filter->SetLevelOfDetail(0.5);
+  if (configure)
+  {
+    configure(filter);
+  }
   filter->Update();
   MESHLOD_CHECK(observer->GetError());
   if (observer->GetErrorMessage().find(expected) == std::string::npos)
@@ -315,6 +321,76 @@ void TestErrors(vtkMultiBlockDataSet* h)
   incomplete->SetBlock(1, level1);
   incomplete->SetBlock(2, Level(h, 2));
   ExpectError(incomplete, "lacks complete");
+
+  // A cell of a hand-edited level that refers to a point it does not have: refused before any
+  // mode reads the cells (the exact count, the nearest-vertex correspondence and the dropping
+  // of degenerate triangles crashed on it; a plain blend copied the bad id to its output).
+  vtkNew<vtkPolyData> badIds;
+  badIds->DeepCopy(Level(h, 0));
+  vtkNew<vtkCellArray> cells;
+  cells->DeepCopy(badIds->GetPolys());
+  cells->GetConnectivityArray()->SetTuple1(7, 1e6);
+  badIds->SetPolys(cells);
+  vtkNew<vtkMultiBlockDataSet> outside;
+  outside->SetNumberOfBlocks(2);
+  outside->SetBlock(0, badIds);
+  outside->SetBlock(1, Level(h, 1));
+  const std::function<void(vtkLODGeomorph*)> modes[] = { nullptr,
+    [h](vtkLODGeomorph* f) { f->SetTargetNumberOfTriangles(Level(h, 0)->GetNumberOfPolys() / 2); },
+    [](vtkLODGeomorph* f) { f->SetCorrespondenceToNearestVertices(); },
+    [](vtkLODGeomorph* f) { f->DropDegenerateTrianglesOn(); } };
+  for (const auto& mode : modes)
+  {
+    ExpectError(outside, "level 0 has a cell that refers to a point id outside [0, ", mode);
+  }
+  // Triangles but no points at all.
+  vtkNew<vtkPolyData> pointless;
+  pointless->DeepCopy(Level(h, 0));
+  pointless->SetPoints(nullptr);
+  outside->SetBlock(0, pointless);
+  ExpectError(outside, "outside [0, 0)",
+    [](vtkLODGeomorph* f) { f->SetCorrespondenceToNearestVertices(); });
+
+  // A point array shorter than its level: left out with a warning (blending it read past its
+  // end, garbage in the output).
+  {
+    vtkNew<vtkPolyData> fine, coarse;
+    fine->ShallowCopy(Level(h, 0));
+    coarse->ShallowCopy(Level(h, 1));
+    for (vtkPolyData* level : { fine.Get(), coarse.Get() })
+    {
+      vtkNew<vtkFloatArray> shortArray;
+      shortArray->SetName("Short");
+      shortArray->SetNumberOfTuples(level == fine ? 3 : 2);
+      shortArray->Fill(1.0);
+      level->GetPointData()->AddArray(shortArray);
+    }
+    vtkNew<vtkMultiBlockDataSet> mismatched;
+    mismatched->SetNumberOfBlocks(2);
+    mismatched->SetBlock(0, fine);
+    mismatched->SetBlock(1, coarse);
+    for (const auto& mode : { modes[0], modes[1] })
+    {
+      vtkNew<vtkLODGeomorph> filter;
+      vtkNew<vtkTest::ErrorObserver> observer;
+      filter->AddObserver(vtkCommand::ErrorEvent, observer);
+      filter->AddObserver(vtkCommand::WarningEvent, observer);
+      filter->SetInputData(mismatched);
+      filter->SetLevelOfDetail(0.5);
+      if (mode)
+      {
+        mode(filter);
+      }
+      filter->Update();
+      MESHLOD_CHECK(!observer->GetError());
+      MESHLOD_CHECK(observer->GetWarningMessage().find("\"Short\"") != std::string::npos);
+      vtkPolyData* out = filter->GetOutput();
+      MESHLOD_CHECK_GT(out->GetNumberOfPolys(), 0);
+      MESHLOD_CHECK(out->GetPointData()->GetAbstractArray("Short") == nullptr);
+      // The input keeps its arrays.
+      MESHLOD_CHECK(fine->GetPointData()->GetAbstractArray("Short") != nullptr);
+    }
+  }
 
   // An empty level: an empty output, no error.
   vtkNew<vtkMultiBlockDataSet> hollow;
