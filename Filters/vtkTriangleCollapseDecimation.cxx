@@ -224,14 +224,14 @@ int vtkTriangleCollapseDecimation::RequestData(
   // (No targets at all, as with TargetReduction 0: only level 0, nothing missed.)
   const std::int64_t coarsestTarget =
     options.LevelTargets.empty() ? result.FinalTriangles : options.LevelTargets.back();
-  if (result.LevelsEmitted < static_cast<int>(options.LevelTargets.size()) ||
+  if (result.TargetsReached < static_cast<int>(options.LevelTargets.size()) ||
     result.FinalTriangles > coarsestTarget + 3)
   {
     std::ostringstream levels;
-    if (result.LevelsEmitted < static_cast<int>(options.LevelTargets.size()))
+    if (result.TargetsReached < static_cast<int>(options.LevelTargets.size()))
     {
-      levels << "Produced " << result.LevelsEmitted << " of " << options.LevelTargets.size()
-             << " levels: the coarsest";
+      levels << "Reached " << result.TargetsReached << " of " << options.LevelTargets.size()
+             << " level targets: the coarsest level";
     }
     else
     {

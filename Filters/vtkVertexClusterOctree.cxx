@@ -310,11 +310,11 @@ bool vtkVertexClusterOctree::CheckSettings()
     for (size_t i = 0; i < this->EpsilonValues.size(); ++i)
     {
       const double e = this->EpsilonValues[i];
-      if (!std::isfinite(e) || e < 0.0 || (i > 0 && e < this->EpsilonValues[i - 1]))
+      if (!std::isfinite(e) || e < 0.0 || (i > 0 && e <= this->EpsilonValues[i - 1]))
       {
         vtkErrorMacro("Epsilon value " << i << " (" << e
                                        << ") is invalid: the values must be finite, not "
-                                          "negative and increasing, one per level.");
+                                          "negative and strictly increasing, one per level.");
         return false;
       }
     }
@@ -330,11 +330,11 @@ bool vtkVertexClusterOctree::CheckSettings()
     for (size_t i = 0; i < this->TargetTriangleCounts.size(); ++i)
     {
       const vtkIdType n = this->TargetTriangleCounts[i];
-      if (n < 1 || (i > 0 && n > this->TargetTriangleCounts[i - 1]))
+      if (n < 1 || (i > 0 && n >= this->TargetTriangleCounts[i - 1]))
       {
         vtkErrorMacro("Target triangle count " << i << " (" << n
                                                << ") is invalid: the counts must be at least 1 "
-                                                  "and decreasing, one per level.");
+                                                  "and strictly decreasing, one per level.");
         return false;
       }
     }
@@ -489,11 +489,21 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
       break;
     }
     this->LevelEpsilons.push_back(level.Epsilon);
+    const vtkIdType previousTriangles =
+      builder.GetLevel(builder.GetNumberOfLevels() - 1)->GetNumberOfPolys();
     if (requests[i].ByCount)
     {
       this->WarnIfCountMissed(static_cast<int>(i + 1), requests[i].Count,
-        static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()),
-        builder.GetLevel(builder.GetNumberOfLevels() - 1)->GetNumberOfPolys());
+        static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()), previousTriangles);
+    }
+    else if (static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()) == previousTriangles)
+    {
+      // Kept (level i answers epsilon i), but said: a repeated level is rarely what was meant.
+      vtkWarningMacro("Level " << i + 1 << " keeps the " << previousTriangles
+                               << " triangles of level " << i << ": its epsilon ("
+                               << requests[i].Epsilon
+                               << " in world units) merges nothing more (a larger "
+                                  "EpsilonFactor or larger epsilon values give coarser levels).");
     }
 
     meshlod::TextureAtlas atlas;

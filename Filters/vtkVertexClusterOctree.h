@@ -36,8 +36,8 @@
  * Levels. The output has NumberOfLevels simplified levels after level 0 (the input), chosen by
  * LevelMode:
  * - GeometricEpsilon (default): level i (1-based) uses epsilon Epsilon * EpsilonFactor^(i - 1);
- * - EpsilonList: one level per AddEpsilonValue() value (increasing);
- * - TargetTriangleCounts: one level per AddTargetTriangleCount() value (decreasing), epsilon
+ * - EpsilonList: one level per AddEpsilonValue() value (strictly increasing);
+ * - TargetTriangleCounts: one level per AddTargetTriangleCount() value (strictly decreasing), epsilon
  *   found by a search; the count is met within 0.2% (or 2 triangles) where the cluster tree
  *   allows, and a miss by more than 2% (or 2 triangles) is reported by a warning naming the
  *   count reached and why: a count below what collapsing every mergeable cluster gives
@@ -184,7 +184,7 @@ public:
 
   ///@{
   /**
-   * The epsilon of each level in EPSILON_LIST mode, increasing (same units as Epsilon). Values
+   * The epsilon of each level in EPSILON_LIST mode, strictly increasing (same units as Epsilon). Values
    * must be finite and not negative. Empty by default.
    */
   void AddEpsilonValue(double epsilon);
@@ -195,7 +195,7 @@ public:
 
   ///@{
   /**
-   * The triangle count of each level in TARGET_TRIANGLE_COUNTS mode, decreasing, each at least
+   * The triangle count of each level in TARGET_TRIANGLE_COUNTS mode, strictly decreasing, each at least
    * 1. Empty by default.
    */
   void AddTargetTriangleCount(vtkIdType count);

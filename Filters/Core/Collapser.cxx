@@ -321,10 +321,17 @@ void Collapser::EmitLevel()
 
 bool Collapser::AfterProgress()
 {
-  while (!this->Finished() && this->State.AliveTriangles <= this->CurrentTarget())
+  if (!this->Finished() && this->State.AliveTriangles <= this->CurrentTarget())
   {
+    // Targets closer together than the triangles one collapse removes (many levels on a small
+    // mesh) are passed at once: one level for all of them, so that every level has fewer
+    // triangles than the one before.
     this->EmitLevel();
-    ++this->NextTarget;
+    while (!this->Finished() && this->State.AliveTriangles <= this->CurrentTarget())
+    {
+      ++this->NextTarget;
+      ++this->Result.TargetsReached;
+    }
   }
   if (this->State.AliveTriangles < RebuildAfterDying * this->State.AliveAtLastRebuild)
   {

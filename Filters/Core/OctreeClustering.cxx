@@ -118,6 +118,10 @@ bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLeve
   }
   if (bestCount == 0)
   {
+    bestCount = impl.LastNonEmpty(best);
+  }
+  if (bestCount == 0)
+  {
     return false;
   }
   if (bestCount > targetTriangles + targetTriangles / 4)
@@ -179,6 +183,34 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
 }
 
 //------------------------------------------------------------------------------
+Id OctreeClustering::Internals::LastNonEmpty(ClusterLevel& best)
+{
+  // Bisect on a log scale between the current level's epsilon (it keeps the current level) and
+  // the smallest that kept nothing. (Asked for 50 triangles, a noisy sphere of 1,680 got no
+  // level at all while 200 gave 1,650.)
+  double high = std::min(this->EmptyEpsilon, 2.0 * this->Tree.Size);
+  double low = std::max(this->CurrentEpsilon, 1e-4 * high);
+  ClusterLevel trial;
+  Id count = 0;
+  for (int step = 0; step < 12 && high > 1.02 * low; ++step)
+  {
+    const double middle = std::sqrt(low * high);
+    const Id triangles = this->TryLevel(middle, trial);
+    if (triangles > 0)
+    {
+      best = std::move(trial);
+      count = triangles;
+      low = middle;
+    }
+    else
+    {
+      high = middle;
+    }
+  }
+  return count;
+}
+
+//------------------------------------------------------------------------------
 Id OctreeClustering::Internals::SearchLevel(Id targetTriangles, ClusterLevel& best)
 {
   const Id tolerance = std::max<Id>(2, targetTriangles / 500);
@@ -190,10 +222,15 @@ Id OctreeClustering::Internals::SearchLevel(Id targetTriangles, ClusterLevel& be
   Id aim = targetTriangles;
   ClusterLevel trial;
   Id bestCount = 0;
+  this->EmptyEpsilon = std::numeric_limits<double>::infinity();
   for (int round = 0; round < 3; ++round)
   {
     const double epsilon = this->SearchEpsilon(aim, std::max<Id>(1, tolerance / 2));
     const Id count = this->TryLevel(epsilon, trial);
+    if (count == 0)
+    {
+      this->EmptyEpsilon = std::min(this->EmptyEpsilon, epsilon);
+    }
     if (count > 0 &&
       (bestCount == 0 || Miss(count, targetTriangles) < Miss(bestCount, targetTriangles)))
     {

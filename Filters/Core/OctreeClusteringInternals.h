@@ -269,6 +269,12 @@ struct OctreeClustering::Internals
   // The best of a few trial levels for a target count (see MakeLevelForTriangleCount); returns
   // its count, 0 when none has a triangle.
   Id SearchLevel(Id targetTriangles, ClusterLevel& best);
+  // The smallest epsilon at which a SearchLevel trial kept no triangle (infinity when none).
+  double EmptyEpsilon = 0.0;
+  /// When every trial of the search kept no triangle (a small target on a closed surface whose
+  /// folds keep many triangles below the epsilon that merges it whole): the largest epsilon
+  /// below EmptyEpsilon that keeps some, into best; returns its count (0 when none does).
+  Id LastNonEmpty(ClusterLevel& best);
   /// When the search's best level keeps `count` triangles, a quarter or more above what was
   /// asked (a target the surface cannot reach): the smallest epsilon (between the current
   /// level's and best's) that keeps at most a tenth more, giving back at most three quarters of

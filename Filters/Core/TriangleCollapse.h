@@ -88,6 +88,7 @@ struct TriangleCollapseResult
 {
   bool Aborted = false;
   int LevelsEmitted = 0;
+  int TargetsReached = 0; // more than LevelsEmitted where one collapse passed several targets
   std::int64_t FinalTriangles = 0;
   std::int64_t Collapses = 0;
   std::int64_t Passes = 0;

@@ -405,6 +405,38 @@ void TestUnreachableCount()
   std::cerr << "  flat 32 x 32 grid, MaximumCellSize 0.1: " << kept << " triangles\n";
   MESHLOD_CHECK_GT(kept, 2);
   CheckTriangles(filter->GetHierarchy());
+
+  // A very noisy small sphere, asked for far fewer triangles than its folds allow: every trial
+  // of the search either keeps too many or merges it whole. The level is the fewest triangles
+  // found, with the warning (asked for 200: 1,654 triangles; asked for 50, there was no level).
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(30);
+  source->SetPhiResolution(30);
+  source->Update();
+  vtkNew<vtkPolyData> rough;
+  rough->DeepCopy(source->GetOutput());
+  rough->GetPointData()->Initialize();
+  testing::PerturbRadially(rough, 1.5, 1); // radii from 0.25 to 1.75
+  for (const vtkIdType asked : { 50, 1 })
+  {
+    observer->Clear();
+    filter->SetInputData(rough);
+    filter->SetMaximumCellSize(0.0); // the default: no limit
+    filter->RemoveAllTargetTriangleCounts();
+    filter->AddTargetTriangleCount(asked);
+    filter->Update();
+    MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 2u);
+    if (filter->GetHierarchy()->GetNumberOfBlocks() == 2)
+    {
+      const vtkIdType got = Level(filter->GetHierarchy(), 1)->GetNumberOfPolys();
+      std::cerr << "  very noisy sphere asked for " << asked << ": " << got << " triangles\n";
+      MESHLOD_CHECK_GT(got, 0);
+      MESHLOD_CHECK_LT(got, rough->GetNumberOfPolys());
+      MESHLOD_CHECK(observer->GetWarningMessage().find(
+                      "asked for " + std::to_string(asked) + " triangles, reached") !=
+        std::string::npos);
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -932,12 +964,26 @@ void TestSettingsAndErrors()
   MESHLOD_CHECK(observer->GetError());
   MESHLOD_CHECK(observer->GetErrorMessage().find("increasing") != std::string::npos);
   observer->Clear();
+  filter->RemoveAllEpsilonValues(); // the same value twice would make the same level twice
+  filter->AddEpsilonValue(0.1);
+  filter->AddEpsilonValue(0.1);
+  filter->Update();
+  MESHLOD_CHECK(observer->GetError());
+  MESHLOD_CHECK(observer->GetErrorMessage().find("strictly increasing") != std::string::npos);
+  observer->Clear();
   filter->SetLevelModeToTargetTriangleCounts();
   filter->AddTargetTriangleCount(5);
   filter->AddTargetTriangleCount(10);
   filter->Update();
   MESHLOD_CHECK(observer->GetError());
   MESHLOD_CHECK(observer->GetErrorMessage().find("decreasing") != std::string::npos);
+  observer->Clear();
+  filter->RemoveAllTargetTriangleCounts();
+  filter->AddTargetTriangleCount(5);
+  filter->AddTargetTriangleCount(5);
+  filter->Update();
+  MESHLOD_CHECK(observer->GetError());
+  MESHLOD_CHECK(observer->GetErrorMessage().find("strictly decreasing") != std::string::npos);
   observer->Clear();
 
   // Baking with nothing to bake.
