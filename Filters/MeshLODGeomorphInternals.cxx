@@ -710,11 +710,28 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
   }
   const meshlod::CollapseSchedule& schedule = *this->Levels[level].Schedule;
   const Id steps = schedule.StepsForCount(count);
+  // Parity and single joins miss by a triangle or two; more means joins no order could make
+  // valid (a transition between levels far apart, whose clusters merge many points at once).
+  auto warnIfFar = [&](vtkIdType reached)
+  {
+    if (count - reached > std::max<vtkIdType>(3, count / 50))
+    {
+      vtkWarningWithObjectMacro(self,
+        "TargetNumberOfTriangles " << count << ": the nearest reachable count below it is "
+                                   << reached << " (between levels " << level << " and "
+                                   << level + 1 << ", of " << trianglesOf(level) << " and "
+                                   << trianglesOf(level + 1)
+                                   << " triangles, some collapses merge too many points at "
+                                      "once to be applied one point at a time; levels closer "
+                                      "together give finer steps).");
+    }
+  };
   if (steps < 0)
   {
     // Even the whole transition leaves more: the next level is the nearest count below.
     lod = level + 1;
     this->ProduceLevel(level + 1, output);
+    warnIfFar(trianglesOf(level + 1));
     return true;
   }
   const Id nextStep = schedule.NextRemovingStep(steps);
@@ -746,6 +763,7 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
     output->GetPointData());
   output->SetPolys(exact.Cells);
   output->GetCellData()->ShallowCopy(exact.CellData);
+  warnIfFar(exact.Cells->GetNumberOfCells());
   const double moved = nextStep > 0 ? fraction * (nextStep - steps) : 0.0;
   lod = level + (steps + moved) / std::max<Id>(1, schedule.NumberOfSteps());
   return true;

@@ -50,8 +50,10 @@
  * points of a cluster join in an order that keeps every intermediate mesh manifold (each join
  * is checked; where k sheets meet along a curve, as on a segmented volume's surfaces, the
  * merged point must keep k fans, and a join along the curve removes k triangles); a join that
- * no order can make valid is passed through and its count is not reachable. When the count is not reachable, the output has the largest reachable count
- * below it. Counts
+ * no order can make valid is passed through and its count is not reachable. When the count is
+ * not reachable, the output has the largest reachable count below it, with a warning when it is
+ * more than 2% (and 3 triangles) below: levels far apart (most of a level's triangles gone at
+ * once) merge clusters of many points, with gaps between the reachable counts. Counts
  * above the finest level's or below the coarsest level's are clamped to them, with a warning.
  * CollapseFraction geomorphs the next collapse: the points of the next step that removes
  * triangles (with the steps before it that remove none) are moved that fraction of the way to

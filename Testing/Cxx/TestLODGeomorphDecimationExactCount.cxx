@@ -20,10 +20,13 @@
 #include "MeshLODTestHierarchies.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkCommand.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
+#include "vtkSphereSource.h"
+#include "vtkTestErrorObserver.h"
 
 #include <algorithm>
 #include <array>
@@ -104,6 +107,8 @@ void TestEveryCount(
   MESHLOD_CHECK_EQ(ClosedMeshProblems(Level(h, 0), euler), std::string());
 
   vtkNew<vtkLODGeomorph> geomorph;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  geomorph->AddObserver(vtkCommand::WarningEvent, observer);
   geomorph->SetInputData(h);
   const vtkIdType coarsest = Level(h, n - 1)->GetNumberOfPolys();
   const vtkIdType finest = Level(h, 0)->GetNumberOfPolys();
@@ -127,6 +132,43 @@ void TestEveryCount(
             << " invalid\n";
   MESHLOD_CHECK_EQ(wrongCount, 0);
   MESHLOD_CHECK_EQ(invalid, 0);
+  MESHLOD_CHECK(!observer->GetWarning()); // every count reached: nothing to warn about
+}
+
+// Two levels far apart (97% of the triangles gone at once): clusters of many points, some of
+// whose joins no order makes valid one point at a time, so some counts are out of reach. The
+// output is the nearest count below, and a miss of more than parity says so (it was silent:
+// asked for 200, 120 came).
+void TestLevelsFarApart()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(16);
+  sphere->SetPhiResolution(16);
+  vtkNew<vtkTriangleCollapseDecimation> decimate;
+  decimate->SetInputConnection(sphere->GetOutputPort());
+  decimate->AddLevelReduction(0.97);
+  vtkNew<vtkLODGeomorph> geomorph;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  geomorph->AddObserver(vtkCommand::WarningEvent, observer);
+  geomorph->SetInputConnection(decimate->GetOutputPort());
+  int warned = 0, far = 0;
+  for (vtkIdType count = 20; count <= 440; count += 20)
+  {
+    observer->Clear();
+    geomorph->SetTargetNumberOfTriangles(count);
+    geomorph->Update();
+    const vtkIdType reached = geomorph->GetOutput()->GetNumberOfPolys();
+    MESHLOD_CHECK_LE(reached, count);
+    const bool missed = count - reached > std::max<vtkIdType>(3, count / 50);
+    far += missed;
+    const bool said = observer->GetWarningMessage().find("nearest reachable count below it is " +
+                        std::to_string(reached)) != std::string::npos;
+    warned += said;
+    MESHLOD_CHECK_EQ(said, missed);
+  }
+  std::cerr << "levels far apart: " << far << " of 22 counts missed by more than parity, "
+            << warned << " warnings\n";
+  MESHLOD_CHECK_GT(far, 0); // the case this test is about
 }
 } // namespace
 
@@ -147,5 +189,6 @@ int TestLODGeomorphDecimationExactCount(int, char*[])
     testing::ResolutionForTriangles(testing::Field::Metaballs, 40000));
   TestEveryCount(larger, vtkTriangleCollapseDecimation::GREEDY,
     vtkTriangleCollapseDecimation::TRIANGLES_AND_EDGES, "parallel greedy rounds", 11);
+  TestLevelsFarApart();
   return testing::Result();
 }
