@@ -356,7 +356,7 @@ void BlendPointData(
     {
       continue;
     }
-    vtkAbstractArray* b = Counterpart(coarse, a);
+    vtkAbstractArray* b = a == plan.Unblended ? nullptr : Counterpart(coarse, a);
     vtkSmartPointer<vtkAbstractArray> result;
     if (sameRows && (plan.Weight == 0.0 || !b || (!IsReal(a) && plan.Weight < 0.5)))
     {

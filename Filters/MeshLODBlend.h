@@ -40,6 +40,8 @@ struct BlendPlan
   const double* Weights = nullptr; // per output point; null: `Weight` for every point
   double Weight = 0.0;
   ArrayPool* Pool = nullptr;       // where output arrays come from; null: new arrays
+  // An array of the finer level that keeps its own values (as if the coarser level lacked it).
+  vtkAbstractArray* Unblended = nullptr;
 
   double WeightOf(vtkIdType q) const { return this->Weights ? this->Weights[q] : this->Weight; }
 };

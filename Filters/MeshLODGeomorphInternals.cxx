@@ -92,6 +92,14 @@ bool ReadTriangles(vtkPolyData* poly, std::vector<Id>& triangles)
   return ok;
 }
 
+// The TCoords of a level with a texture atlas of its own (names::TextureAtlasLevel), or null.
+vtkAbstractArray* UnblendedTCoords(vtkPolyData* level)
+{
+  return level->GetFieldData()->GetAbstractArray(meshlod::names::TextureAtlasLevel)
+    ? level->GetPointData()->GetTCoords()
+    : nullptr;
+}
+
 std::vector<Id> ToIds(vtkDataArray* array)
 {
   std::vector<Id> ids(array->GetNumberOfTuples());
@@ -483,6 +491,7 @@ bool vtkLODGeomorph::Internals::ProducePartialCollapse(
   vtkSmartPointer<vtkDataArray> points =
     meshlod::BlendRealArray(poly->GetPoints()->GetData(), target, geometry, false);
   output->SetPoints(PointsFrom(points));
+  geometry.Unblended = UnblendedTCoords(poly);
   meshlod::BlendPointData(
     poly->GetPointData(), this->TargetData(level), geometry, output->GetPointData());
 
@@ -570,6 +579,7 @@ bool vtkLODGeomorph::Internals::ProduceNearestBlend(
     output->SetPoints(PointsFrom(points));
     output->SetPolys(poly->GetPolys());
     output->GetCellData()->ShallowCopy(poly->GetCellData());
+    plan.Unblended = UnblendedTCoords(poly);
     meshlod::BlendPointData(
       poly->GetPointData(), coarse->GetPointData(), plan, output->GetPointData());
     return true;
@@ -607,6 +617,7 @@ bool vtkLODGeomorph::Internals::ProduceNearestBlend(
   plan.NumberOfPoints = static_cast<vtkIdType>(merged.Source.size());
   plan.Source = merged.Source.data();
   output->SetPoints(PointsFrom(meshlod::BlendRealArray(finePoints, coarsePoints, plan, false)));
+  plan.Unblended = UnblendedTCoords(poly);
   meshlod::BlendPointData(
     poly->GetPointData(), coarse->GetPointData(), plan, output->GetPointData());
   output->SetPolys(merged.Cells);
@@ -759,6 +770,7 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
   output->SetPoints(
     PointsFrom(meshlod::BlendRealArray(poly->GetPoints()->GetData(), target, plan, false)));
   plan.Map = cache.TargetIds.data();
+  plan.Unblended = UnblendedTCoords(poly);
   meshlod::BlendPointData(poly->GetPointData(), this->Levels[level + 1].Poly->GetPointData(), plan,
     output->GetPointData());
   output->SetPolys(exact.Cells);

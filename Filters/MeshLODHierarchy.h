@@ -52,6 +52,10 @@ constexpr const char* NumberOfTriangles = "NumberOfTriangles";
 constexpr const char* EstimatedError = "EstimatedError";
 constexpr const char* MeasuredHausdorff = "MeasuredHausdorff";
 constexpr const char* MeasuredRMS = "MeasuredRMS";
+// Field data of a level whose TCoords address a texture of its own (vtkVertexClusterOctree's
+// baked atlases): the index of that texture. Such coordinates mean nothing on another level's
+// texture, so a geomorph never blends them.
+constexpr const char* TextureAtlasLevel = "TextureAtlasLevel";
 } // namespace names
 
 VTKFILTERSMESHLOD_EXPORT std::string LevelBlockName(int level);

@@ -38,6 +38,12 @@
  * levels is built once and kept until the input changes (GetNumberOfCorrespondenceBuilds()
  * counts the builds); changing L only recomputes the points and the merge.
  *
+ * @par Texture coordinates of baked atlases
+ * A level whose field data has TextureAtlasLevel (vtkVertexClusterOctree with BakeTexture) has
+ * TCoords that address a texture of its own: between levels i and i + 1 the output keeps level
+ * i's coordinates, unblended (blending two atlases gives meaningless ones), to be shown with
+ * level i's texture (block floor(L) of the octree's texture output, ActualLevelOfDetail).
+ *
  * @par Exact triangle count (TargetNumberOfTriangles >= 0, needs the morph arrays)
  * The output has exactly TargetNumberOfTriangles triangles when that count is reachable. A
  * count equal to a level's own gives that level itself; otherwise the transition from the

@@ -10,10 +10,12 @@
 #include "vtkAlgorithmOutput.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -39,6 +41,16 @@ struct LevelRequest
   double Epsilon = 0.0;
   vtkIdType Count = 0;
 };
+
+// Mark `level`'s TCoords as addressing texture `texture` of output port 1 (see
+// names::TextureAtlasLevel: a geomorph keeps them unblended).
+void MarkAtlasLevel(vtkPolyData* level, int texture)
+{
+  vtkNew<vtkIntArray> mark;
+  mark->SetName(meshlod::names::TextureAtlasLevel);
+  mark->InsertNextValue(texture);
+  level->GetFieldData()->AddArray(mark);
+}
 
 // Area-weighted point normals of a mesh (unit length; zero where every triangle is degenerate).
 std::vector<float> PointNormals(const meshlod::TriangleMesh& mesh)
@@ -451,6 +463,10 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   if (this->BakeTexture)
   {
     textures->SetBlock(0, texture && inputTCoords ? texture : nullptr);
+    if (texture && inputTCoords)
+    {
+      MarkAtlasLevel(builder.GetLevel(0), 0);
+    }
   }
   this->UpdateProgress(0.1);
 
@@ -562,6 +578,7 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
       }
       poly->GetPointData()->SetTCoords(tcoords);
       textures->SetBlock(static_cast<unsigned int>(i + 1), baker.Bake(level.Mesh, atlas));
+      MarkAtlasLevel(poly, static_cast<int>(i + 1));
     }
 
     previousPoints = static_cast<Id>(poly->GetNumberOfPoints());

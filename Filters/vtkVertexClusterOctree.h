@@ -109,7 +109,9 @@
  * Each texel takes the colour of the nearest point of the input surface: the colour array
  * interpolated there, or the input texture looked up at the interpolated texture coordinates.
  * The level's points are then split per texture square (so MorphTargetId refers to the first
- * copy of each point) and get texture coordinates as their TCoords attribute. Without
+ * copy of each point) and get texture coordinates as their TCoords attribute; the level's field
+ * data TextureAtlasLevel gives the index of the texture they address (vtkLODGeomorph keeps such
+ * coordinates unblended, the finer level's, for the finer level's texture). Without
  * BakeTexture, colours and texture coordinates are averaged per vertex like any point array.
  *
  * The passes run with vtkSMPTools; the output is the same for every thread count.

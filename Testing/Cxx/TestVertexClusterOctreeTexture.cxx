@@ -4,12 +4,14 @@
 #include "MeshLODHierarchy.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
+#include "vtkLODGeomorph.h"
 #include "vtkVertexClusterOctree.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkGenericCell.h"
 #include "vtkImageData.h"
@@ -31,6 +33,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <set>
 
 namespace
 {
@@ -364,6 +367,51 @@ void TestColorArray()
             << ", per-vertex average " << perVertex << "\n";
   MESHLOD_CHECK_LT(baked, 4.0);
   MESHLOD_CHECK_LT(baked, 0.2 * perVertex);
+
+  // Each baked level's TCoords address its own texture, and say so; a geomorph between two such
+  // levels keeps the finer level's (blending them mixed two atlases: meaningless coordinates).
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    vtkDataArray* mark = vtkPolyData::SafeDownCast(h->GetBlock(i))
+                           ->GetFieldData()
+                           ->GetArray(meshlod::names::TextureAtlasLevel);
+    MESHLOD_CHECK(mark != nullptr && mark->GetTuple1(0) == i);
+  }
+  auto* fine = vtkPolyData::SafeDownCast(h->GetBlock(1));
+  for (const bool exact : { false, true })
+  {
+    vtkNew<vtkLODGeomorph> geomorph;
+    geomorph->SetInputData(h);
+    geomorph->SetLevelOfDetail(1.5);
+    if (exact)
+    {
+      geomorph->SetTargetNumberOfTriangles(
+        (fine->GetNumberOfPolys() + level->GetNumberOfPolys()) / 2);
+    }
+    geomorph->Update();
+    vtkPolyData* out = geomorph->GetOutput();
+    vtkDataArray* tcoords = out->GetPointData()->GetTCoords();
+    MESHLOD_CHECK(tcoords != nullptr);
+    if (!tcoords)
+    {
+      continue;
+    }
+    // Every output point's coordinates are those of a point of level 1 at its own position
+    // in level 1's atlas: the output's triangles sample level 1's texture where level 1 does.
+    std::set<std::array<float, 2>> atlas;
+    for (vtkIdType p = 0; p < fine->GetNumberOfPoints(); ++p)
+    {
+      const double* uv = fine->GetPointData()->GetTCoords()->GetTuple2(p);
+      atlas.insert({ static_cast<float>(uv[0]), static_cast<float>(uv[1]) });
+    }
+    vtkIdType foreign = 0;
+    for (vtkIdType p = 0; p < tcoords->GetNumberOfTuples(); ++p)
+    {
+      const double* uv = tcoords->GetTuple2(p);
+      foreign += atlas.count({ static_cast<float>(uv[0]), static_cast<float>(uv[1]) }) == 0;
+    }
+    MESHLOD_CHECK_EQ(foreign, 0);
+  }
 }
 
 //------------------------------------------------------------------------------
