@@ -254,6 +254,7 @@ void WarnAboutReservedNames(vtkPolyData* input, vtkObject* caller)
 struct HierarchyBuilder::Internals
 {
   std::vector<vtkSmartPointer<vtkPolyData>> Levels;
+  vtkSmartPointer<vtkFieldData> InputFieldData; // passed to every level by Finish
 };
 
 HierarchyBuilder::HierarchyBuilder()
@@ -305,12 +306,14 @@ void HierarchyBuilder::SetLevelZero(const InputMesh& input)
   }
   SetLevelFieldData(level0, 0, 0.0);
   this->Impl->Levels.push_back(level0);
+  this->Impl->InputFieldData = source->GetFieldData();
 }
 
 //------------------------------------------------------------------------------
 void HierarchyBuilder::SetEmptyLevelZero(vtkPolyData* input)
 {
   this->Impl->Levels.clear();
+  this->Impl->InputFieldData = input ? input->GetFieldData() : nullptr;
   auto level0 = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
   if (input != nullptr && input->GetPoints() != nullptr)
@@ -414,8 +417,20 @@ void HierarchyBuilder::Finish(vtkMultiBlockDataSet* output)
 {
   output->Initialize();
   output->SetNumberOfBlocks(static_cast<unsigned int>(this->Impl->Levels.size()));
+  vtkFieldData* passed = this->Impl->InputFieldData;
   for (size_t i = 0; i < this->Impl->Levels.size(); ++i)
   {
+    // The input's field data (metadata, as VTK filters pass it on), shared, on every level; a
+    // level's own arrays (LevelIndex, NumberOfTriangles, ...) keep their names.
+    vtkFieldData* fd = this->Impl->Levels[i]->GetFieldData();
+    for (int a = 0; passed && a < passed->GetNumberOfArrays(); ++a)
+    {
+      vtkAbstractArray* array = passed->GetAbstractArray(a);
+      if (array && array->GetName() && !fd->GetAbstractArray(array->GetName()))
+      {
+        fd->AddArray(array);
+      }
+    }
     output->SetBlock(static_cast<unsigned int>(i), this->Impl->Levels[i]);
     output->GetMetaData(static_cast<unsigned int>(i))
       ->Set(vtkCompositeDataSet::NAME(), LevelBlockName(static_cast<int>(i)).c_str());

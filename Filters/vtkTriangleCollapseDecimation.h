@@ -123,7 +123,8 @@
  *   coarser level) and CollapseRank (the order in which the points move when only part of the
  *   transition is applied, -1 for points that do not move);
  * - field data LevelIndex, NumberOfTriangles, EstimatedError and, with ComputeLevelError on,
- *   MeasuredHausdorff and MeasuredRMS. EstimatedError is the filter's own estimate: the largest
+ *   MeasuredHausdorff and MeasuredRMS, plus the input's field-data arrays (shared; one named
+ *   like a level's own is left out). EstimatedError is the filter's own estimate: the largest
  *   RMS distance of a vertex to the original planes merged into it. It is not a bound. The
  *   measured values are symmetric surface distances to level 0 found by sampling; they are
  *   measurements, and a finer sampling can only raise the Hausdorff value.

@@ -412,10 +412,13 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
         : in.Source->GetPointData()->GetScalars();
       if (colors == nullptr)
       {
-        problem = this->ColorArrayName
-          ? std::string("the input has no point array named ") + this->ColorArrayName
-          : std::string("the input has neither texture coordinates with a texture on port 1 "
-                        "nor colour scalars");
+        const bool other = this->ColorArrayName &&
+          in.Source->GetPointData()->GetAbstractArray(this->ColorArrayName) != nullptr;
+        problem = !this->ColorArrayName
+          ? std::string("the input has neither texture coordinates with a texture on port 1 "
+                        "nor colour scalars")
+          : std::string(other ? "the input's point array " : "the input has no point array ") +
+            "named " + this->ColorArrayName + (other ? " is not numeric (a data array)" : "");
       }
       else
       {

@@ -96,7 +96,8 @@
  * every level (floating-point arrays averaged over the cluster's input vertices, integer arrays
  * from the dominant one), cell data from the input triangle each triangle descends from, field
  * data LevelIndex, NumberOfTriangles, EstimatedError (the largest cluster error of the level)
- * and, with MeasureLevelErrors, MeasuredHausdorff and MeasuredRMS; every level but the last
+ * and, with MeasureLevelErrors, MeasuredHausdorff and MeasuredRMS, plus the input's field-data
+ * arrays (shared; one named like a level's own is left out); every level but the last
  * carries MorphTarget, MorphTargetId and CollapseRank (clusters ordered by error: the points of
  * one cluster share a rank; -1 for points whose cluster did not change).
  *

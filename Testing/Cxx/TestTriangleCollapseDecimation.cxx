@@ -269,6 +269,14 @@ void TestPointData()
     side->InsertNextValue(surface->GetPoint(p)[0] < 0.0 ? 7 : 9);
   }
   surface->GetPointData()->AddArray(side);
+  // Field data (metadata) is passed to every level, but for a name the levels use themselves.
+  vtkNew<vtkIntArray> run, clash;
+  run->SetName("RunNumber");
+  run->InsertNextValue(42);
+  clash->SetName(names::LevelIndex);
+  clash->InsertNextValue(-5);
+  surface->GetFieldData()->AddArray(run);
+  surface->GetFieldData()->AddArray(clash);
   vtkNew<vtkTriangleCollapseDecimation> filter;
   filter->SetInputData(surface);
   filter->SetNumberOfLevels(3);
@@ -280,6 +288,9 @@ void TestPointData()
   for (unsigned int i = 0; i < h->GetNumberOfBlocks(); ++i)
   {
     vtkPolyData* level = Level(h, i);
+    vtkDataArray* passed = level->GetFieldData()->GetArray("RunNumber");
+    MESHLOD_CHECK(passed != nullptr && passed->GetTuple1(0) == 42.0);
+    MESHLOD_CHECK_EQ(Field(level, names::LevelIndex), static_cast<double>(i));
     vtkPointData* pd = level->GetPointData();
     MESHLOD_CHECK(pd->GetNormals() != nullptr);
     MESHLOD_CHECK(pd->GetScalars() != nullptr);

@@ -228,6 +228,10 @@ vtkSmartPointer<vtkPolyData> DecoratedMetaballs()
 void TestHierarchy()
 {
   vtkSmartPointer<vtkPolyData> mesh = DecoratedMetaballs();
+  vtkNew<vtkIntArray> run; // field data: passed to every level
+  run->SetName("RunNumber");
+  run->InsertNextValue(42);
+  mesh->GetFieldData()->AddArray(run);
   vtkNew<vtkVertexClusterOctree> filter;
   filter->SetInputData(mesh);
   filter->SetNumberOfLevels(4);
@@ -238,6 +242,10 @@ void TestHierarchy()
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
   MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 5u);
   MESHLOD_CHECK(CheckHierarchyLayout(h, true).empty());
+  for (unsigned int i = 0; i < h->GetNumberOfBlocks(); ++i)
+  {
+    MESHLOD_CHECK(Level(h, i)->GetFieldData()->GetArray("RunNumber") != nullptr);
+  }
   CheckTriangles(h);
   const unsigned int levels = h->GetNumberOfBlocks();
   const double diagonal = mesh->GetLength();
