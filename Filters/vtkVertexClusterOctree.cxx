@@ -35,6 +35,10 @@ using meshlod::Id;
 using meshlod::InvalidId;
 
 // One level to make: by epsilon (world units) or by triangle count.
+// The bounding-box diagonals the octree accepts (see RequestData).
+constexpr double MinimumDiagonal = 1e-30;
+constexpr double MaximumDiagonal = 1e30;
+
 struct LevelRequest
 {
   bool ByCount = false;
@@ -392,6 +396,20 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
     return 1;
   }
   meshlod::WarnAboutReservedNames(input, this);
+  // Cluster errors and their thresholds are kept in single precision (4 bytes a node): beyond
+  // about 1e38 they overflow and nothing merges (every level was the input again), below 1e-38
+  // they vanish. A diagonal (the unit of RelativeUnits) is held well inside that range.
+  const double diagonal = in.Mesh.BoundingDiagonal();
+  if (diagonal > MaximumDiagonal || (diagonal > 0.0 && diagonal < MinimumDiagonal))
+  {
+    vtkErrorMacro("The input's bounding-box diagonal, " << diagonal << ", is outside ["
+                                                        << MinimumDiagonal << ", "
+                                                        << MaximumDiagonal
+                                                        << "], the range the cluster errors "
+                                                           "hold (single precision); scale the "
+                                                           "input first (vtkTransformFilter).");
+    return 0;
+  }
 
   // The colour source for baking: the input texture at its texture coordinates, else a colour
   // array.

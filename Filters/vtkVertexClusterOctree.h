@@ -77,7 +77,8 @@
  * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input
  * gives a hierarchy of one empty level, without error; polygons and strips are triangulated; vertex and line
  * cells are ignored with a warning; NaN or infinite points and point ids out of range are an
- * error (no output); arrays whose tuple count is not the number of points or cells are ignored
+ * error (no output), and so is a bounding-box diagonal outside [1e-30, 1e30] (cluster errors
+ * are kept in single precision); arrays whose tuple count is not the number of points or cells are ignored
  * with a warning; points on boundary or non-manifold edges that coincide up to rounding (1e-12
  * of the bounding diagonal) and carry the same point data are stitched (an attribute seam stays
  * open, with a warning); triangles wound against the rest of their connected part are

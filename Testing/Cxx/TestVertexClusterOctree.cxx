@@ -959,6 +959,25 @@ void TestSettingsAndErrors()
   MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
   observer->Clear();
 
+  // Coordinates beyond what single-precision cluster errors hold: an error (every level was
+  // the input again at 1e45).
+  for (const double scale : { 1e35, 1e-35 })
+  {
+    vtkSmartPointer<vtkPolyData> huge = testing::MakeGrid(4, 4);
+    for (vtkIdType p = 0; p < huge->GetNumberOfPoints(); ++p)
+    {
+      double x[3];
+      huge->GetPoint(p, x);
+      huge->GetPoints()->SetPoint(p, scale * x[0], scale * x[1], scale * x[2]);
+    }
+    filter->SetInputData(huge);
+    filter->Update();
+    MESHLOD_CHECK(observer->GetError());
+    MESHLOD_CHECK(observer->GetErrorMessage().find("bounding-box diagonal") != std::string::npos);
+    MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
+    observer->Clear();
+  }
+
   // Bad level lists.
   filter->SetInputData(testing::MakeGrid(4, 4));
   filter->SetLevelModeToEpsilonList();
