@@ -193,9 +193,10 @@ struct OctreeClustering::Internals
   std::vector<Id> PointVertexCount;
   double CurrentEpsilon = 0.0;
   std::vector<Id> ClusterOfVertex;
-  // Per point of the current level: its connected piece (the piece's smallest point), for
+  // Per point of the current level: its connected piece (0 .. PreviousPieces - 1), for
   // MarkBreaks.
   std::vector<std::uint32_t> PreviousPiece;
+  std::uint32_t PreviousPieces = 0;
 
   Internals(const TriangleMesh& mesh,
     const TriangleTopology& topology,

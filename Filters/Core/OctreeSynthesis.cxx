@@ -75,11 +75,16 @@ void OctreeClustering::Internals::LabelPreviousPieces()
   {
     pieces.JoinTriangle(tri + 3 * t);
   }
+  // Numbered 0, 1, ... in the order of their smallest point (a root comes before the rest of
+  // its piece), so that MarkBreaks needs one entry per piece, not per point.
   this->PreviousPiece.resize(points);
+  std::uint32_t count = 0;
   for (Id p = 0; p < points; ++p)
   {
-    this->PreviousPiece[p] = static_cast<std::uint32_t>(pieces.Root(p));
+    const Id root = pieces.Root(p);
+    this->PreviousPiece[p] = root == p ? count++ : this->PreviousPiece[root];
   }
+  this->PreviousPieces = count;
 }
 
 //------------------------------------------------------------------------------
@@ -349,8 +354,8 @@ Id OctreeClustering::Internals::MarkBreaks(Synthesis& s)
   // A previous piece is broken when its clusters that keep triangles lie in two kept pieces.
   // (A cluster's previous points are connected: they lie in one previous piece.)
   const Id previousPoints = this->PreviousPoints();
-  std::vector<Id> keptPiece(previousPoints, InvalidId); // by previous piece
-  std::vector<unsigned char> broken(previousPoints, 0);
+  std::vector<Id> keptPiece(this->PreviousPieces, InvalidId); // by previous piece
+  std::vector<unsigned char> broken(this->PreviousPieces, 0);
   bool any = false;
   for (Id p = 0; p < previousPoints; ++p)
   {
