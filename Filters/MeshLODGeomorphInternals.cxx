@@ -312,7 +312,8 @@ std::string vtkLODGeomorph::Internals::Prepare(
     // right length.
     auto* poly = vtkPolyData::SafeDownCast(input->GetBlock(i));
     const vtkIdType points = poly->GetNumberOfPoints();
-    for (vtkCellArray* cells : { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
+    for (vtkCellArray* cells :
+      { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
     {
       const vtkIdType bad = meshlod::FirstCellWithBadId(cells, points);
       if (bad >= 0)

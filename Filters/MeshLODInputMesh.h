@@ -80,7 +80,8 @@ VTKFILTERSMESHLOD_EXPORT InputStatus ReadInputMesh(
 /// The first cell of `cells` (may be null) that refers to a point id outside
 /// [0, numberOfPoints), or -1. Every id is read (a data array's cached range can miss values
 /// edited in place).
-VTKFILTERSMESHLOD_EXPORT vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints);
+VTKFILTERSMESHLOD_EXPORT vtkIdType FirstCellWithBadId(
+  vtkCellArray* cells, vtkIdType numberOfPoints);
 
 /// Triangles as a vtkCellArray built in one go (32-bit storage, which halves its memory).
 VTKFILTERSMESHLOD_EXPORT vtkSmartPointer<vtkCellArray> MakeTriangleCells(

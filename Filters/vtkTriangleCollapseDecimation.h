@@ -107,11 +107,12 @@
  * geometrically down to (1 - TargetReduction) times the input's (8 levels to 1% gives 56%, 32%,
  * 18%, 10%, 5.6%, 3.2%, 1.8% and 1%). AddLevelReduction() gives the reductions explicitly
  * instead. Targets that round to the same count, or that one collapse passes together (more
- * levels than a small mesh has collapses to spread them over), give one level. MaximumError (world units) stops early when the next collapse's estimated error
- * exceeds it; the coarsest mesh reached is then the last level. A warning reports a coarsest
- * level short of its target, and a level whose estimated error jumps far beyond what the fall
- * in its triangle count explains (more than 8 times, from level 2 on): on a broken input, such
- * as a seam left open and locked, the last collapses forced by the count can distort it.
+ * levels than a small mesh has collapses to spread them over), give one level. MaximumError
+ * (world units) stops early when the next collapse's estimated error exceeds it; the coarsest
+ * mesh reached is then the last level. A warning reports a coarsest level short of its target,
+ * and a level whose estimated error jumps far beyond what the fall in its triangle count
+ * explains (more than 8 times, from level 2 on): on a broken input, such as a seam left open
+ * and locked, the last collapses forced by the count can distort it.
  *
  * What every level carries (array names in MeshLODHierarchy.h):
  * - every input point-data array; floating-point arrays interpolated with the barycentric

@@ -37,25 +37,25 @@
  * LevelMode:
  * - GeometricEpsilon (default): level i (1-based) uses epsilon Epsilon * EpsilonFactor^(i - 1);
  * - EpsilonList: one level per AddEpsilonValue() value (strictly increasing);
- * - TargetTriangleCounts: one level per AddTargetTriangleCount() value (strictly decreasing), epsilon
- *   found by a search; the count is met within 0.2% (or 2 triangles) where the cluster tree
- *   allows, and a miss by more than 2% (or 2 triangles) is reported by a warning naming the
- *   count reached and why: a count below what collapsing every mergeable cluster gives
- *   (clusters that would flip triangles, the vertices where curves of non-manifold edges meet
- *   or end, bow ties and separate components stop the merging; on a rough or noisy surface, splitting the clusters that fold adds back so
- *   many triangles that counts well above the target are all the search finds: a noisy
- *   terrain asked for 10% and 1% got 18% and 9%; when the trials miss, the one nearest the
+ * - TargetTriangleCounts: one level per AddTargetTriangleCount() value (strictly decreasing),
+ *   epsilon found by a search; the count is met within 0.2% (or 2 triangles) where the cluster tree
+ *   allows, and a miss by more than 2% (or 2 triangles) is reported by a warning naming the count
+ *   reached and why: a count below what collapsing every mergeable cluster gives (clusters that
+ *   would flip triangles, the vertices where curves of non-manifold edges meet or end, bow ties and
+ *   separate components stop the merging; on a rough or noisy surface, splitting the clusters that
+ *   fold adds back so many triangles that counts well above the target are all the search finds: a
+ *   noisy terrain asked for 10% and 1% got 18% and 9%; when the trials miss, the one nearest the
  *   target in ratio is kept, never a level cut at the octree's roots because it is nearer in
- *   difference, and when that one keeps a quarter or more above the target, the epsilon backs
- *   off to the smallest that keeps at most a tenth more triangles than it, or at most half
- *   more at under a quarter of its error (giving back at most three quarters of what the
- *   level removes from the one before): the search's epsilon merges all that may merge, at an
- *   error far beyond what a few more triangles need; on the surfaces of a segmented volume
- *   asked for 1%, whose curves merge only so far, 3,245 triangles at 0.79% Hausdorff distance
- *   instead of 2,423 at 4.6%); a count between two that consecutive epsilons give (levels cut one cluster
- *   tree, so counts move in steps of whole clusters; many clusters of exactly zero error, as in
- *   an exactly flat region, merge at any epsilon: bound the clusters with MaximumCellSize to
- *   keep more); a count at or above the previous level's (a level never refines).
+ *   difference, and when that one keeps a quarter or more above the target, the epsilon backs off
+ *   to the smallest that keeps at most a tenth more triangles than it, or at most half more at
+ *   under a quarter of its error (giving back at most three quarters of what the level removes from
+ *   the one before): the search's epsilon merges all that may merge, at an error far beyond what a
+ *   few more triangles need; on the surfaces of a segmented volume asked for 1%, whose curves merge
+ *   only so far, 3,245 triangles at 0.79% Hausdorff distance instead of 2,423 at 4.6%); a count
+ *   between two that consecutive epsilons give (levels cut one cluster tree, so counts move in
+ *   steps of whole clusters; many clusters of exactly zero error, as in an exactly flat region,
+ *   merge at any epsilon: bound the clusters with MaximumCellSize to keep more); a count at or
+ *   above the previous level's (a level never refines).
  * With RelativeUnits on (default) epsilon values and MaximumCellSize are fractions of the
  * input's bounding-box diagonal, otherwise world units. Levels nest: every cluster of a coarser
  * level is a union of clusters of the finer one (a coarser level cuts the same cluster tree
@@ -74,21 +74,21 @@
  * surface merged whole, a spike swallowed by the cluster around it) vanishes; a cluster whose
  * triangles all vanish sends its points to the nearest neighbouring cluster.
  *
- * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input
- * gives a hierarchy of one empty level, without error; polygons and strips are triangulated; vertex and line
- * cells are ignored with a warning; NaN or infinite points and point ids out of range are an
- * error (no output), and so is a bounding-box diagonal outside [1e-30, 1e30] (cluster errors
- * are kept in single precision); arrays whose tuple count is not the number of points or cells are ignored
- * with a warning; points on boundary or non-manifold edges that coincide up to rounding (1e-12
- * of the bounding diagonal) and carry the same point data are stitched (an attribute seam stays
- * open, with a warning); triangles wound against the rest of their connected part are
- * flipped (each orientable part keeps its majority orientation). Where k > 2 sheets meet along
- * a curve of non-manifold edges (the surfaces between the regions of a segmented volume), a
- * cluster may hold one open piece of one curve, with the curve going on outside it at both
- * ends, and every level keeps each curve with k triangles on each of its edges: the curves
- * shorten, no sheet or curve vanishes and no two are joined (a trial level where one would is
- * cut again below the clusters concerned, as for folds). The other non-manifold vertices,
- * where curves meet or end and bow ties, are locked: they never move or merge.
+ * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input gives
+ * a hierarchy of one empty level, without error; polygons and strips are triangulated; vertex and
+ * line cells are ignored with a warning; NaN or infinite points and point ids out of range are an
+ * error (no output), and so is a bounding-box diagonal outside [1e-30, 1e30] (cluster errors are
+ * kept in single precision); arrays whose tuple count is not the number of points or cells are
+ * ignored with a warning; points on boundary or non-manifold edges that coincide up to rounding
+ * (1e-12 of the bounding diagonal) and carry the same point data are stitched (an attribute seam
+ * stays open, with a warning); triangles wound against the rest of their connected part are flipped
+ * (each orientable part keeps its majority orientation). Where k > 2 sheets meet along a curve of
+ * non-manifold edges (the surfaces between the regions of a segmented volume), a cluster may hold
+ * one open piece of one curve, with the curve going on outside it at both ends, and every level
+ * keeps each curve with k triangles on each of its edges: the curves shorten, no sheet or curve
+ * vanishes and no two are joined (a trial level where one would is cut again below the clusters
+ * concerned, as for folds). The other non-manifold vertices, where curves meet or end and bow ties,
+ * are locked: they never move or merge.
  * Optional input (port 1): a vtkImageData texture (unsigned char RGB or RGBA scalars) for an
  * input with texture coordinates.
  *
@@ -188,8 +188,8 @@ public:
 
   ///@{
   /**
-   * The epsilon of each level in EPSILON_LIST mode, strictly increasing (same units as Epsilon). Values
-   * must be finite and not negative. Empty by default.
+   * The epsilon of each level in EPSILON_LIST mode, strictly increasing (same units as
+   * Epsilon). Values must be finite and not negative. Empty by default.
    */
   void AddEpsilonValue(double epsilon);
   void RemoveAllEpsilonValues();
@@ -199,8 +199,8 @@ public:
 
   ///@{
   /**
-   * The triangle count of each level in TARGET_TRIANGLE_COUNTS mode, strictly decreasing, each at least
-   * 1. Empty by default.
+   * The triangle count of each level in TARGET_TRIANGLE_COUNTS mode, strictly decreasing, each
+   * at least 1. Empty by default.
    */
   void AddTargetTriangleCount(vtkIdType count);
   void RemoveAllTargetTriangleCounts();

@@ -194,9 +194,10 @@ struct OctreeClustering::Internals
   double CurrentEpsilon = 0.0;
   std::vector<Id> ClusterOfVertex;
   // Per point of the current level: its connected piece (0 .. PreviousPieces - 1), for
-  // MarkBreaks.
+  // MarkBreaks; empty when there is one piece.
   std::vector<std::uint32_t> PreviousPiece;
   std::uint32_t PreviousPieces = 0;
+  Id PieceOf(Id p) const { return this->PreviousPiece.empty() ? 0 : this->PreviousPiece[p]; }
 
   Internals(const TriangleMesh& mesh,
     const TriangleTopology& topology,

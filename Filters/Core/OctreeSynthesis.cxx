@@ -85,6 +85,10 @@ void OctreeClustering::Internals::LabelPreviousPieces()
     this->PreviousPiece[p] = root == p ? count++ : this->PreviousPiece[root];
   }
   this->PreviousPieces = count;
+  if (count <= 1)
+  {
+    std::vector<std::uint32_t>().swap(this->PreviousPiece); // one piece: PieceOf says 0
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -362,7 +366,7 @@ Id OctreeClustering::Internals::MarkBreaks(Synthesis& s)
     const Id k = s.PointCluster[p];
     if (alive[k])
     {
-      const Id piece = this->PreviousPiece[p], now = after.Root(k);
+      const Id piece = this->PieceOf(p), now = after.Root(k);
       if (keptPiece[piece] == InvalidId)
       {
         keptPiece[piece] = now;
@@ -386,7 +390,7 @@ Id OctreeClustering::Internals::MarkBreaks(Synthesis& s)
     const Id* tri = prev + 3 * t;
     const Id k[3] = { s.PointCluster[tri[0]], s.PointCluster[tri[1]], s.PointCluster[tri[2]] };
     const Id now = after.Root(k[0]);
-    if (broken[this->PreviousPiece[tri[0]]] &&
+    if (broken[this->PieceOf(tri[0])] &&
       (after.Root(k[1]) != now || after.Root(k[2]) != now))
     {
       straddling.insert(straddling.end(), k, k + 3);
