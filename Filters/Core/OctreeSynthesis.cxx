@@ -840,8 +840,13 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
     // passes of the gradual kind.)
     this->SplitFully = pass >= this->Options.FlipPasses;
     const Id folds = this->MarkFolds(s); // before the pinches, which may make marks lasting
-    const Id marked =
-      folds + this->MarkFins(s) + this->MarkPinches(s) + this->MarkBreaks(s);
+    Id marked = folds + this->MarkFins(s) + this->MarkPinches(s);
+    if (marked == 0)
+    {
+      // Breaks last, once the level is otherwise clean (a serial pass over the triangles: once
+      // or twice per trial instead of on every pass).
+      marked = this->MarkBreaks(s);
+    }
     if (marked == 0)
     {
       break;
