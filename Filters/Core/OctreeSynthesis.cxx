@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 
 namespace meshlod
 {
@@ -30,27 +31,16 @@ std::vector<Id> ClustersOf(const Synthesis& s, Flagged flagged)
   return clusters;
 }
 
-// Union-find over 0..n-1 (path halving; each root the smallest of its set).
+// Union-find over 0..n-1 (FindRoot's forest; each root the smallest of its set).
 struct Pieces
 {
   std::vector<Id> Up;
   explicit Pieces(Id n)
     : Up(n)
   {
-    for (Id k = 0; k < n; ++k)
-    {
-      this->Up[k] = k;
-    }
+    std::iota(this->Up.begin(), this->Up.end(), Id(0));
   }
-  Id Root(Id k)
-  {
-    while (this->Up[k] != k)
-    {
-      this->Up[k] = this->Up[this->Up[k]];
-      k = this->Up[k];
-    }
-    return k;
-  }
+  Id Root(Id k) { return FindRoot(this->Up, k); }
   void JoinTriangle(const Id* tri)
   {
     for (int c = 1; c < 3; ++c)

@@ -959,6 +959,15 @@ void TestSettingsAndErrors()
   MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
   observer->Clear();
 
+  // An error whose message holds `text`, then the observer cleared.
+  auto expectError = [&](const char* text)
+  {
+    filter->Update();
+    MESHLOD_CHECK(observer->GetError());
+    MESHLOD_CHECK(observer->GetErrorMessage().find(text) != std::string::npos);
+    observer->Clear();
+  };
+
   // Coordinates beyond what single-precision cluster errors hold: an error (every level was
   // the input again at 1e45).
   for (const double scale : { 1e35, 1e-35 })
@@ -971,47 +980,29 @@ void TestSettingsAndErrors()
       huge->GetPoints()->SetPoint(p, scale * x[0], scale * x[1], scale * x[2]);
     }
     filter->SetInputData(huge);
-    filter->Update();
-    MESHLOD_CHECK(observer->GetError());
-    MESHLOD_CHECK(observer->GetErrorMessage().find("bounding-box diagonal") != std::string::npos);
+    expectError("bounding-box diagonal");
     MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
-    observer->Clear();
   }
 
   // Bad level lists.
   filter->SetInputData(testing::MakeGrid(4, 4));
   filter->SetLevelModeToEpsilonList();
-  filter->Update();
-  MESHLOD_CHECK(observer->GetError());
-  MESHLOD_CHECK(observer->GetErrorMessage().find("AddEpsilonValue") != std::string::npos);
-  observer->Clear();
+  expectError("AddEpsilonValue");
   filter->AddEpsilonValue(0.2);
   filter->AddEpsilonValue(0.1);
-  filter->Update();
-  MESHLOD_CHECK(observer->GetError());
-  MESHLOD_CHECK(observer->GetErrorMessage().find("increasing") != std::string::npos);
-  observer->Clear();
+  expectError("increasing");
   filter->RemoveAllEpsilonValues(); // the same value twice would make the same level twice
   filter->AddEpsilonValue(0.1);
   filter->AddEpsilonValue(0.1);
-  filter->Update();
-  MESHLOD_CHECK(observer->GetError());
-  MESHLOD_CHECK(observer->GetErrorMessage().find("strictly increasing") != std::string::npos);
-  observer->Clear();
+  expectError("strictly increasing");
   filter->SetLevelModeToTargetTriangleCounts();
   filter->AddTargetTriangleCount(5);
   filter->AddTargetTriangleCount(10);
-  filter->Update();
-  MESHLOD_CHECK(observer->GetError());
-  MESHLOD_CHECK(observer->GetErrorMessage().find("decreasing") != std::string::npos);
-  observer->Clear();
+  expectError("decreasing");
   filter->RemoveAllTargetTriangleCounts();
   filter->AddTargetTriangleCount(5);
   filter->AddTargetTriangleCount(5);
-  filter->Update();
-  MESHLOD_CHECK(observer->GetError());
-  MESHLOD_CHECK(observer->GetErrorMessage().find("strictly decreasing") != std::string::npos);
-  observer->Clear();
+  expectError("strictly decreasing");
 
   // Baking with nothing to bake.
   filter->SetLevelModeToGeometricEpsilon();
