@@ -120,22 +120,74 @@ SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
   return samples;
 }
 
-// A locator over the triangles alone (polydata with only the polys).
-vtkSmartPointer<vtkStaticCellLocator> Locate(vtkPolyData* mesh)
+// Closest-point queries on a mesh's surface. vtkTriangle finds no closest point on a triangle of
+// zero area (it reports an infinite distance), so the edges of (nearly) degenerate triangles get
+// a second locator of line cells: the distance to a triangle's edge is never less than the
+// distance to the triangle, so taking the smaller of both answers is exact for every triangle.
+struct SurfaceLocator
 {
+  vtkSmartPointer<vtkStaticCellLocator> Triangles;
+  vtkSmartPointer<vtkStaticCellLocator> DegenerateEdges; // null when there are none
+};
+
+bool NearlyDegenerate(vtkPoints* points, const vtkIdType* ids)
+{
+  double x[3][3];
+  for (int k = 0; k < 3; ++k)
+  {
+    points->GetPoint(ids[k], x[k]);
+  }
+  double e[3][3], longest2 = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    vtkMath::Subtract(x[(k + 1) % 3], x[k], e[k]);
+    longest2 = std::max(longest2, vtkMath::Dot(e[k], e[k]));
+  }
+  double normal[3];
+  vtkMath::Cross(e[0], e[1], normal);
+  // Relative threshold: slivers whose area is below 1e-9 of the square of their longest edge.
+  return vtkMath::Norm(normal) <= 1e-9 * longest2;
+}
+
+SurfaceLocator Locate(vtkPolyData* mesh, const std::vector<vtkIdType>& triangles)
+{
+  SurfaceLocator result;
   vtkNew<vtkPolyData> surface;
   surface->SetPoints(mesh->GetPoints());
   surface->SetPolys(mesh->GetPolys());
-  auto locator = vtkSmartPointer<vtkStaticCellLocator>::New();
-  locator->SetDataSet(surface);
-  locator->BuildLocator();
-  return locator;
+  result.Triangles = vtkSmartPointer<vtkStaticCellLocator>::New();
+  result.Triangles->SetDataSet(surface);
+  result.Triangles->BuildLocator();
+
+  vtkNew<vtkCellArray> edges;
+  for (size_t t = 0; t < triangles.size(); t += 3)
+  {
+    if (NearlyDegenerate(mesh->GetPoints(), triangles.data() + t))
+    {
+      for (size_t k = 0; k < 3; ++k)
+      {
+        const vtkIdType edge[2] = { triangles[t + k], triangles[t + (k + 1) % 3] };
+        edges->InsertNextCell(2, edge);
+      }
+    }
+  }
+  if (edges->GetNumberOfCells() > 0)
+  {
+    vtkNew<vtkPolyData> lines;
+    lines->SetPoints(mesh->GetPoints());
+    lines->SetLines(edges);
+    result.DegenerateEdges = vtkSmartPointer<vtkStaticCellLocator>::New();
+    result.DegenerateEdges->SetDataSet(lines);
+    result.DegenerateEdges->BuildLocator();
+  }
+  return result;
 }
 
 // Distances from samples to a surface: the maximum over all samples and the sum of squares over
-// the area samples. Per-sample distances are stored first so the reduction order (and so the
-// result) does not depend on the thread count.
-void DistancesTo(vtkStaticCellLocator* locator, const SampleSet& samples, double& maximum,
+// the area samples (over all samples for a surface of zero area, which has vertex samples only).
+// Per-sample distances are stored first so the reduction order (and so the result) does not
+// depend on the thread count.
+void DistancesTo(const SurfaceLocator& locator, const SampleSet& samples, double& maximum,
   double& sumOfSquares)
 {
   const vtkIdType count = static_cast<vtkIdType>(samples.Positions.size() / 3);
@@ -145,21 +197,46 @@ void DistancesTo(vtkStaticCellLocator* locator, const SampleSet& samples, double
     vtkGenericCell* cell = cells.Local();
     for (vtkIdType i = begin; i < end; ++i)
     {
+      const double* x = samples.Positions.data() + 3 * i;
       double closest[3];
-      vtkIdType cellId;
+      vtkIdType cellId = -1;
       int subId;
-      double dist2 = 0.0;
-      locator->FindClosestPoint(samples.Positions.data() + 3 * i, closest, cell, cellId, subId, dist2);
+      double dist2 = VTK_DOUBLE_MAX;
+      locator.Triangles->FindClosestPoint(x, closest, cell, cellId, subId, dist2);
+      if (cellId < 0 || !std::isfinite(dist2))
+      {
+        dist2 = VTK_DOUBLE_MAX;
+      }
+      if (locator.DegenerateEdges)
+      {
+        double edge2 = VTK_DOUBLE_MAX;
+        cellId = -1;
+        locator.DegenerateEdges->FindClosestPoint(x, closest, cell, cellId, subId, edge2);
+        if (cellId >= 0 && std::isfinite(edge2))
+        {
+          dist2 = std::min(dist2, edge2);
+        }
+      }
       distance[i] = std::sqrt(dist2);
     }
   });
   maximum = count > 0 ? *std::max_element(distance.begin(), distance.end()) : 0.0;
+  const vtkIdType squared = samples.AreaSamples > 0 ? samples.AreaSamples : count;
   double sum = 0.0;
-  for (vtkIdType i = 0; i < samples.AreaSamples; ++i)
+  for (vtkIdType i = 0; i < squared; ++i)
   {
     sum += distance[i] * distance[i];
   }
   sumOfSquares = sum;
+}
+
+// The number of samples RMS averages over (see DistancesTo).
+double SquaredSampleCount(const SampleSet& samples)
+{
+  const std::int64_t count = samples.AreaSamples > 0
+    ? samples.AreaSamples
+    : static_cast<std::int64_t>(samples.Positions.size() / 3);
+  return static_cast<double>(std::max<std::int64_t>(1, count));
 }
 } // namespace
 
@@ -171,7 +248,7 @@ struct SurfaceDistanceMeter::Internals
   double Diagonal = 0.0;
   bool Empty = true;
   SampleSet Samples;
-  vtkSmartPointer<vtkStaticCellLocator> Locator;
+  SurfaceLocator Locator;
 };
 
 SurfaceDistanceMeter::SurfaceDistanceMeter(vtkPolyData* reference, const SurfaceDistanceOptions& options)
@@ -189,7 +266,7 @@ SurfaceDistanceMeter::SurfaceDistanceMeter(vtkPolyData* reference, const Surface
   if (!this->Impl->Empty)
   {
     this->Impl->Samples = Sample(reference, triangles, options, options.Seed);
-    this->Impl->Locator = Locate(reference);
+    this->Impl->Locator = Locate(reference, triangles);
   }
 }
 
@@ -212,11 +289,11 @@ SurfaceDistance SurfaceDistanceMeter::Measure(vtkPolyData* other) const
   const SampleSet& samplesA = this->Impl->Samples;
   const SampleSet samplesB = Sample(other, triangles, options, SplitMix64(options.Seed));
   double sumAB = 0.0, sumBA = 0.0;
-  DistancesTo(Locate(other), samplesA, result.MaxAB, sumAB);
+  DistancesTo(Locate(other, triangles), samplesA, result.MaxAB, sumAB);
   DistancesTo(this->Impl->Locator, samplesB, result.MaxBA, sumBA);
 
-  const double nA = static_cast<double>(std::max<std::int64_t>(1, samplesA.AreaSamples));
-  const double nB = static_cast<double>(std::max<std::int64_t>(1, samplesB.AreaSamples));
+  const double nA = SquaredSampleCount(samplesA);
+  const double nB = SquaredSampleCount(samplesB);
   result.RmsAB = std::sqrt(sumAB / nA);
   result.RmsBA = std::sqrt(sumBA / nB);
   result.Hausdorff = std::max(result.MaxAB, result.MaxBA);

@@ -2,13 +2,14 @@
 //
 // Each surface is sampled area-uniformly (a fixed seed, so every run and every thread count
 // gives the same samples), and every sample's distance to the closest point of the other
-// surface is found with a vtkStaticCellLocator. A subset of each mesh's vertices joins the
+// surface is found with a vtkStaticCellLocator (and a second one over the edges of zero-area
+// triangles, which vtkTriangle cannot measure). A subset of each mesh's vertices joins the
 // samples for the maxima, because the largest deviation of a simplified mesh usually sits at
 // one of its vertices. From both directions it reports the one-sided maxima and RMS values and
 // their symmetric combination:
 //   Hausdorff = max(MaxAB, MaxBA),  RMS = sqrt((sum of squares over both sample sets) / count).
-// RMS uses the area samples only. Values are in world units; *Percent() divides by the
-// bounding-box diagonal of the first mesh (the reference).
+// RMS uses the area samples only (the vertex samples for a surface of zero area). Values are in
+// world units; *Percent() divides by the bounding-box diagonal of the first mesh (the reference).
 //
 // Used by the tests, the benchmark and vtkTriangleCollapseDecimation::ComputeLevelError. It is
 // a measurement by sampling, not a bound: a finer sampling can only raise the maxima.

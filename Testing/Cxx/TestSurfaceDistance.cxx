@@ -74,6 +74,40 @@ void TestOneSided()
   MESHLOD_CHECK_GT(d.RmsBA, 0.5);
 }
 
+// A 4x4 square with a zero-area "spike" triangle (4,0)-(6,0)-(5,0) sticking out of one side.
+vtkSmartPointer<vtkPolyData> GridWithSpike(double dz)
+{
+  vtkSmartPointer<vtkPolyData> grid = testing::MakeGrid(4, 4);
+  vtkSmartPointer<vtkPolyData> mesh = Shifted(grid, dz);
+  const vtkIdType a = mesh->GetPoints()->InsertNextPoint(6.0, 0.0, dz);
+  const vtkIdType b = mesh->GetPoints()->InsertNextPoint(5.0, 0.0, dz);
+  const vtkIdType spike[3] = { 4, a, b }; // point 4 is the grid's corner (4, 0)
+  mesh->GetPolys()->InsertNextCell(3, spike);
+  return mesh;
+}
+
+void TestDegenerateTriangles()
+{
+  // A surface of zero area: the square flattened onto the x axis, and a copy 0.5 above it.
+  // Every closest point lies on a degenerate triangle's edge, 0.5 away.
+  vtkSmartPointer<vtkPolyData> line = Shifted(testing::MakeGrid(4, 4), 0.0);
+  for (vtkIdType i = 0; i < line->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    line->GetPoint(i, p);
+    line->GetPoints()->SetPoint(i, p[0], 0.0, 0.0);
+  }
+  const SurfaceDistance flat = MeasureSurfaceDistance(line, Shifted(line, 0.5));
+  MESHLOD_CHECK_LE(std::abs(flat.Hausdorff - 0.5), 1e-12);
+  MESHLOD_CHECK_LE(std::abs(flat.Rms - 0.5), 1e-12);
+
+  // A spike is found by its own edges: its tip (6, 0, 0) is 0.5 from the shifted spike, not
+  // sqrt(2^2 + 0.5^2) from the shifted square's corner.
+  const SurfaceDistance spiked = MeasureSurfaceDistance(GridWithSpike(0.0), GridWithSpike(0.5));
+  MESHLOD_CHECK_LE(std::abs(spiked.Hausdorff - 0.5), 1e-12);
+  MESHLOD_CHECK_LE(std::abs(spiked.MaxAB - 0.5), 1e-12);
+}
+
 void TestSameForEveryBackend()
 {
   vtkSmartPointer<vtkPolyData> a = testing::MakeIsosurface(testing::Field::Metaballs, 40);
@@ -95,6 +129,7 @@ int TestSurfaceDistance(int, char*[])
   TestParallelPlanes();
   TestConcentricSpheres();
   TestOneSided();
+  TestDegenerateTriangles();
   TestSameForEveryBackend();
   return meshlod::testing::Result();
 }
