@@ -614,6 +614,20 @@ bool vtkLODGeomorph::Internals::ProduceNearestBlend(
       cache.Triangles, [&](Id p) { return newId[p]; }, [](vtkIdType) { return true; },
       keptTriangles);
     merged.CellData = SubsetCellData(poly->GetCellData(), keptTriangles);
+    // Merging only ever has to remove what the coarser level removed; below that it eats the
+    // surface (a tolerance near the mesh's size merges every edge). Said once per tolerance value.
+    const vtkIdType coarseTriangles = coarse->GetNumberOfPolys();
+    if (merged.Cells->GetNumberOfCells() < coarseTriangles &&
+      merged.WarnedTolerance != self->MergeTolerance)
+    {
+      merged.WarnedTolerance = self->MergeTolerance;
+      vtkWarningWithObjectMacro(self,
+        "MergeTolerance " << self->MergeTolerance << " merged the blend of levels " << level
+                          << " and " << level + 1 << " down to " << merged.Cells->GetNumberOfCells()
+                          << " triangles, fewer than level " << level + 1 << " has ("
+                          << coarseTriangles << "): the tolerance is too large for this mesh "
+                          << "(the default 1e-4 merges only edges shorter than a pixel).");
+    }
   }
   plan.NumberOfPoints = static_cast<vtkIdType>(merged.Source.size());
   plan.Source = merged.Source.data();

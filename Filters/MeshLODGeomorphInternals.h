@@ -34,6 +34,7 @@ struct MergedTopology
   std::vector<Id> Source; // output point -> level point
   vtkSmartPointer<vtkCellArray> Cells;
   vtkSmartPointer<vtkCellData> CellData;
+  double WarnedTolerance = -1.0; // the MergeTolerance last warned about as too large
 };
 
 // Everything the filter keeps about one level between executions (valid while the input is

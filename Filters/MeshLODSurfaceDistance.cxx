@@ -251,7 +251,8 @@ struct SurfaceDistanceMeter::Internals
   SurfaceLocator Locator;
 };
 
-SurfaceDistanceMeter::SurfaceDistanceMeter(vtkPolyData* reference, const SurfaceDistanceOptions& options)
+SurfaceDistanceMeter::SurfaceDistanceMeter(
+  vtkPolyData* reference, const SurfaceDistanceOptions& options)
   : Impl(new Internals)
 {
   this->Impl->Options = options;

@@ -201,7 +201,9 @@ public:
    * NearestVertices only: points joined by an edge and closer than MergeTolerance times the
    * diagonal of level i's bounding box are merged. The default 1e-4 is well below a pixel when
    * the mesh fills a 4K screen (1 / 3840 = 2.6e-4), so merging is invisible; 0 merges only
-   * coincident points (which always happens at t = 1). Range [0, 1], default 1e-4.
+   * coincident points (which always happens at t = 1). A tolerance that merges the blend to
+   * fewer triangles than the coarser level has is too large for the mesh: a warning says so.
+   * Range [0, 1], default 1e-4.
    */
   vtkSetClampMacro(MergeTolerance, double, 0.0, 1.0);
   vtkGetMacro(MergeTolerance, double);

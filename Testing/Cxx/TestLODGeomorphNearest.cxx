@@ -202,6 +202,15 @@ void TestDecimatedPair()
   filter->SetMergeTolerance(0.01);
   MESHLOD_CHECK_LT(Run(filter, 0.9)->GetNumberOfPoints(), defaultPoints);
   MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 1);
+  MESHLOD_CHECK(!observer->GetWarning());
+  // A tolerance near the mesh's size merges the surface away: warned, once for that value.
+  filter->SetMergeTolerance(0.5);
+  MESHLOD_CHECK_LT(Run(filter, 0.5)->GetNumberOfPolys(), coarse->GetNumberOfPolys());
+  MESHLOD_CHECK(observer->GetWarning());
+  MESHLOD_CHECK(observer->GetWarningMessage().find("MergeTolerance 0.5") != std::string::npos);
+  observer->Clear();
+  Run(filter, 0.6);
+  MESHLOD_CHECK(!observer->GetWarning());
   filter->SetMergeTolerance(1e-4);
   // The input changed: built again.
   coarse->GetPoints()->Modified();
