@@ -317,12 +317,28 @@ void TextureBaker::ColorAt(const double point[3], float rgba[4]) const
 
 //------------------------------------------------------------------------------
 vtkSmartPointer<vtkImageData> TextureBaker::Bake(const TriangleMesh& mesh,
-  const TextureAtlas& atlas) const
+  const TextureAtlas& atlas, const std::function<bool(double)>& progress) const
 {
   const Id nt = mesh.GetNumberOfTriangles();
   const Id side = atlas.Resolution;
   const int components = this->Components;
-  std::vector<float> image(4 * static_cast<size_t>(side) * side, 0.0f);
+  // Texels are quantised as they are computed: a float staging image would be four times the
+  // texture's size (4.3 GB at TextureResolution 16384).
+  auto scalars = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  scalars->SetName("Texture");
+  scalars->SetNumberOfComponents(components);
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(side) * side);
+  unsigned char* dst = scalars->GetPointer(0);
+  std::fill_n(dst, static_cast<size_t>(components) * side * side, static_cast<unsigned char>(0));
+  const auto store = [&](Id x, Id y, const float rgba[4])
+  {
+    const size_t index = static_cast<size_t>(y) * side + x;
+    unsigned char* texel = dst + static_cast<size_t>(components) * index;
+    for (int c = 0; c < components; ++c)
+    {
+      texel[c] = static_cast<unsigned char>(std::lround(std::min(255.0f, std::max(0.0f, rgba[c]))));
+    }
+  };
 
   // Edge samples, spaced from the lower point id, at the finest spacing both sides share.
   const MeshEdges edges = FindEdges(mesh);
@@ -364,105 +380,116 @@ vtkSmartPointer<vtkImageData> TextureBaker::Bake(const TriangleMesh& mesh,
     });
 
   // Texels, block by block. Integer barycentrics (twice the signed areas) tell inside, edge and
-  // outside exactly.
+  // outside exactly. The blocks go in chunks of about as many texels each, so that a large
+  // texture (TextureResolution 16384 takes minutes) reports progress and can be stopped.
   const Id numberOfBlocks = static_cast<Id>(atlas.Blocks.size());
-  vtkSMPTools::For(0,
-    numberOfBlocks,
-    [&](Id begin, Id end)
+  constexpr int Chunks = 16;
+  const auto texels = [&](Id b)
+  { return static_cast<std::int64_t>(atlas.Blocks[b].Size) * atlas.Blocks[b].Size; };
+  std::int64_t covered = 0;
+  for (Id b = 0; b < numberOfBlocks; ++b)
+  {
+    covered += texels(b);
+  }
+  Id chunkBegin = 0;
+  std::int64_t done = 0;
+  for (int chunk = 1; chunkBegin < numberOfBlocks; ++chunk)
+  {
+    // Blocks up to `chunk` sixteenths of the texels (at least one block; all in the last).
+    Id chunkEnd = chunkBegin;
+    const std::int64_t until = chunk >= Chunks ? covered : covered * chunk / Chunks;
+    while (chunkEnd < numberOfBlocks && (done < until || chunkEnd == chunkBegin))
     {
-      for (Id b = begin; b < end; ++b)
+      done += texels(chunkEnd++);
+    }
+    vtkSMPTools::For(chunkBegin,
+      chunkEnd,
+      [&](Id begin, Id end)
       {
-        const TextureAtlas::Block& block = atlas.Blocks[b];
-        const Id s = block.Size - 1;
-        for (Id y = block.Y; y < block.Y + block.Size; ++y)
+        for (Id b = begin; b < end; ++b)
         {
-          for (Id x = block.X; x < block.X + block.Size; ++x)
+          const TextureAtlas::Block& block = atlas.Blocks[b];
+          const Id s = block.Size - 1;
+          for (Id y = block.Y; y < block.Y + block.Size; ++y)
           {
-            const bool upperHalf = (x - block.X) + (y - block.Y) > s;
-            const Id t = (upperHalf && block.Upper != InvalidId) ? block.Upper : block.Lower;
-            const Id* tc = atlas.CornerTexel.data() + 6 * static_cast<size_t>(t);
-            const Id* tri = mesh.Triangle(t);
-            std::int64_t n[3];
-            for (int k = 0; k < 3; ++k)
+            for (Id x = block.X; x < block.X + block.Size; ++x)
             {
-              const Id* p = tc + 2 * ((k + 1) % 3);
-              const Id* q = tc + 2 * ((k + 2) % 3);
-              n[k] = static_cast<std::int64_t>(p[0] - x) * (q[1] - y) -
-                static_cast<std::int64_t>(p[1] - y) * (q[0] - x);
-            }
-            const std::int64_t area = n[0] + n[1] + n[2];
-            float* out = image.data() + 4 * (static_cast<size_t>(y) * side + x);
-            int onEdge = -1;
-            if (!upperHalf || block.Upper != InvalidId)
-            {
+              const bool upperHalf = (x - block.X) + (y - block.Y) > s;
+              const Id t = (upperHalf && block.Upper != InvalidId) ? block.Upper : block.Lower;
+              const Id* tc = atlas.CornerTexel.data() + 6 * static_cast<size_t>(t);
+              const Id* tri = mesh.Triangle(t);
+              std::int64_t n[3];
               for (int k = 0; k < 3; ++k)
               {
-                onEdge = (n[k] == 0) ? k : onEdge;
+                const Id* p = tc + 2 * ((k + 1) % 3);
+                const Id* q = tc + 2 * ((k + 2) % 3);
+                n[k] = static_cast<std::int64_t>(p[0] - x) * (q[1] - y) -
+                  static_cast<std::int64_t>(p[1] - y) * (q[0] - x);
               }
+              const std::int64_t area = n[0] + n[1] + n[2];
+              float out[4];
+              int onEdge = -1;
+              if (!upperHalf || block.Upper != InvalidId)
+              {
+                for (int k = 0; k < 3; ++k)
+                {
+                  onEdge = (n[k] == 0) ? k : onEdge;
+                }
+              }
+              if (onEdge >= 0)
+              {
+                // On the edge opposite corner `onEdge`: the fraction towards its end corner.
+                const int from = (onEdge + 1) % 3, to = (onEdge + 2) % 3;
+                const Id e = edges.OfCorner[3 * t + from];
+                // Exact rational position along the edge's samples, from its lower point id.
+                std::int64_t numerator = n[to], denominator = area;
+                if (denominator < 0)
+                {
+                  numerator = -numerator;
+                  denominator = -denominator;
+                }
+                if (tri[to] != edges.Hi[e])
+                {
+                  numerator = denominator - numerator;
+                }
+                const std::int64_t scaled = numerator * steps[e];
+                const Id j0 =
+                  static_cast<Id>(std::min<std::int64_t>(steps[e], scaled / denominator));
+                const Id j1 = std::min<Id>(steps[e], j0 + 1);
+                const double w = static_cast<double>(scaled % denominator) / denominator;
+                const float* s0 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j0);
+                const float* s1 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j1);
+                for (int c = 0; c < 4; ++c)
+                {
+                  out[c] = static_cast<float>((1.0 - w) * s0[c] + w * s1[c]);
+                }
+                store(x, y, out);
+                continue;
+              }
+              // Inside the triangle, or in the padding half extending the lower triangle.
+              double p[3] = { 0.0, 0.0, 0.0 };
+              for (int k = 0; k < 3; ++k)
+              {
+                const double w = static_cast<double>(n[k]) / area;
+                const double* corner = mesh.Point(tri[k]);
+                for (int c = 0; c < 3; ++c)
+                {
+                  p[c] += w * corner[c];
+                }
+              }
+              this->ColorAt(p, out);
+              store(x, y, out);
             }
-            if (onEdge >= 0)
-            {
-              // On the edge opposite corner `onEdge`: the fraction towards its end corner.
-              const int from = (onEdge + 1) % 3, to = (onEdge + 2) % 3;
-              const Id e = edges.OfCorner[3 * t + from];
-              // Exact rational position along the edge's samples, from its lower point id.
-              std::int64_t numerator = n[to], denominator = area;
-              if (denominator < 0)
-              {
-                numerator = -numerator;
-                denominator = -denominator;
-              }
-              if (tri[to] != edges.Hi[e])
-              {
-                numerator = denominator - numerator;
-              }
-              const std::int64_t scaled = numerator * steps[e];
-              const Id j0 = static_cast<Id>(std::min<std::int64_t>(steps[e], scaled / denominator));
-              const Id j1 = std::min<Id>(steps[e], j0 + 1);
-              const double w = static_cast<double>(scaled % denominator) / denominator;
-              const float* s0 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j0);
-              const float* s1 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j1);
-              for (int c = 0; c < 4; ++c)
-              {
-                out[c] = static_cast<float>((1.0 - w) * s0[c] + w * s1[c]);
-              }
-              continue;
-            }
-            // Inside the triangle, or in the padding half extending the lower triangle.
-            double p[3] = { 0.0, 0.0, 0.0 };
-            for (int k = 0; k < 3; ++k)
-            {
-              const double w = static_cast<double>(n[k]) / area;
-              const double* corner = mesh.Point(tri[k]);
-              for (int c = 0; c < 3; ++c)
-              {
-                p[c] += w * corner[c];
-              }
-            }
-            this->ColorAt(p, out);
           }
         }
-      }
-    });
-
-  auto scalars = vtkSmartPointer<vtkUnsignedCharArray>::New();
-  scalars->SetName("Texture");
-  scalars->SetNumberOfComponents(components);
-  scalars->SetNumberOfTuples(static_cast<vtkIdType>(side) * side);
-  unsigned char* dst = scalars->GetPointer(0);
-  vtkSMPTools::For(0,
-    static_cast<vtkIdType>(side) * side,
-    [&](vtkIdType begin, vtkIdType end)
+      });
+    chunkBegin = chunkEnd;
+    if (progress && !progress(covered > 0 ? static_cast<double>(done) / covered : 1.0))
     {
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        for (int c = 0; c < components; ++c)
-        {
-          dst[components * i + c] = static_cast<unsigned char>(
-            std::lround(std::min(255.0f, std::max(0.0f, image[4 * i + c]))));
-        }
-      }
-    });
+      return nullptr;
+    }
+  }
+
   auto result = vtkSmartPointer<vtkImageData>::New();
   result->SetDimensions(static_cast<int>(side), static_cast<int>(side), 1);
   result->GetPointData()->SetScalars(scalars);

@@ -17,6 +17,7 @@
 #include "vtkFiltersMeshLODModule.h"
 #include "vtkSmartPointer.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,10 @@ public:
   int GetNumberOfComponents() const { return this->Components; }
 
   /// Bake the texture of `mesh` laid out by `atlas` (unsigned char scalars named "Texture").
-  vtkSmartPointer<vtkImageData> Bake(const TriangleMesh& mesh, const TextureAtlas& atlas) const;
+  /// The texels go in chunks; after each, `progress` (when given) gets the fraction done and
+  /// returns false to stop, and Bake then returns null. It is called on the calling thread.
+  vtkSmartPointer<vtkImageData> Bake(const TriangleMesh& mesh, const TextureAtlas& atlas,
+    const std::function<bool(double)>& progress = nullptr) const;
 
   /// The colour (0-255, 4 components) of the input surface nearest to `point`.
   void ColorAt(const double point[3], float rgba[4]) const;

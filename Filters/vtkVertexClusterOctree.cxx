@@ -598,7 +598,22 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
         }
       }
       poly->GetPointData()->SetTCoords(tcoords);
-      textures->SetBlock(static_cast<unsigned int>(i + 1), baker.Bake(level.Mesh, atlas));
+      // The baking reports the second half of this level's share of the progress.
+      const double half = 0.25 / requests.size();
+      const double start = 0.4 + half * (2 * i + 1);
+      vtkSmartPointer<vtkImageData> texture = baker.Bake(level.Mesh, atlas,
+        [&](double fraction)
+        {
+          this->UpdateProgress(start + half * fraction);
+          return !this->GetAbortExecute();
+        });
+      if (texture == nullptr)
+      {
+        output->Initialize();
+        textures->Initialize();
+        return 1;
+      }
+      textures->SetBlock(static_cast<unsigned int>(i + 1), texture);
       MarkAtlasLevel(poly, static_cast<int>(i + 1));
     }
 

@@ -289,7 +289,9 @@ public:
   ///@{
   /**
    * Edge of each baked texture in texels, rounded up to a power of two (raised, with a warning,
-   * when a level has too many triangles to fit). Range [16, 16384], default 1024.
+   * when a level has too many triangles to fit). Range [16, 16384], default 1024. Each texel
+   * takes a closest-point query on the input: 16384 (268M texels, 1 GB of RGBA per level) takes
+   * minutes; the baking reports progress and honours an abort as it goes.
    */
   vtkSetClampMacro(TextureResolution, int, 16, 16384);
   vtkGetMacro(TextureResolution, int);

@@ -7,6 +7,7 @@
 #include "vtkLODGeomorph.h"
 #include "vtkVertexClusterOctree.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCommand.h"
@@ -300,25 +301,37 @@ void CheckAtlas(vtkPolyData* level, vtkImageData* texture)
 }
 
 //------------------------------------------------------------------------------
-// Colours from a point array (a scalar field through a lookup table).
-void TestColorArray()
+// Colours a mesh's points by a scalar function of position through a lookup table of the given
+// range (scalars named "Colors"; RGBA).
+vtkSmartPointer<vtkUnsignedCharArray> ColorPoints(vtkPolyData* mesh, double range,
+  const std::function<double(const double*)>& value, bool hues = false)
 {
-  vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Metaballs, 60);
   vtkNew<vtkFloatArray> field;
   field->SetName("Field");
   for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
   {
-    const double* x = mesh->GetPoint(p);
-    field->InsertNextValue(static_cast<float>(std::sin(9.0 * x[0]) * std::cos(7.0 * x[1]) + x[2]));
+    field->InsertNextValue(static_cast<float>(value(mesh->GetPoint(p))));
   }
   vtkNew<vtkLookupTable> lut;
-  lut->SetHueRange(0.0, 0.7);
-  lut->SetTableRange(-1.5, 1.5);
+  if (hues)
+  {
+    lut->SetHueRange(0.0, 0.7);
+  }
+  lut->SetTableRange(-range, range);
   lut->Build();
   vtkSmartPointer<vtkUnsignedCharArray> colors =
     vtk::TakeSmartPointer(lut->MapScalars(field, VTK_COLOR_MODE_DEFAULT, -1));
   colors->SetName("Colors");
   mesh->GetPointData()->SetScalars(colors);
+  return colors;
+}
+
+// Colours from a point array (a scalar field through a lookup table).
+void TestColorArray()
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Metaballs, 60);
+  vtkSmartPointer<vtkUnsignedCharArray> colors = ColorPoints(mesh, 1.5,
+    [](const double* x) { return std::sin(9.0 * x[0]) * std::cos(7.0 * x[1]) + x[2]; }, true);
 
   const vtkIdType n = mesh->GetNumberOfPolys();
   vtkNew<vtkVertexClusterOctree> filter;
@@ -518,19 +531,7 @@ void TestThreads()
 {
   vtkSmartPointer<vtkPolyData> mesh =
     testing::MakeIsosurface(testing::Field::Gyroid, 40, false, true);
-  vtkNew<vtkLookupTable> lut;
-  lut->SetTableRange(-1.0, 1.0);
-  lut->Build();
-  vtkNew<vtkFloatArray> field;
-  field->SetName("Field");
-  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
-  {
-    field->InsertNextValue(static_cast<float>(std::sin(5.0 * mesh->GetPoint(p)[0])));
-  }
-  vtkSmartPointer<vtkUnsignedCharArray> colors =
-    vtk::TakeSmartPointer(lut->MapScalars(field, VTK_COLOR_MODE_DEFAULT, -1));
-  colors->SetName("Colors");
-  mesh->GetPointData()->SetScalars(colors);
+  ColorPoints(mesh, 1.0, [](const double* x) { return std::sin(5.0 * x[0]); });
 
   const std::string original = vtkSMPTools::GetBackend();
   std::vector<vtkSmartPointer<vtkMultiBlockDataSet>> results[2];
@@ -584,6 +585,66 @@ void TestThreads()
     }
   }
 }
+
+// Baking reports progress as it goes (a texture of TextureResolution 16384 takes minutes) and
+// stops at an abort.
+void TestBakingProgress()
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Metaballs, 40);
+  ColorPoints(mesh, 1.0, [](const double* x) { return std::sin(5.0 * x[0]); });
+  struct Reports
+  {
+    std::vector<double> Values;
+    double AbortAbove = 2.0;
+  };
+  for (const double abortAbove : { 2.0, 0.7 })
+  {
+    vtkNew<vtkVertexClusterOctree> filter;
+    vtkNew<vtkTest::ErrorObserver> errors;
+    filter->AddObserver(vtkCommand::ErrorEvent, errors);
+    Reports reports;
+    reports.AbortAbove = abortAbove;
+    vtkNew<vtkCallbackCommand> progress;
+    progress->SetClientData(&reports);
+    progress->SetCallback(
+      [](vtkObject* caller, unsigned long, void* data, void*)
+      {
+        auto* algorithm = static_cast<vtkAlgorithm*>(caller);
+        auto* r = static_cast<Reports*>(data);
+        r->Values.push_back(algorithm->GetProgress());
+        if (algorithm->GetProgress() > r->AbortAbove)
+        {
+          algorithm->AbortExecuteOn();
+        }
+      });
+    filter->AddObserver(vtkCommand::ProgressEvent, progress);
+    filter->SetInputData(mesh);
+    filter->SetLevelModeToTargetTriangleCounts();
+    filter->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 50);
+    filter->BakeTextureOn();
+    filter->SetTextureResolution(512);
+    filter->Update();
+    MESHLOD_CHECK(!errors->GetError());
+    // The one level's baking covers (0.65, 0.9] in 16 chunks.
+    const auto baking = std::count_if(reports.Values.begin(), reports.Values.end(),
+      [](double v) { return v > 0.65 && v <= 0.9; });
+    MESHLOD_CHECK(std::is_sorted(reports.Values.begin(), reports.Values.end()));
+    if (abortAbove > 1.0)
+    {
+      MESHLOD_CHECK_GE(baking, 16);
+      MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 2u);
+      MESHLOD_CHECK_EQ(filter->GetTextures()->GetNumberOfBlocks(), 2u);
+    }
+    else
+    {
+      // Stopped inside the baking, at the first report past 0.7: both outputs empty.
+      MESHLOD_CHECK_GE(baking, 1);
+      MESHLOD_CHECK_LT(baking, 16);
+      MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
+      MESHLOD_CHECK_EQ(filter->GetTextures()->GetNumberOfBlocks(), 0u);
+    }
+  }
+}
 } // namespace
 
 int TestVertexClusterOctreeTexture(int, char*[])
@@ -591,5 +652,6 @@ int TestVertexClusterOctreeTexture(int, char*[])
   TestColorArray();
   TestInputTexture();
   TestThreads();
+  TestBakingProgress();
   return meshlod::testing::Result();
 }
