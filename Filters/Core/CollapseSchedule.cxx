@@ -83,7 +83,8 @@ bool HasSheetFans(const std::vector<Id>& from, const std::vector<Id>& to, int sh
     return false;
   }
   std::sort(ends.begin(), ends.end());
-  int curveNeighbours = 0, others = 0; // link vertices on `sheets` link edges, on neither that nor 2
+  // Link vertices on `sheets` link edges, and on neither that many nor 2.
+  int curveNeighbours = 0, others = 0;
   ForEachRun(ends, [&](int degree) {
     curveNeighbours += degree == sheets ? 1 : 0;
     others += degree != sheets && degree != 2 ? 1 : 0;
@@ -339,10 +340,10 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   std::vector<Id> broken;
   std::vector<std::uint8_t> valid(1, 1);
 
-  size_t begin = 0;
-  while (begin < moving.size())
+  // The collapses: moving[begin, end) share their rank and target.
+  std::vector<std::pair<size_t, size_t>> collapses;
+  for (size_t begin = 0; begin < moving.size();)
   {
-    // One collapse: moving[begin, end) share their rank and target.
     const Id first = moving[begin];
     size_t end = begin + 1;
     while (end < moving.size() && target[moving[end]] == target[first] &&
@@ -351,10 +352,16 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     {
       ++end;
     }
-    // Settle its points one by one: the lowest-id point joined by an edge to the settled ones
-    // whose merge keeps a valid mesh; when none does, the lowest-id joined point anyway (the
-    // step is then passed through, not stopped at), or the lowest-id point left.
-    const Id t = target[first];
+    collapses.emplace_back(begin, end);
+    begin = end;
+  }
+
+  // Settle a collapse's points one by one: the lowest-id point joined by an edge to the settled
+  // ones whose merge keeps a valid mesh; when none does, the lowest-id joined point anyway (the
+  // step is then passed through, not stopped at), or the lowest-id point left.
+  auto settle = [&](size_t c) {
+    const size_t begin = collapses[c].first, end = collapses[c].second;
+    const Id t = target[moving[begin]];
     for (size_t settled = begin; settled < end; ++settled)
     {
       joined.clear();
@@ -362,12 +369,14 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       {
         const Id q = moving[i];
         bool next = false;
-        for (Id j = adjacency.Begin(q); j < adjacency.End(q) && !next && this->Step[q] == Unassigned; ++j)
+        for (Id j = adjacency.Begin(q);
+             j < adjacency.End(q) && !next && this->Step[q] == Unassigned; ++j)
         {
           const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
           for (int k = 0; k < 3; ++k)
           {
-            next = next || (tri[k] != q && target[tri[k]] == t && this->Step[tri[k]] != Unassigned);
+            next = next ||
+              (tri[k] != q && target[tri[k]] == t && this->Step[tri[k]] != Unassigned);
           }
         }
         if (next)
@@ -412,7 +421,83 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
         broken.end());
       valid.push_back(ok && broken.empty() ? 1 : 0);
     }
-    begin = end;
+  };
+
+  // Whether collapse c, made whole now, would leave its target with one fan: its points merged
+  // for the test and put back (unsettled points are their own roots, so the union-find is
+  // restored by resetting them).
+  auto wholeIsValid = [&](size_t c) {
+    const Id t = target[moving[collapses[c].first]];
+    const Id savedOn = settledOn[t];
+    if (settledOn[t] == Unassigned)
+    {
+      settledOn[t] = moving[collapses[c].first];
+    }
+    const Id root = Find(parent, settledOn[t]);
+    for (size_t i = collapses[c].first; i < collapses[c].second; ++i)
+    {
+      this->Step[moving[i]] = Never; // settled, for the test
+      parent[moving[i]] = root;
+    }
+    const bool whole = settledHaveOneFan(t);
+    for (size_t i = collapses[c].first; i < collapses[c].second; ++i)
+    {
+      this->Step[moving[i]] = Unassigned;
+      parent[moving[i]] = moving[i];
+    }
+    settledOn[t] = savedOn;
+    return whole;
+  };
+
+  // The collapses in order; one whose whole merge would leave its target without one fan waits
+  // for a neighbour's merge (see the header). After each collapse made, the waiting ones next
+  // to it are tried again; those still waiting at the end are made last.
+  std::vector<std::uint8_t> waiting(collapses.size(), 0);
+  std::vector<size_t> waitingOfTarget(numberOfTargets, collapses.size());
+  std::vector<size_t> retry;
+  for (size_t c = 0; c < collapses.size(); ++c)
+  {
+    const Id t = target[moving[collapses[c].first]];
+    if (waitingOfTarget[t] < collapses.size() || !wholeIsValid(c))
+    {
+      // (A second collapse of a target that waits waits until the end.)
+      waiting[c] = 1;
+      waitingOfTarget[t] = std::min(waitingOfTarget[t], c);
+      continue;
+    }
+    retry.assign(1, c);
+    while (!retry.empty())
+    {
+      const size_t made = retry.back();
+      retry.pop_back();
+      settle(made);
+      // Waiting collapses whose target has a point next to this collapse's points.
+      for (size_t i = collapses[made].first; i < collapses[made].second; ++i)
+      {
+        const Id q = moving[i];
+        for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
+        {
+          const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
+          for (int k = 0; k < 3; ++k)
+          {
+            const size_t w = waitingOfTarget[target[tri[k]]];
+            if (w < collapses.size() && waiting[w] && wholeIsValid(w))
+            {
+              waiting[w] = 0;
+              waitingOfTarget[target[tri[k]]] = collapses.size();
+              retry.push_back(w);
+            }
+          }
+        }
+      }
+    }
+  }
+  for (size_t c = 0; c < collapses.size(); ++c)
+  {
+    if (waiting[c])
+    {
+      settle(c);
+    }
   }
   this->Stops.clear();
   for (size_t step = 0; step < valid.size(); ++step)

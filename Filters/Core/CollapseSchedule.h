@@ -17,10 +17,17 @@
 //   can pass through a mesh that is not manifold (a pinched vertex, a doubled triangle). Each
 //   step is therefore checked: the merged point must keep one fan of triangles (a disk or a
 //   half-disk) with no edge used twice, or, when one of its target's points is on a curve
-//   where k > 2 sheets meet, k fans between its two neighbours on the curve. Steps that fail are passed through, never stopped at,
-//   and so are the steps after them until every target such a step left without one fan has
-//   one again (a step's own check sees its own target only): their triangle counts are not
-//   reachable.
+//   where k > 2 sheets meet, k fans between its two neighbours on the curve. Steps that fail
+//   are passed through, never stopped at, and so are the steps after them until every target
+//   such a step left without one fan has one again (a step's own check sees its own target
+//   only): their triangle counts are not reachable.
+// - A collapse whose whole merge would leave its target without one fan at its turn waits:
+//   a transition composes a level's collapses per target, and the rank order can come to a
+//   target before the neighbour whose merge makes it valid (two points sharing two neighbours
+//   merge into a doubled triangle until those neighbours are merged). Made in rank order, all
+//   the steps up to that neighbour were unreachable. After each collapse, the waiting ones with
+//   a point next to it are tried again and made as soon as they are valid; those still waiting
+//   at the end are made last.
 #ifndef meshlod_CollapseSchedule_h
 #define meshlod_CollapseSchedule_h
 

@@ -135,10 +135,12 @@ void TestEdgeMerge()
   MESHLOD_CHECK(representative == std::vector<Id>({ 0, 1, 2, 3 }));
 }
 // A step that pinches the mesh is passed through, and so is every later step until the pinch
-// is gone: on the same grid, corners 0 and 15 settle on one target (rank 0: two fans, not a
-// manifold vertex), then 1 and 2 on another (rank 1: a valid edge collapse on its own). The
-// steps of the second collapse used to be stops, with the pinch from the first still there (the
-// exact-count mode produced such meshes for 3% of the counts of one transition).
+// is gone. On the same grid, corners 0 and 15 settle on one target (rank 0: two fans, not a
+// manifold vertex, whatever is merged before), 1 and 2 on another (rank 1: a valid edge
+// collapse on its own). Made in rank order, the steps of the second collapse were stops with
+// the pinch from the first still there (the exact-count mode produced such meshes for 3% of
+// the counts of one transition) and later not stops at all; the pinching collapse now waits
+// until the end, after the valid one.
 void TestPinchStaysUntilRepaired()
 {
   GridCollapses grid;
@@ -146,9 +148,27 @@ void TestPinchStaysUntilRepaired()
   grid.Collapse({ 1, 2 }, 1, 1);
   CollapseSchedule s;
   grid.Build(s);
-  MESHLOD_CHECK(s.Order == std::vector<Id>({ 0, 15, 1, 2 }));
-  // Step 1 only moves 0; step 2 pinches; steps 3 and 4 leave the pinch in place.
-  MESHLOD_CHECK(s.Stops == std::vector<Id>({ 0, 1 }));
+  MESHLOD_CHECK(s.Order == std::vector<Id>({ 1, 2, 0, 15 }));
+  // Steps 1 and 2 merge 1 and 2, step 3 only moves 0; step 4 pinches.
+  MESHLOD_CHECK(s.Stops == std::vector<Id>({ 0, 1, 2, 3 }));
+}
+
+// A collapse whose merge is valid only after its neighbour's waits for it. Points 1 and 4
+// (rank 0) share the neighbours 0 and 5: merged alone they make triangles (0, 1, 5) and
+// (0, 5, 4) one triangle twice. Once 0 and 5 (rank 1) are merged, those triangles are gone and
+// 1 and 4 become one boundary vertex with one fan. In rank order every step between the two
+// merges was unreachable (on a wavelet isosurface's transition of 26,694 to 6,672 triangles,
+// every count from 26,694 down to 11,149).
+void TestCollapseWaitsForNeighbour()
+{
+  GridCollapses grid;
+  grid.Collapse({ 1, 4 }, 1, 0);
+  grid.Collapse({ 0, 5 }, 0, 1);
+  CollapseSchedule s;
+  grid.Build(s);
+  MESHLOD_CHECK(s.Order == std::vector<Id>({ 0, 5, 1, 4 }));
+  MESHLOD_CHECK(s.Stops == std::vector<Id>({ 0, 1, 2, 3, 4 }));
+  MESHLOD_CHECK(s.CountAfter == std::vector<Id>({ 18, 18, 16, 16, 16 }));
 }
 } // namespace
 
@@ -156,6 +176,7 @@ int TestGeomorphCore(int, char*[])
 {
   TestCluster();
   TestPinchStaysUntilRepaired();
+  TestCollapseWaitsForNeighbour();
   TestEdgeMerge();
   return meshlod::testing::Result();
 }

@@ -142,9 +142,10 @@ def main():
 
     # Exact counts between levels: a collapse along a curve removes three triangles, one on a
     # sheet two, so a count may be missed by what one step removes. (A step whose intermediate
-    # mesh is pinched cannot be stopped at, so some counts are missed by more; before the
-    # schedule knew curves, every step after a curve's first merge was, and nearly every count
-    # between levels fell to the next level's.)
+    # mesh is pinched cannot be stopped at; before the schedule knew curves, every step after a
+    # curve's first merge was, and nearly every count between levels fell to the next level's;
+    # before a collapse could wait for the neighbour that makes it valid, 43 of these 49 counts
+    # were within 2 triangles.)
     geomorph = meshlod.vtkLODGeomorph()
     geomorph.SetInputConnection(decimate.GetOutputPort())
     asked_counts, near = 0, 0
@@ -159,7 +160,7 @@ def main():
             asked_counts += 1
             near += 1 if asked - got <= 2 else 0
     print("exact counts between levels: %d of %d within 2 triangles" % (near, asked_counts))
-    check(near >= 0.8 * asked_counts, "exact counts within 2 triangles: %d of %d" % (near, asked_counts))
+    check(near == asked_counts, "exact counts within 2 triangles: %d of %d" % (near, asked_counts))
 
     check_octree(merged)
     return 1 if failures else 0
