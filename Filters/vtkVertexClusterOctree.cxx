@@ -262,8 +262,10 @@ void vtkVertexClusterOctree::WarnIfCountMissed(
                                 "they meet or end, bow ties and separate components do not "
                                 "merge), or none that keeps fewer at an error near that of this "
                                 "count (a level a quarter or more above its target may keep up "
-                                "to a tenth more triangles than the fewest found, or half more "
-                                "at under a quarter of the error, for a smaller epsilon).");
+                                "to a tenth more triangles than the fewest found, half more "
+                                "at under a quarter of the error, or more at under a tenth of "
+                                "the error times the square root of the count, for a smaller "
+                                "epsilon).");
   }
 }
 

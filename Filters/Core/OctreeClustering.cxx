@@ -149,11 +149,20 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
   // come back (so that it still makes progress). An epsilon beyond the octree's size merges
   // all it ever will (the search's can be the largest float); four decades below the search's,
   // and below the previous level's, it merges next to nothing.
+  //
+  // A level with more triangles is also taken when it is far more accurate for its count than
+  // the best so far: error times the square root of the count (constant where the error follows
+  // the count, as a surface's chord error does) at most half. On a subdivided icosahedron
+  // asked for 1%, whose clusters across its edges cut the corners, 390 triangles at 8%
+  // Hausdorff distance became 850 at none; on a noisy terrain, 14,265 at 4.3% became
+  // 22,000 at 1.4%.
   const Id previous = this->PreviousTriangles();
   const Id giveBack = 3 * (previous - count) / 4;
   const Id close = count + std::min(count / 10, giveBack);
   const Id plateau = count + std::min(count / 2, giveBack);
   const double plateauError = best.EstimatedError / 4.0;
+  auto accuracy = [](const ClusterLevel& level, Id triangles)
+  { return level.EstimatedError * std::sqrt(static_cast<double>(triangles)); };
   double high = std::min(best.Epsilon, 2.0 * this->Tree.Size);
   double low = std::max(this->CurrentEpsilon, 1e-4 * high);
   ClusterLevel trial;
@@ -161,12 +170,19 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
   {
     const double middle = std::sqrt(low * high);
     const Id triangles = this->TryLevel(middle, trial);
+    const bool accurate = triangles > 0 && triangles <= count + giveBack &&
+      accuracy(trial, triangles) < 0.1 * accuracy(best, count);
     if (triangles > 0 &&
-      (triangles <= close || (triangles <= plateau && trial.EstimatedError <= plateauError)))
+      (triangles <= close || (triangles <= plateau && trial.EstimatedError <= plateauError) ||
+        accurate))
     {
       best = std::move(trial);
       count = triangles;
       high = middle;
+      if (!(best.EstimatedError > 0.0))
+      {
+        break; // smaller epsilons only keep more triangles at no less error
+      }
     }
     else if (triangles == 0 || triangles <= plateau)
     {
