@@ -290,6 +290,38 @@ void DispatchPoints(vtkDataArray* points, Worker& worker)
     worker(points);
   }
 }
+
+// The first tuple of a real array with a NaN or infinite component, or -1 (in Found).
+struct NonFiniteWorker
+{
+  vtkIdType Found = -1;
+  template <typename ArrayT>
+  void operator()(ArrayT* array)
+  {
+    const auto values = vtk::DataArrayValueRange(array);
+    const int components = array->GetNumberOfComponents();
+    vtkIdType i = 0;
+    for (const auto value : values)
+    {
+      if (!std::isfinite(static_cast<double>(value)))
+      {
+        this->Found = i / components;
+        return;
+      }
+      ++i;
+    }
+  }
+};
+
+vtkIdType FirstNonFiniteTuple(vtkDataArray* array)
+{
+  NonFiniteWorker worker;
+  if (array != nullptr)
+  {
+    DispatchPoints(array, worker);
+  }
+  return worker.Found;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -325,6 +357,16 @@ std::string vtkLODGeomorph::Internals::Prepare(
         return problem.str();
       }
     }
+    // NaN or infinite positions would go through every blend into the output.
+    const vtkIdType nonFinite =
+      poly->GetPoints() ? FirstNonFiniteTuple(poly->GetPoints()->GetData()) : -1;
+    if (nonFinite >= 0)
+    {
+      this->Levels.clear();
+      std::ostringstream problem;
+      problem << "level " << i << "'s point " << nonFinite << " has a NaN or infinite coordinate";
+      return problem.str();
+    }
     vtkSmartPointer<vtkPolyData> checked = meshlod::DropMismatchedArrays(poly, self);
     if (checked != poly)
     {
@@ -351,6 +393,16 @@ std::string vtkLODGeomorph::Internals::Prepare(
     }
     for (unsigned int i = 0; i + 1 < n; ++i)
     {
+      const vtkIdType nonFinite = FirstNonFiniteTuple(
+        this->Levels[i].Poly->GetPointData()->GetArray(meshlod::names::MorphTarget));
+      if (nonFinite >= 0)
+      {
+        this->Levels.clear();
+        std::ostringstream problem;
+        problem << "level " << i << "'s " << meshlod::names::MorphTarget << " of point "
+                << nonFinite << " is NaN or infinite";
+        return problem.str();
+      }
       this->Levels[i].TargetIds =
         ToIds(this->Levels[i].Poly->GetPointData()->GetArray(meshlod::names::MorphTargetId));
     }

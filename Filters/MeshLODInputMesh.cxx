@@ -376,6 +376,20 @@ vtkIdType DropDuplicateTriangles(
 } // namespace
 
 //------------------------------------------------------------------------------
+bool CheckInputDiagonal(double diagonal, vtkAlgorithm* caller, const char* what)
+{
+  if (diagonal <= MaximumInputDiagonal && (diagonal == 0.0 || diagonal >= MinimumInputDiagonal))
+  {
+    return true;
+  }
+  vtkErrorWithObjectMacro(caller,
+    "The input's bounding-box diagonal, " << diagonal << ", is outside ["
+                                          << MinimumInputDiagonal << ", " << MaximumInputDiagonal
+                                          << "], the range " << what
+                                          << " hold; scale the input first (vtkTransformFilter).");
+  return false;
+}
+
 vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
 {
   if (cells == nullptr || cells->GetNumberOfCells() == 0)

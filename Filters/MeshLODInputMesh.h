@@ -11,6 +11,8 @@
 // - Point- or cell-data arrays whose tuple count is not the number of points or cells are
 //   ignored, with a warning naming them (reading past their end would give garbage).
 // - More than 2^31 - 1 points or triangles: an error (the core uses 32-bit ids).
+// - A bounding-box diagonal outside [1e-30, 1e30]: an error from the filters that square
+//   lengths (CheckInputDiagonal).
 // - Triangles that repeat a point id are dropped; a triangle with the same three points as an
 //   earlier one is dropped (both with a warning giving the count).
 // - Points on boundary or non-manifold edges that coincide up to rounding (at most 1e-12 of the
@@ -82,6 +84,18 @@ VTKFILTERSMESHLOD_EXPORT InputStatus ReadInputMesh(
 /// edited in place).
 VTKFILTERSMESHLOD_EXPORT vtkIdType FirstCellWithBadId(
   vtkCellArray* cells, vtkIdType numberOfPoints);
+
+/// The bounding-box diagonals the filters accept. Their collapse costs and cluster errors hold
+/// squared areas (and the octree's single-precision thresholds): outside this range they
+/// overflow or vanish, and the levels came out silently wrong (a sphere scaled by 1e200 or
+/// 1e-200 got another collapse order and a measured error of 1e-51 times its own).
+constexpr double MinimumInputDiagonal = 1e-30;
+constexpr double MaximumInputDiagonal = 1e30;
+
+/// Whether `diagonal` (0 for a single point) is in range; when not, an error on `caller`
+/// naming the range and what does not hold outside it (`what`).
+VTKFILTERSMESHLOD_EXPORT bool CheckInputDiagonal(
+  double diagonal, vtkAlgorithm* caller, const char* what);
 
 /// Triangles as a vtkCellArray built in one go (32-bit storage, which halves its memory).
 VTKFILTERSMESHLOD_EXPORT vtkSmartPointer<vtkCellArray> MakeTriangleCells(

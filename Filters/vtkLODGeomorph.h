@@ -95,9 +95,11 @@
  *
  * @par Errors
  * An input that is not a multiblock of vtkPolyData blocks, a hierarchy without levels,
- * incomplete or out-of-range morph arrays (meshlod::CheckHierarchyLayout), an exact count or
- * NearestVertices on levels that are not all triangles: an error and an empty output. A level
- * without points gives an empty output without error.
+ * incomplete or out-of-range morph arrays (meshlod::CheckHierarchyLayout), a cell referring to
+ * a point a level does not have, a NaN or infinite point or MorphTarget, an exact count or
+ * NearestVertices on levels that are not all triangles: an error and an empty output. Point or
+ * cell arrays of the wrong length are left out with a warning. A level without points gives an
+ * empty output without error.
  *
  * @sa vtkTriangleCollapseDecimation vtkVertexClusterOctree vtkQuadricDecimation
  */

@@ -144,6 +144,11 @@ int vtkTriangleCollapseDecimation::RequestData(
     empty.Finish(output);
     return 1;
   }
+  if (!meshlod::CheckInputDiagonal(
+        mesh.Mesh.BoundingDiagonal(), this, "the collapse costs (squared areas)"))
+  {
+    return 0;
+  }
   meshlod::WarnAboutReservedNames(input, this);
   this->UpdateProgress(CollapseStart);
 

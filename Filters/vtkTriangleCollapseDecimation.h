@@ -132,8 +132,10 @@
  *
  * Input: triangles (polygons and strips are triangulated first; vertices and lines are
  * ignored with a warning). Empty input gives a hierarchy of one empty level, without error.
- * NaN or infinite coordinates and point ids out of range are an error; point- or cell-data
- * arrays whose tuple count is not the number of points or cells are ignored with a warning. Points on boundary or non-manifold
+ * NaN or infinite coordinates, point ids out of range and a bounding-box diagonal outside
+ * [1e-30, 1e30] (the collapse costs hold squared areas) are an error; point- or cell-data
+ * arrays whose tuple count is not the number of points or cells are ignored with a warning.
+ * Points on boundary or non-manifold
  * edges that coincide up to rounding (1e-12 of the bounding diagonal) and carry the same point
  * data are merged, which stitches triangle soups and duplicated seams (coincident points whose
  * data differ, an attribute seam such as a cube's split normals, stay apart, with a warning);

@@ -35,9 +35,6 @@ using meshlod::Id;
 using meshlod::InvalidId;
 
 // One level to make: by epsilon (world units) or by triangle count.
-// The bounding-box diagonals the octree accepts (see RequestData).
-constexpr double MinimumDiagonal = 1e-30;
-constexpr double MaximumDiagonal = 1e30;
 
 struct LevelRequest
 {
@@ -401,15 +398,9 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   // Cluster errors and their thresholds are kept in single precision (4 bytes a node): beyond
   // about 1e38 they overflow and nothing merges (every level was the input again), below 1e-38
   // they vanish. A diagonal (the unit of RelativeUnits) is held well inside that range.
-  const double diagonal = in.Mesh.BoundingDiagonal();
-  if (diagonal > MaximumDiagonal || (diagonal > 0.0 && diagonal < MinimumDiagonal))
+  if (!meshlod::CheckInputDiagonal(in.Mesh.BoundingDiagonal(), this,
+        "the cluster errors (single precision)"))
   {
-    vtkErrorMacro("The input's bounding-box diagonal, " << diagonal << ", is outside ["
-                                                        << MinimumDiagonal << ", "
-                                                        << MaximumDiagonal
-                                                        << "], the range the cluster errors "
-                                                           "hold (single precision); scale the "
-                                                           "input first (vtkTransformFilter).");
     return 0;
   }
 

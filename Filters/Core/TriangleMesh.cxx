@@ -234,12 +234,8 @@ double TriangleMesh::BoundingDiagonal() const
 {
   double lo[3], hi[3];
   this->GetBounds(lo, hi);
-  double d2 = 0.0;
-  for (int c = 0; c < 3; ++c)
-  {
-    d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
-  }
-  return std::sqrt(d2);
+  // hypot: no overflow or underflow of the squares (a box of 1e-200 is not one of size 0).
+  return std::hypot(hi[0] - lo[0], std::hypot(hi[1] - lo[1], hi[2] - lo[2]));
 }
 
 //------------------------------------------------------------------------------

@@ -351,6 +351,24 @@ void TestErrors(vtkMultiBlockDataSet* h)
   ExpectError(outside, "outside [0, 0)",
     [](vtkLODGeomorph* f) { f->SetCorrespondenceToNearestVertices(); });
 
+  // NaN positions or morph targets: an error naming the level and point (they went through
+  // every blend into the output).
+  {
+    vtkNew<vtkPolyData> nanPoint, nanTarget;
+    nanPoint->DeepCopy(Level(h, 1));
+    nanPoint->GetPoints()->SetPoint(4, std::nan(""), 0.0, 0.0);
+    nanTarget->DeepCopy(Level(h, 0));
+    nanTarget->GetPointData()->GetArray(names::MorphTarget)->SetComponent(9, 2, INFINITY);
+    vtkNew<vtkMultiBlockDataSet> nan;
+    nan->SetNumberOfBlocks(2);
+    nan->SetBlock(0, Level(h, 0));
+    nan->SetBlock(1, nanPoint);
+    ExpectError(nan, "level 1's point 4 has a NaN or infinite coordinate");
+    nan->SetBlock(0, nanTarget);
+    nan->SetBlock(1, Level(h, 1));
+    ExpectError(nan, "level 0's MorphTarget of point 9 is NaN or infinite");
+  }
+
   // A point array shorter than its level: left out with a warning (blending it read past its
   // end, garbage in the output).
   {

@@ -621,6 +621,21 @@ void TestErrorsAndAbort()
     MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
     observer->Clear();
   }
+  for (const double scale : { 1e35, 1e-35 })
+  {
+    // Coordinates whose squared areas the collapse costs cannot hold: an error (scaled by
+    // 1e200, a sphere got another collapse order and a measured error of 1e-51 of its own).
+    vtkSmartPointer<vtkPolyData> scaled = testing::MakeIcosphere(2);
+    testing::Scale(scaled, scale);
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->SetInputData(scaled);
+    filter->Update();
+    MESHLOD_CHECK(observer->GetErrorMessage().find("bounding-box diagonal") != std::string::npos);
+    MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);
+    observer->Clear();
+  }
   {
     // An input array named like a hierarchy array is replaced on the levels: a warning says so.
     vtkSmartPointer<vtkPolyData> mesh = testing::MakeIcosphere(2);

@@ -1021,12 +1021,7 @@ void TestSettingsAndErrors()
   for (const double scale : { 1e35, 1e-35 })
   {
     vtkSmartPointer<vtkPolyData> huge = testing::MakeGrid(4, 4);
-    for (vtkIdType p = 0; p < huge->GetNumberOfPoints(); ++p)
-    {
-      double x[3];
-      huge->GetPoint(p, x);
-      huge->GetPoints()->SetPoint(p, scale * x[0], scale * x[1], scale * x[2]);
-    }
+    testing::Scale(huge, scale);
     filter->SetInputData(huge);
     expectError("bounding-box diagonal");
     MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 0u);

@@ -224,6 +224,16 @@ vtkSmartPointer<vtkPolyData> MakeFan(int n)
   return MakePolyData(points, triangles);
 }
 
+void Scale(vtkPolyData* mesh, double scale)
+{
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    mesh->GetPoints()->SetPoint(p, scale * x[0], scale * x[1], scale * x[2]);
+  }
+}
+
 void PerturbRadially(vtkPolyData* mesh, double amplitude, int seed)
 {
   vtkNew<vtkMinimalStandardRandomSequence> random;

@@ -64,6 +64,9 @@ vtkSmartPointer<vtkPolyData> MakeFan(int n);
 /// centred at the origin).
 void PerturbRadially(vtkPolyData* mesh, double amplitude, int seed);
 
+/// Every point of `mesh` multiplied by `scale` (in place).
+void Scale(vtkPolyData* mesh, double scale);
+
 /// A unit sphere with its equatorial disk inside: three sheets (the two hemispheres and the
 /// disk) meet along the equator, each of whose edges has three triangles. Latitude rings of
 /// `around` points, `rings` of them between the poles (odd: the middle one is the equator), and
