@@ -454,6 +454,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   // to it are tried again; those still waiting at the end are made last.
   std::vector<std::uint8_t> waiting(collapses.size(), 0);
   std::vector<size_t> waitingOfTarget(numberOfTargets, collapses.size());
+  std::vector<size_t> triedAfter(collapses.size(), collapses.size()); // at most once per made
   std::vector<size_t> retry;
   for (size_t c = 0; c < collapses.size(); ++c)
   {
@@ -481,7 +482,12 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
           for (int k = 0; k < 3; ++k)
           {
             const size_t w = waitingOfTarget[target[tri[k]]];
-            if (w < collapses.size() && waiting[w] && wholeIsValid(w))
+            if (w >= collapses.size() || !waiting[w] || triedAfter[w] == made)
+            {
+              continue;
+            }
+            triedAfter[w] = made;
+            if (wholeIsValid(w))
             {
               waiting[w] = 0;
               waitingOfTarget[target[tri[k]]] = collapses.size();
