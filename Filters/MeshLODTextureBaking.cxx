@@ -379,112 +379,107 @@ vtkSmartPointer<vtkImageData> TextureBaker::Bake(const TriangleMesh& mesh,
       }
     });
 
-  // Texels, block by block. Integer barycentrics (twice the signed areas) tell inside, edge and
-  // outside exactly. The blocks go in chunks of about as many texels each, so that a large
-  // texture (TextureResolution 16384 takes minutes) reports progress and can be stopped.
+  // Texels, row by row of each block. Integer barycentrics (twice the signed areas) tell
+  // inside, edge and outside exactly. The rows go in chunks, so that a large texture
+  // (TextureResolution 16384 takes minutes) reports progress and can be stopped; rows rather
+  // than blocks, so that a chunk of a few large blocks still keeps every thread busy.
   const Id numberOfBlocks = static_cast<Id>(atlas.Blocks.size());
-  constexpr int Chunks = 16;
-  const auto texels = [&](Id b)
-  { return static_cast<std::int64_t>(atlas.Blocks[b].Size) * atlas.Blocks[b].Size; };
-  std::int64_t covered = 0;
+  std::vector<Id> firstRow(static_cast<size_t>(numberOfBlocks) + 1, 0); // rows of blocks before
   for (Id b = 0; b < numberOfBlocks; ++b)
   {
-    covered += texels(b);
+    firstRow[b + 1] = firstRow[b] + atlas.Blocks[b].Size;
   }
-  Id chunkBegin = 0;
-  std::int64_t done = 0;
-  for (int chunk = 1; chunkBegin < numberOfBlocks; ++chunk)
+  const Id rows = firstRow[numberOfBlocks];
+  // Row `row` of the blocks' rows (the blocks do not overlap: any order, any thread).
+  const auto bakeRow = [&](Id row)
   {
-    // Blocks up to `chunk` sixteenths of the texels (at least one block; all in the last).
-    Id chunkEnd = chunkBegin;
-    const std::int64_t until = chunk >= Chunks ? covered : covered * chunk / Chunks;
-    while (chunkEnd < numberOfBlocks && (done < until || chunkEnd == chunkBegin))
+    const Id b = static_cast<Id>(
+      std::upper_bound(firstRow.begin(), firstRow.end(), row) - firstRow.begin() - 1);
+    const TextureAtlas::Block& block = atlas.Blocks[b];
+    const Id s = block.Size - 1;
+    const Id y = block.Y + (row - firstRow[b]);
+    for (Id x = block.X; x < block.X + block.Size; ++x)
     {
-      done += texels(chunkEnd++);
+      const bool upperHalf = (x - block.X) + (y - block.Y) > s;
+      const Id t = (upperHalf && block.Upper != InvalidId) ? block.Upper : block.Lower;
+      const Id* tc = atlas.CornerTexel.data() + 6 * static_cast<size_t>(t);
+      const Id* tri = mesh.Triangle(t);
+      std::int64_t n[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        const Id* p = tc + 2 * ((k + 1) % 3);
+        const Id* q = tc + 2 * ((k + 2) % 3);
+        n[k] = static_cast<std::int64_t>(p[0] - x) * (q[1] - y) -
+          static_cast<std::int64_t>(p[1] - y) * (q[0] - x);
+      }
+      const std::int64_t area = n[0] + n[1] + n[2];
+      float out[4];
+      int onEdge = -1;
+      if (!upperHalf || block.Upper != InvalidId)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          onEdge = (n[k] == 0) ? k : onEdge;
+        }
+      }
+      if (onEdge >= 0)
+      {
+        // On the edge opposite corner `onEdge`: the fraction towards its end corner.
+        const int from = (onEdge + 1) % 3, to = (onEdge + 2) % 3;
+        const Id e = edges.OfCorner[3 * t + from];
+        // Exact rational position along the edge's samples, from its lower point id.
+        std::int64_t numerator = n[to], denominator = area;
+        if (denominator < 0)
+        {
+          numerator = -numerator;
+          denominator = -denominator;
+        }
+        if (tri[to] != edges.Hi[e])
+        {
+          numerator = denominator - numerator;
+        }
+        const std::int64_t scaled = numerator * steps[e];
+        const Id j0 = static_cast<Id>(std::min<std::int64_t>(steps[e], scaled / denominator));
+        const Id j1 = std::min<Id>(steps[e], j0 + 1);
+        const double w = static_cast<double>(scaled % denominator) / denominator;
+        const float* s0 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j0);
+        const float* s1 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j1);
+        for (int c = 0; c < 4; ++c)
+        {
+          out[c] = static_cast<float>((1.0 - w) * s0[c] + w * s1[c]);
+        }
+        store(x, y, out);
+        continue;
+      }
+      // Inside the triangle, or in the padding half extending the lower triangle.
+      double p[3] = { 0.0, 0.0, 0.0 };
+      for (int k = 0; k < 3; ++k)
+      {
+        const double w = static_cast<double>(n[k]) / area;
+        const double* corner = mesh.Point(tri[k]);
+        for (int c = 0; c < 3; ++c)
+        {
+          p[c] += w * corner[c];
+        }
+      }
+      this->ColorAt(p, out);
+      store(x, y, out);
     }
-    vtkSMPTools::For(chunkBegin,
-      chunkEnd,
+  };
+  constexpr int Chunks = 16;
+  for (int chunk = 0; chunk < Chunks; ++chunk)
+  {
+    const std::int64_t all = rows; // 64 bits: rows times Chunks can pass 2^31
+    vtkSMPTools::For(static_cast<Id>(all * chunk / Chunks),
+      static_cast<Id>(all * (chunk + 1) / Chunks),
       [&](Id begin, Id end)
       {
-        for (Id b = begin; b < end; ++b)
+        for (Id row = begin; row < end; ++row)
         {
-          const TextureAtlas::Block& block = atlas.Blocks[b];
-          const Id s = block.Size - 1;
-          for (Id y = block.Y; y < block.Y + block.Size; ++y)
-          {
-            for (Id x = block.X; x < block.X + block.Size; ++x)
-            {
-              const bool upperHalf = (x - block.X) + (y - block.Y) > s;
-              const Id t = (upperHalf && block.Upper != InvalidId) ? block.Upper : block.Lower;
-              const Id* tc = atlas.CornerTexel.data() + 6 * static_cast<size_t>(t);
-              const Id* tri = mesh.Triangle(t);
-              std::int64_t n[3];
-              for (int k = 0; k < 3; ++k)
-              {
-                const Id* p = tc + 2 * ((k + 1) % 3);
-                const Id* q = tc + 2 * ((k + 2) % 3);
-                n[k] = static_cast<std::int64_t>(p[0] - x) * (q[1] - y) -
-                  static_cast<std::int64_t>(p[1] - y) * (q[0] - x);
-              }
-              const std::int64_t area = n[0] + n[1] + n[2];
-              float out[4];
-              int onEdge = -1;
-              if (!upperHalf || block.Upper != InvalidId)
-              {
-                for (int k = 0; k < 3; ++k)
-                {
-                  onEdge = (n[k] == 0) ? k : onEdge;
-                }
-              }
-              if (onEdge >= 0)
-              {
-                // On the edge opposite corner `onEdge`: the fraction towards its end corner.
-                const int from = (onEdge + 1) % 3, to = (onEdge + 2) % 3;
-                const Id e = edges.OfCorner[3 * t + from];
-                // Exact rational position along the edge's samples, from its lower point id.
-                std::int64_t numerator = n[to], denominator = area;
-                if (denominator < 0)
-                {
-                  numerator = -numerator;
-                  denominator = -denominator;
-                }
-                if (tri[to] != edges.Hi[e])
-                {
-                  numerator = denominator - numerator;
-                }
-                const std::int64_t scaled = numerator * steps[e];
-                const Id j0 =
-                  static_cast<Id>(std::min<std::int64_t>(steps[e], scaled / denominator));
-                const Id j1 = std::min<Id>(steps[e], j0 + 1);
-                const double w = static_cast<double>(scaled % denominator) / denominator;
-                const float* s0 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j0);
-                const float* s1 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j1);
-                for (int c = 0; c < 4; ++c)
-                {
-                  out[c] = static_cast<float>((1.0 - w) * s0[c] + w * s1[c]);
-                }
-                store(x, y, out);
-                continue;
-              }
-              // Inside the triangle, or in the padding half extending the lower triangle.
-              double p[3] = { 0.0, 0.0, 0.0 };
-              for (int k = 0; k < 3; ++k)
-              {
-                const double w = static_cast<double>(n[k]) / area;
-                const double* corner = mesh.Point(tri[k]);
-                for (int c = 0; c < 3; ++c)
-                {
-                  p[c] += w * corner[c];
-                }
-              }
-              this->ColorAt(p, out);
-              store(x, y, out);
-            }
-          }
+          bakeRow(row);
         }
       });
-    chunkBegin = chunkEnd;
-    if (progress && !progress(covered > 0 ? static_cast<double>(done) / covered : 1.0))
+    if (progress && !progress(static_cast<double>(chunk + 1) / Chunks))
     {
       return nullptr;
     }
