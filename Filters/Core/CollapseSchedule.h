@@ -26,8 +26,9 @@
 //   target before the neighbour whose merge makes it valid (two points sharing two neighbours
 //   merge into a doubled triangle until those neighbours are merged). Made in rank order, all
 //   the steps up to that neighbour were unreachable. After each collapse, the waiting ones with
-//   a point next to it are tried again and made as soon as they are valid; those still waiting
-//   at the end are made last.
+//   a point next to it are tried again and made as soon as they are valid. Those still waiting
+//   at the end need each other: they are made last, by groups of neighbours one group after
+//   the other, so that the steps between groups can be stopped at.
 #ifndef meshlod_CollapseSchedule_h
 #define meshlod_CollapseSchedule_h
 

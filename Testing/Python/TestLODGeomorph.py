@@ -1,14 +1,17 @@
 """vtkLODGeomorph from Python: a hand-made two-level hierarchy with morph arrays and a pair of
 vtkQuadricDecimation outputs without them; the time-driven update must give the same mesh as
-the explicit LevelOfDetail."""
+the explicit LevelOfDetail. Exact counts on an extruded vector text, whose large flat faces make
+clusters that are valid only together."""
 
 import sys
 
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIdTypeArray, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkMultiBlockDataSet, vtkPolyData
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
-from vtkmodules.vtkFiltersCore import vtkQuadricDecimation
+from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkQuadricDecimation, vtkTriangleFilter
+from vtkmodules.vtkFiltersModeling import vtkAdaptiveSubdivisionFilter, vtkLinearExtrusionFilter
 from vtkmodules.vtkFiltersSources import vtkSphereSource
+from vtkmodules.vtkRenderingFreeType import vtkVectorText
 
 import meshlod
 
@@ -146,8 +149,67 @@ def test_nearest():
     check(timed.GetOutput().GetNumberOfPoints() == levels[1].GetNumberOfPoints(), "t = 1")
 
 
+def extruded_text():
+    text = vtkVectorText()
+    text.SetText("MeshLOD")
+    triangles = vtkTriangleFilter()
+    triangles.SetInputConnection(text.GetOutputPort())
+    extrude = vtkLinearExtrusionFilter()
+    extrude.SetInputConnection(triangles.GetOutputPort())
+    extrude.SetExtrusionTypeToNormalExtrusion()
+    extrude.SetVector(0, 0, 1)
+    extrude.SetScaleFactor(0.3)
+    extrude.CappingOn()
+    closed = vtkTriangleFilter()
+    closed.SetInputConnection(extrude.GetOutputPort())
+    clean = vtkCleanPolyData()
+    clean.SetInputConnection(closed.GetOutputPort())
+    subdivide = vtkAdaptiveSubdivisionFilter()
+    subdivide.SetInputConnection(clean.GetOutputPort())
+    subdivide.SetMaximumEdgeLength(0.04)
+    subdivide.SetMaximumNumberOfPasses(100)
+    final = vtkCleanPolyData()
+    final.SetInputConnection(subdivide.GetOutputPort())
+    final.Update()
+    return final.GetOutput()
+
+
+def test_clusters_valid_together():
+    # Collapses still waiting at the end of a transition need each other. Made in plain order,
+    # one that stayed without one fan made every later step unstoppable: asked for counts
+    # between the text's first two levels, 10 of 61 were missed by more than 2 triangles, the
+    # worst by 11,753. Made group by group, the mesh is valid again after each group.
+    mesh = extruded_text()
+    decimate = meshlod.vtkTriangleCollapseDecimation()
+    decimate.SetInputData(mesh)
+    decimate.AddLevelReduction(0.75)
+    decimate.AddLevelReduction(0.95)
+    decimate.Update()
+    hierarchy = decimate.GetHierarchy()
+    levels = range(hierarchy.GetNumberOfBlocks())
+    counts = [hierarchy.GetBlock(i).GetNumberOfPolys() for i in levels]
+    check(len(counts) == 3, "extruded text: three levels, got %s" % counts)
+    geomorph = meshlod.vtkLODGeomorph()
+    geomorph.SetInputData(hierarchy)
+    geomorph.UsePipelineTimeOff()
+    near, worst = 0, 0
+    for k in range(61):
+        asked = counts[-1] + (counts[0] - counts[-1]) * k // 60
+        geomorph.SetTargetNumberOfTriangles(asked)
+        geomorph.Update()
+        got = geomorph.GetOutput().GetNumberOfPolys()
+        check(got <= asked, "extruded text: at most %d triangles, got %d" % (asked, got))
+        near += 1 if asked - got <= 2 else 0
+        worst = max(worst, asked - got)
+    print("extruded text %s: %d of 61 counts within 2 triangles, worst miss %d"
+          % (counts, near, worst))
+    check(near >= 53, "extruded text: counts within 2 triangles: %d of 61" % near)
+    check(worst <= 1500, "extruded text: worst miss %d" % worst)
+
+
 test_morph()
 test_nearest()
+test_clusters_valid_together()
 if failures:
     print(len(failures), "check(s) failed")
     sys.exit(1)
