@@ -61,40 +61,42 @@ void ForEachRun(const std::vector<Id>& values, F&& f)
   }
 }
 
-// Whether a merged vertex's link edges from[i] -> to[i] show it on a curve where `sheets` k > 2
-// sheets meet (as between the regions of a segmented volume): without regard to direction (the
-// sheets' orientations need not agree), they form k paths between its two neighbours on the
-// curve, so those two are on k link edges each, every other link vertex on two, all connected,
-// and no link edge twice.
-bool HasSheetFans(const std::vector<Id>& from, const std::vector<Id>& to, int sheets)
+// Whether a merged vertex's link edges from[i] -> to[i], without regard to direction, have a
+// given shape: no link edge twice, all connected, `ends` link vertices on `endDegree` link
+// edges and every other on two. On a curve where k > 2 sheets meet (as between the regions of
+// a segmented volume) the sheets' orientations need not agree: k paths between the vertex's two
+// neighbours on the curve are ends = 2, endDegree = k. One fan on a surface whose orientation
+// is not consistent: a path (ends = 2, endDegree = 1) or a cycle of at least three edges
+// (ends = 0).
+bool LinkHasShape(const std::vector<Id>& from, const std::vector<Id>& to, int endDegree, int ends)
 {
   const size_t n = from.size();
   std::vector<std::pair<Id, Id>> edges(n);
-  std::vector<Id> ends;
+  std::vector<Id> vertices;
   for (size_t i = 0; i < n; ++i)
   {
     edges[i] = { std::min(from[i], to[i]), std::max(from[i], to[i]) };
-    ends.push_back(from[i]);
-    ends.push_back(to[i]);
+    vertices.push_back(from[i]);
+    vertices.push_back(to[i]);
   }
   std::sort(edges.begin(), edges.end());
-  if (n == 0 || std::adjacent_find(edges.begin(), edges.end()) != edges.end())
+  if (n == 0 || (ends == 0 && n < 3) ||
+    std::adjacent_find(edges.begin(), edges.end()) != edges.end())
   {
     return false;
   }
-  std::sort(ends.begin(), ends.end());
-  // Link vertices on `sheets` link edges, and on neither that many nor 2.
-  int curveNeighbours = 0, others = 0;
-  ForEachRun(ends, [&](int degree) {
-    curveNeighbours += degree == sheets ? 1 : 0;
-    others += degree != sheets && degree != 2 ? 1 : 0;
+  std::sort(vertices.begin(), vertices.end());
+  int atEnds = 0, others = 0;
+  ForEachRun(vertices, [&](int degree) {
+    atEnds += ends > 0 && degree == endDegree ? 1 : 0;
+    others += (ends == 0 || degree != endDegree) && degree != 2 ? 1 : 0;
   });
-  if (curveNeighbours != 2 || others != 0)
+  if (atEnds != ends || others != 0)
   {
     return false;
   }
-  // Connected: grow from one end over the link edges.
-  std::vector<Id> reached(1, ends.front());
+  // Connected: grow from one vertex over the link edges.
+  std::vector<Id> reached(1, vertices.front());
   for (bool grew = true; grew;)
   {
     grew = false;
@@ -109,8 +111,35 @@ bool HasSheetFans(const std::vector<Id>& from, const std::vector<Id>& to, int sh
       }
     }
   }
-  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
-  return reached.size() == ends.size();
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  return reached.size() == vertices.size();
+}
+
+// Whether some directed edge a -> b is used by two triangles: the triangles' orientation is not
+// consistent (a Moebius band, Boy's surface), and one fan's link edges need not follow each
+// other in direction.
+bool HasRepeatedDirectedEdge(
+  const Id* triangles, Id numberOfTriangles, const VertexTriangleAdjacency& adjacency)
+{
+  for (Id t = 0; t < numberOfTriangles; ++t)
+  {
+    const Id* tri = triangles + 3 * static_cast<size_t>(t);
+    for (int k = 0; k < 3; ++k)
+    {
+      const Id a = tri[k], b = tri[(k + 1) % 3];
+      for (Id i = adjacency.Begin(a); i < adjacency.End(a); ++i)
+      {
+        const Id u = adjacency.Triangles[i];
+        const Id* other = triangles + 3 * static_cast<size_t>(u);
+        const int c = other[0] == a ? 0 : (other[1] == a ? 1 : 2);
+        if (u != t && other[(c + 1) % 3] == b)
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
 }
 
 // Whether the vertex `merged` (a class of the union-find) has one fan: the triangles around its
@@ -299,6 +328,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   std::vector<Id> members, from, to, joined;
   // Whether the points settled on target t (and `extra`, when given) form one vertex with one
   // fan; `extra` must already point at the class root.
+  int consistent = -1; // whether the triangles are consistently oriented: found when needed
   auto hasOneFan = [&](Id t, Id extra) {
     members.clear();
     for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
@@ -316,7 +346,15 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     }
     // HasOneFan left the merged vertex's link edges in from and to.
     const int sheets = sheetsAt(t);
-    return sheets > 2 && HasSheetFans(from, to, sheets);
+    if (sheets > 2)
+    {
+      return LinkHasShape(from, to, sheets, 2);
+    }
+    if (consistent < 0)
+    {
+      consistent = HasRepeatedDirectedEdge(triangles, numberOfTriangles, adjacency) ? 0 : 1;
+    }
+    return consistent == 0 && (LinkHasShape(from, to, 1, 2) || LinkHasShape(from, to, 2, 0));
   };
   // Whether settling p now leaves a valid mesh (p's target keeps one fan).
   auto validWith = [&](Id p) {

@@ -17,7 +17,10 @@
 //   can pass through a mesh that is not manifold (a pinched vertex, a doubled triangle). Each
 //   step is therefore checked: the merged point must keep one fan of triangles (a disk or a
 //   half-disk) with no edge used twice, or, when one of its target's points is on a curve
-//   where k > 2 sheets meet, k fans between its two neighbours on the curve. Steps that fail
+//   where k > 2 sheets meet, k fans between its two neighbours on the curve. (The fan follows
+//   the triangles' winding; on a mesh whose orientation is not consistent, such as a Moebius
+//   strip or Boy's surface, its link edges need only form one path or cycle whatever their
+//   direction.) Steps that fail
 //   are passed through, never stopped at, and so are the steps after them until every target
 //   such a step left without one fan has one again (a step's own check sees its own target
 //   only): their triangle counts are not reachable.

@@ -1,6 +1,7 @@
 // vtkTriangleCollapseDecimation end to end: hierarchies of closed and open isosurfaces and of
 // tiny meshes, checked for topology, correspondence, errors, attributes, determinism and the
 // handling of bad input and settings.
+#include "vtkLODGeomorph.h"
 #include "vtkTriangleCollapseDecimation.h"
 
 #include "MeshLODHierarchy.h"
@@ -1054,6 +1055,28 @@ void CheckNonOrientable(const char* name, bool curvature)
   MESHLOD_CHECK_EQ(report.NonManifoldVertices, 0);
   MESHLOD_CHECK_EQ(report.EulerCharacteristic, fine.EulerCharacteristic);
   const std::string label = std::string(name) + (curvature ? ", curvature method" : "");
+  if (!curvature)
+  {
+    // Exact counts across the levels: the schedule's one-fan test followed the link's
+    // direction, which across the seam is not consistent, so that the steps after a seam
+    // vertex's merge could not be stopped at (here Boy's surface missed counts by up to 329
+    // triangles; at the start of this stop, before collapses could wait for their neighbours,
+    // the Moebius strip by 3,728 and Boy's surface by 8,013).
+    vtkNew<vtkLODGeomorph> geomorph;
+    geomorph->SetInputData(h);
+    const vtkIdType finest = Level(h, 0)->GetNumberOfPolys();
+    vtkIdType worst = 0;
+    for (int k = 0; k <= 40; ++k)
+    {
+      const vtkIdType asked = coarse->GetNumberOfPolys() +
+        (finest - coarse->GetNumberOfPolys()) * k / 40;
+      geomorph->SetTargetNumberOfTriangles(asked);
+      geomorph->Update();
+      worst = std::max(worst, asked - geomorph->GetOutput()->GetNumberOfPolys());
+    }
+    std::cerr << "  " << label << ": exact counts missed by at most " << worst << "\n";
+    MESHLOD_CHECK_LE(worst, 2);
+  }
   const PeerComparison c = CompareWithQuadricDecimation(input, coarse, label);
   MESHLOD_CHECK_LE(c.Ours.Hausdorff, (curvature ? 8.0 : 2.0) * c.Theirs.Hausdorff);
   MESHLOD_CHECK_LE(c.Ours.Rms, (curvature ? 8.0 : 1.5) * c.Theirs.Rms);
