@@ -20,10 +20,9 @@
 //   where k > 2 sheets meet, k fans between its two neighbours on the curve. (The fan follows
 //   the triangles' winding; on a mesh whose orientation is not consistent, such as a Moebius
 //   strip or Boy's surface, its link edges need only form one path or cycle whatever their
-//   direction.) Steps that fail
-//   are passed through, never stopped at, and so are the steps after them until every target
-//   such a step left without one fan has one again (a step's own check sees its own target
-//   only): their triangle counts are not reachable.
+//   direction.) Steps that fail are passed through, never stopped at, and so are the steps
+//   after them until every target such a step left without one fan has one again (a step's own
+//   check sees its own target only): their triangle counts are not reachable.
 // - A collapse whose whole merge would leave its target without one fan at its turn waits:
 //   a transition composes a level's collapses per target, and the rank order can come to a
 //   target before the neighbour whose merge makes it valid (two points sharing two neighbours
