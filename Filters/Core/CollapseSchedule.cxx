@@ -12,6 +12,8 @@ namespace meshlod
 namespace
 {
 constexpr Id Unassigned = -1;
+// A collapse of m points tries at most max(1, TestBudget / m) next points per step (see Build).
+constexpr size_t TestBudget = 16384;
 
 // Points of each target, as compressed rows (counting sort, rows in increasing point id).
 void GroupByTarget(const Id* target, Id numberOfPoints, Id numberOfTargets,
@@ -115,63 +117,104 @@ bool LinkHasShape(const std::vector<Id>& from, const std::vector<Id>& to, int en
   return reached.size() == vertices.size();
 }
 
-// Whether some directed edge a -> b is used by two triangles: the triangles' orientation is not
-// consistent (a Moebius band, Boy's surface), and one fan's link edges need not follow each
-// other in direction.
-bool HasRepeatedDirectedEdge(
-  const Id* triangles, Id numberOfTriangles, const VertexTriangleAdjacency& adjacency)
+// Whether two of the triangles around `members` use the same directed edge a -> b: their
+// orientation is not consistent there (across a Moebius strip's or Boy's surface's seam), and
+// one fan's link edges need not follow each other in direction. Local: only the stars are read.
+bool HasRepeatedDirectedEdge(const Id* triangles, const VertexTriangleAdjacency& adjacency,
+  const std::vector<Id>& members, std::vector<Id>& around, std::vector<std::pair<Id, Id>>& edges)
 {
-  for (Id t = 0; t < numberOfTriangles; ++t)
-  {
-    const Id* tri = triangles + 3 * static_cast<size_t>(t);
-    for (int k = 0; k < 3; ++k)
-    {
-      const Id a = tri[k], b = tri[(k + 1) % 3];
-      for (Id i = adjacency.Begin(a); i < adjacency.End(a); ++i)
-      {
-        const Id u = adjacency.Triangles[i];
-        const Id* other = triangles + 3 * static_cast<size_t>(u);
-        const int c = other[0] == a ? 0 : (other[1] == a ? 1 : 2);
-        if (u != t && other[(c + 1) % 3] == b)
-        {
-          return true;
-        }
-      }
-    }
-  }
-  return false;
-}
-
-// Whether the vertex `merged` (a class of the union-find) has one fan: the triangles around its
-// members, with corners replaced by their classes and degenerate ones left out, give link edges
-// u -> w that form one cycle of at least three edges or one path, each vertex leaving and
-// entering at most once. Those link edges are left in `from` and `to`.
-bool HasOneFan(const Id* triangles, const VertexTriangleAdjacency& adjacency,
-  std::vector<Id>& parent, const std::vector<Id>& members, Id merged, std::vector<Id>& from,
-  std::vector<Id>& to)
-{
-  from.clear();
-  to.clear();
+  around.clear();
   for (const Id m : members)
   {
     for (Id i = adjacency.Begin(m); i < adjacency.End(m); ++i)
     {
-      const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[i]);
-      const Id c[3] = { Find(parent, tri[0]), Find(parent, tri[1]), Find(parent, tri[2]) };
-      if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
-      {
-        continue; // gone
-      }
-      const int k = c[0] == merged ? 0 : (c[1] == merged ? 1 : 2);
-      if (tri[k] != m)
-      {
-        continue; // listed under the member at that corner
-      }
-      from.push_back(c[(k + 1) % 3]);
-      to.push_back(c[(k + 2) % 3]);
+      around.push_back(adjacency.Triangles[i]);
     }
   }
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  edges.clear();
+  for (const Id t : around)
+  {
+    const Id* tri = triangles + 3 * static_cast<size_t>(t);
+    for (int k = 0; k < 3; ++k)
+    {
+      edges.emplace_back(tri[k], tri[(k + 1) % 3]);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  return std::adjacent_find(edges.begin(), edges.end()) != edges.end();
+}
+
+// LinkIsOneFan for a long link, by sorting.
+bool LongLinkIsOneFan(const std::vector<Id>& from, const std::vector<Id>& to)
+{
   const size_t n = from.size();
+  std::vector<std::pair<Id, size_t>> byFrom(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    byFrom[i] = { from[i], i };
+  }
+  std::sort(byFrom.begin(), byFrom.end());
+  for (size_t i = 1; i < n; ++i)
+  {
+    if (byFrom[i].first == byFrom[i - 1].first)
+    {
+      return false; // a vertex left twice
+    }
+  }
+  std::vector<Id> sortedTo(to);
+  std::sort(sortedTo.begin(), sortedTo.end());
+  size_t start = 0;
+  int starts = 0;
+  for (size_t i = 0; i < n; ++i)
+  {
+    const auto range = std::equal_range(sortedTo.begin(), sortedTo.end(), from[i]);
+    const auto enters = range.second - range.first;
+    if (enters > 1)
+    {
+      return false;
+    }
+    if (enters == 0)
+    {
+      ++starts;
+      start = i;
+    }
+  }
+  if (n == 0 || starts > 1 || (starts == 0 && n < 3))
+  {
+    return n == 0;
+  }
+  size_t walked = 1, edge = start;
+  for (;;)
+  {
+    const auto next = std::lower_bound(
+      byFrom.begin(), byFrom.end(), std::make_pair(to[edge], static_cast<size_t>(0)));
+    if (next == byFrom.end() || next->first != to[edge] || next->second == start)
+    {
+      break;
+    }
+    edge = next->second;
+    if (++walked > n)
+    {
+      return false;
+    }
+  }
+  return walked == n;
+}
+
+// Whether link edges from[i] -> to[i] form one fan: every link vertex leaves once and enters
+// at most once, there is one start (a path) or none (a cycle of at least three edges), and the
+// walk from it takes every edge. Short links (the usual few edges) by direct counting, which
+// allocates nothing; long ones, around the merged vertex of a large cluster (thousands of
+// points, as many link edges), sorted, in n log n.
+bool LinkIsOneFan(const std::vector<Id>& from, const std::vector<Id>& to)
+{
+  const size_t n = from.size();
+  if (n > 32)
+  {
+    return LongLinkIsOneFan(from, to);
+  }
   size_t start = 0;
   int starts = 0;
   for (size_t i = 0; i < n; ++i)
@@ -215,6 +258,38 @@ bool HasOneFan(const Id* triangles, const VertexTriangleAdjacency& adjacency,
     }
   }
   return walked == n;
+}
+
+// Whether the vertex `merged` (a class of the union-find) has one fan: the triangles around its
+// members, with corners replaced by their classes and degenerate ones left out, give link edges
+// u -> w that form one cycle of at least three edges or one path, each vertex leaving and
+// entering at most once. Those link edges are left in `from` and `to`.
+bool HasOneFan(const Id* triangles, const VertexTriangleAdjacency& adjacency,
+  std::vector<Id>& parent, const std::vector<Id>& members, Id merged, std::vector<Id>& from,
+  std::vector<Id>& to)
+{
+  from.clear();
+  to.clear();
+  for (const Id m : members)
+  {
+    for (Id i = adjacency.Begin(m); i < adjacency.End(m); ++i)
+    {
+      const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[i]);
+      const Id c[3] = { Find(parent, tri[0]), Find(parent, tri[1]), Find(parent, tri[2]) };
+      if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
+      {
+        continue; // gone
+      }
+      const int k = c[0] == merged ? 0 : (c[1] == merged ? 1 : 2);
+      if (tri[k] != m)
+      {
+        continue; // listed under the member at that corner
+      }
+      from.push_back(c[(k + 1) % 3]);
+      to.push_back(c[(k + 2) % 3]);
+    }
+  }
+  return LinkIsOneFan(from, to);
 }
 
 // Moving points sorted by collapse: (rank, -1 last), then target, then id.
@@ -328,7 +403,8 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   std::vector<Id> members, from, to, joined;
   // Whether the points settled on target t (and `extra`, when given) form one vertex with one
   // fan; `extra` must already point at the class root.
-  int consistent = -1; // whether the triangles are consistently oriented: found when needed
+  std::vector<Id> around;
+  std::vector<std::pair<Id, Id>> directed;
   auto hasOneFan = [&](Id t, Id extra) {
     members.clear();
     for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
@@ -350,11 +426,10 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     {
       return LinkHasShape(from, to, sheets, 2);
     }
-    if (consistent < 0)
-    {
-      consistent = HasRepeatedDirectedEdge(triangles, numberOfTriangles, adjacency) ? 0 : 1;
-    }
-    return consistent == 0 && (LinkHasShape(from, to, 1, 2) || LinkHasShape(from, to, 2, 0));
+    // (The shape first: on a consistent mesh it fails where the directed test did, and the
+    // orientation test sorts the whole star.)
+    return (LinkHasShape(from, to, 1, 2) || LinkHasShape(from, to, 2, 0)) &&
+      HasRepeatedDirectedEdge(triangles, adjacency, members, around, directed);
   };
   // Whether settling p now leaves a valid mesh (p's target keeps one fan).
   auto validWith = [&](Id p) {
@@ -394,14 +469,46 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     begin = end;
   }
 
+  // Point p of target t settles as the next step; `ok`: the mesh after it is valid at t.
+  auto record = [&](Id p, Id t, bool ok) {
+    this->Order.push_back(p);
+    this->Step[p] = static_cast<Id>(this->Order.size());
+    if (settledOn[t] == Unassigned)
+    {
+      settledOn[t] = p;
+    }
+    parent[Find(parent, p)] = Find(parent, settledOn[t]);
+    if (!ok && std::find(broken.begin(), broken.end(), t) == broken.end())
+    {
+      broken.push_back(t);
+    }
+    // The broken targets (this one included, when it was broken before) may have one fan
+    // again now.
+    broken.erase(std::remove_if(broken.begin(), broken.end(),
+                   [&](Id b) { return (b != t || ok) && settledHaveOneFan(b); }),
+      broken.end());
+    valid.push_back(ok && broken.empty() ? 1 : 0);
+  };
+
   // Settle a collapse's points one by one: the lowest-id point joined by an edge to the settled
   // ones whose merge keeps a valid mesh; when none does, the lowest-id joined point anyway (the
-  // step is then passed through, not stopped at), or the lowest-id point left.
-  auto settle = [&](size_t c) {
+  // step is then passed through, not stopped at), or the lowest-id point left. `wholeValid`:
+  // the whole merge was found valid, so the last point needs no test.
+  auto settle = [&](size_t c, bool wholeValid) {
     const size_t begin = collapses[c].first, end = collapses[c].second;
     const Id t = target[moving[begin]];
     for (size_t settled = begin; settled < end; ++settled)
     {
+      if (wholeValid && settled + 1 == end)
+      {
+        Id last = Unassigned;
+        for (size_t i = begin; i < end && last == Unassigned; ++i)
+        {
+          last = this->Step[moving[i]] == Unassigned ? moving[i] : Unassigned;
+        }
+        record(last, t, true);
+        break;
+      }
       joined.clear();
       for (size_t i = begin; i < end; ++i)
       {
@@ -422,12 +529,16 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
           joined.push_back(q); // increasing id: a collapse's points are sorted by id
         }
       }
+      // Each test reads the whole merged vertex, so trying every joined point of every step
+      // cost a collapse of m points about m^3 (a sphere with points crowded at a pole had one
+      // of 6,971 points: 97 s). At most TestBudget / m joined points are tried per step.
       Id p = Unassigned;
-      for (const Id q : joined)
+      const size_t tries = std::max<size_t>(1, TestBudget / (end - begin));
+      for (size_t i = 0; i < std::min(tries, joined.size()); ++i)
       {
-        if (validWith(q))
+        if (validWith(joined[i]))
         {
-          p = q;
+          p = joined[i];
           break;
         }
       }
@@ -441,23 +552,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
         }
         ok = validWith(p);
       }
-      this->Order.push_back(p);
-      this->Step[p] = static_cast<Id>(this->Order.size());
-      if (settledOn[t] == Unassigned)
-      {
-        settledOn[t] = p;
-      }
-      parent[Find(parent, p)] = Find(parent, settledOn[t]);
-      if (!ok && std::find(broken.begin(), broken.end(), t) == broken.end())
-      {
-        broken.push_back(t);
-      }
-      // The broken targets (this one included, when it was broken before) may have one fan
-      // again now.
-      broken.erase(std::remove_if(broken.begin(), broken.end(),
-                     [&](Id b) { return (b != t || ok) && settledHaveOneFan(b); }),
-        broken.end());
-      valid.push_back(ok && broken.empty() ? 1 : 0);
+      record(p, t, ok);
     }
   };
 
@@ -494,6 +589,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   std::vector<size_t> waitingOfTarget(numberOfTargets, collapses.size());
   std::vector<size_t> triedAfter(collapses.size(), collapses.size()); // at most once per made
   std::vector<size_t> retry;
+  size_t waitingNow = 0; // counted until the end, where what waits is made (below)
   for (size_t c = 0; c < collapses.size(); ++c)
   {
     const Id t = target[moving[collapses[c].first]];
@@ -502,6 +598,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       // (A second collapse of a target that waits waits until the end.)
       waiting[c] = 1;
       waitingOfTarget[t] = std::min(waitingOfTarget[t], c);
+      ++waitingNow;
       continue;
     }
     retry.assign(1, c);
@@ -509,9 +606,10 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     {
       const size_t made = retry.back();
       retry.pop_back();
-      settle(made);
-      // Waiting collapses whose target has a point next to this collapse's points.
-      for (size_t i = collapses[made].first; i < collapses[made].second; ++i)
+      settle(made, true);
+      // Waiting collapses whose target has a point next to this collapse's points (none to
+      // look for, the usual case, when nothing waits).
+      for (size_t i = collapses[made].first; i < collapses[made].second && waitingNow > 0; ++i)
       {
         const Id q = moving[i];
         for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
@@ -528,6 +626,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
             if (wholeIsValid(w))
             {
               waiting[w] = 0;
+              --waitingNow;
               waitingOfTarget[target[tri[k]]] = collapses.size();
               retry.push_back(w);
             }
@@ -562,7 +661,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     for (size_t g = 0; g < group.size(); ++g)
     {
       const size_t made = group[g];
-      settle(made);
+      settle(made, false);
       for (size_t i = collapses[made].first; i < collapses[made].second; ++i)
       {
         const Id q = moving[i];
