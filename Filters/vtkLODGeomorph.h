@@ -205,7 +205,7 @@ public:
    * diagonal of level i's bounding box are merged. The default 1e-4 is well below a pixel when
    * the mesh fills a 4K screen (1 / 3840 = 2.6e-4), so merging is invisible; 0 merges only
    * coincident points (which always happens at t = 1). A tolerance that merges the blend to
-   * fewer triangles than the coarser level has is too large for the mesh: a warning says so.
+   * under half the coarser level's triangles is too large for the mesh: a warning says so.
    * Range [0, 1], default 1e-4.
    */
   vtkSetClampMacro(MergeTolerance, double, 0.0, 1.0);
