@@ -146,85 +146,18 @@ bool HasRepeatedDirectedEdge(const Id* triangles, const VertexTriangleAdjacency&
   return std::adjacent_find(edges.begin(), edges.end()) != edges.end();
 }
 
-// LinkIsOneFan for a long link, by sorting.
-bool LongLinkIsOneFan(const std::vector<Id>& from, const std::vector<Id>& to)
+// The one-fan test of LinkIsOneFan over n link edges, given how many edges leave and enter the
+// vertex edge i leaves from (`degrees(i, leaves, enters)`) and the edge that leaves from where
+// edge i ends (`next(i)`, n when none).
+template <typename Degrees, typename Next>
+bool WalksOneFan(size_t n, Degrees&& degrees, Next&& next)
 {
-  const size_t n = from.size();
-  std::vector<std::pair<Id, size_t>> byFrom(n);
-  for (size_t i = 0; i < n; ++i)
-  {
-    byFrom[i] = { from[i], i };
-  }
-  std::sort(byFrom.begin(), byFrom.end());
-  for (size_t i = 1; i < n; ++i)
-  {
-    if (byFrom[i].first == byFrom[i - 1].first)
-    {
-      return false; // a vertex left twice
-    }
-  }
-  std::vector<Id> sortedTo(to);
-  std::sort(sortedTo.begin(), sortedTo.end());
   size_t start = 0;
   int starts = 0;
   for (size_t i = 0; i < n; ++i)
   {
-    const auto range = std::equal_range(sortedTo.begin(), sortedTo.end(), from[i]);
-    const auto enters = range.second - range.first;
-    if (enters > 1)
-    {
-      return false;
-    }
-    if (enters == 0)
-    {
-      ++starts;
-      start = i;
-    }
-  }
-  if (n == 0 || starts > 1 || (starts == 0 && n < 3))
-  {
-    return n == 0;
-  }
-  size_t walked = 1, edge = start;
-  for (;;)
-  {
-    const auto next = std::lower_bound(
-      byFrom.begin(), byFrom.end(), std::make_pair(to[edge], static_cast<size_t>(0)));
-    if (next == byFrom.end() || next->first != to[edge] || next->second == start)
-    {
-      break;
-    }
-    edge = next->second;
-    if (++walked > n)
-    {
-      return false;
-    }
-  }
-  return walked == n;
-}
-
-// Whether link edges from[i] -> to[i] form one fan: every link vertex leaves once and enters
-// at most once, there is one start (a path) or none (a cycle of at least three edges), and the
-// walk from it takes every edge. Short links (the usual few edges) by direct counting, which
-// allocates nothing; long ones, around the merged vertex of a large cluster (thousands of
-// points, as many link edges), sorted, in n log n.
-bool LinkIsOneFan(const std::vector<Id>& from, const std::vector<Id>& to)
-{
-  const size_t n = from.size();
-  if (n > 32)
-  {
-    return LongLinkIsOneFan(from, to);
-  }
-  size_t start = 0;
-  int starts = 0;
-  for (size_t i = 0; i < n; ++i)
-  {
-    int leaves = 0, enters = 0;
-    for (size_t j = 0; j < n; ++j)
-    {
-      leaves += from[j] == from[i] ? 1 : 0;
-      enters += to[j] == from[i] ? 1 : 0;
-    }
+    size_t leaves = 0, enters = 0;
+    degrees(i, leaves, enters);
     if (leaves != 1 || enters > 1)
     {
       return false;
@@ -242,11 +175,7 @@ bool LinkIsOneFan(const std::vector<Id>& from, const std::vector<Id>& to)
   size_t walked = 1, edge = start;
   for (;;)
   {
-    size_t j = 0;
-    while (j < n && from[j] != to[edge])
-    {
-      ++j;
-    }
+    const size_t j = next(edge);
     if (j == n || j == start)
     {
       break;
@@ -258,6 +187,65 @@ bool LinkIsOneFan(const std::vector<Id>& from, const std::vector<Id>& to)
     }
   }
   return walked == n;
+}
+
+// Whether link edges from[i] -> to[i] form one fan: every link vertex leaves once and enters
+// at most once, there is one start (a path) or none (a cycle of at least three edges), and the
+// walk from it takes every edge. Short links (the usual few edges) by direct counting, which
+// allocates nothing; long ones, around the merged vertex of a large cluster (thousands of
+// points, as many link edges), sorted, in n log n.
+bool LinkIsOneFan(const std::vector<Id>& from, const std::vector<Id>& to)
+{
+  const size_t n = from.size();
+  if (n <= 32)
+  {
+    return WalksOneFan(
+      n,
+      [&](size_t i, size_t& leaves, size_t& enters) {
+        for (size_t j = 0; j < n; ++j)
+        {
+          leaves += from[j] == from[i] ? 1 : 0;
+          enters += to[j] == from[i] ? 1 : 0;
+        }
+      },
+      [&](size_t edge) {
+        size_t j = 0;
+        while (j < n && from[j] != to[edge])
+        {
+          ++j;
+        }
+        return j;
+      });
+  }
+  std::vector<std::pair<Id, size_t>> byFrom(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    byFrom[i] = { from[i], i };
+  }
+  std::sort(byFrom.begin(), byFrom.end());
+  std::vector<Id> sortedTo(to);
+  std::sort(sortedTo.begin(), sortedTo.end());
+  const auto count = [](const auto& sorted, Id value, auto key) {
+    const auto first = std::lower_bound(sorted.begin(), sorted.end(), value,
+      [&](const auto& element, Id v) { return key(element) < v; });
+    size_t found = 0;
+    for (auto it = first; it != sorted.end() && key(*it) == value; ++it)
+    {
+      ++found;
+    }
+    return found;
+  };
+  return WalksOneFan(
+    n,
+    [&](size_t i, size_t& leaves, size_t& enters) {
+      leaves = count(byFrom, from[i], [](const std::pair<Id, size_t>& e) { return e.first; });
+      enters = count(sortedTo, from[i], [](Id v) { return v; });
+    },
+    [&](size_t edge) {
+      const auto it = std::lower_bound(
+        byFrom.begin(), byFrom.end(), std::make_pair(to[edge], static_cast<size_t>(0)));
+      return it == byFrom.end() || it->first != to[edge] ? n : it->second;
+    });
 }
 
 // Whether the vertex `merged` (a class of the union-find) has one fan: the triangles around its
