@@ -26,6 +26,18 @@ std::uint64_t SpreadBits(std::uint32_t x)
   return v;
 }
 
+// The inverse of SpreadBits: every third bit of x, from bit 0 up.
+std::uint32_t CompactBits(std::uint64_t x)
+{
+  std::uint64_t v = x & 0x1249249249249249ULL;
+  v = (v | v >> 2) & 0x10c30c30c30c30c3ULL;
+  v = (v | v >> 4) & 0x100f00f00f00f00fULL;
+  v = (v | v >> 8) & 0x1f0000ff0000ffULL;
+  v = (v | v >> 16) & 0x1f00000000ffffULL;
+  v = (v | v >> 32) & 0x1fffffULL;
+  return static_cast<std::uint32_t>(v);
+}
+
 // Number of splits of axis c (0 = x, split first) among the first `depth` binary splits.
 int AxisSplits(int depth, int c)
 {
@@ -109,12 +121,11 @@ struct NodeStore
 struct ClusterTree::Builder
 {
   ClusterTree& Tree;
-  std::vector<std::uint64_t> Morton; // kept while building, recomputed on demand afterwards
   std::vector<Id> UF, UFSize, NodeOf, StampOld, StampNew, NewNode;
 
   int CommonDepth(Id a, Id b) const
   {
-    return ClusterTree::CommonDepth(this->Morton[a], this->Morton[b]);
+    return ClusterTree::CommonDepth(this->Tree.Codes[a], this->Tree.Codes[b]);
   }
 
   explicit Builder(ClusterTree& tree)
@@ -334,13 +345,10 @@ double ClusterTree::CellSize(int depth) const
 
 void ClusterTree::CellBox(Id v, int depth, double low[3], double extent[3]) const
 {
-  const double scale = std::ldexp(1.0, AxisBits) / this->Size;
-  const double top = std::ldexp(1.0, AxisBits) - 1.0;
-  const double* p = this->Mesh->Point(v);
+  const std::uint64_t code = this->Codes[v];
   for (int c = 0; c < 3; ++c)
   {
-    const auto q = static_cast<std::uint32_t>(
-      std::min(top, std::max(0.0, std::floor((p[c] - this->Corner[c]) * scale))));
+    const std::uint32_t q = CompactBits(code >> (2 - c));
     const int splits = AxisSplits(depth, c);
     extent[c] = std::ldexp(this->Size, -splits);
     const std::uint32_t cell = splits > 0 ? q >> (AxisBits - splits) : 0u;
@@ -368,18 +376,132 @@ void ClusterTree::ComputeFrame()
 }
 
 //------------------------------------------------------------------------------
-std::uint64_t ClusterTree::Morton(Id v) const
+void ClusterTree::ComputeCodes()
 {
+  const Id nv = this->NV;
+  const TriangleMesh& mesh = *this->Mesh;
   const double scale = std::ldexp(1.0, AxisBits) / this->Size;
   const double top = std::ldexp(1.0, AxisBits) - 1.0;
-  const double* p = this->Mesh->Point(v);
-  std::uint64_t code = 0;
-  for (int c = 0; c < 3; ++c)
-  {
-    const double q = std::min(top, std::max(0.0, std::floor((p[c] - this->Corner[c]) * scale)));
-    code |= SpreadBits(static_cast<std::uint32_t>(q)) << (2 - c);
-  }
-  return code;
+  this->Codes.resize(nv);
+  vtkSMPTools::For(0, nv, [&](Id begin, Id end) {
+    for (Id v = begin; v < end; ++v)
+    {
+      const double* p = mesh.Point(v);
+      std::uint64_t code = 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double q = std::min(top, std::max(0.0, std::floor((p[c] - this->Corner[c]) * scale)));
+        code |= SpreadBits(static_cast<std::uint32_t>(q)) << (2 - c);
+      }
+      this->Codes[v] = code;
+    }
+  });
+  this->PlaceIslands();
+}
+
+//------------------------------------------------------------------------------
+// Where a rough surface (a scan, noisy or jagged data) crosses a cell face, single vertices and
+// small groups poke through it: they lie in the cell beyond, cut off from the rest of that cell.
+// Left there they would be clusters of their own (joined to the rest only far up the tree),
+// single vertices next to clusters of hundreds: on a noisy sphere asked for 1% of its triangles
+// such pairs folded one triangle in eleven, and splitting them again to remove the folds left
+// ten times the triangles asked for. So a group of at most IslandVertices vertices that is a
+// whole connected part of a cell at least IslandCellEdges times as long as the longest edge at
+// the vertex the group is found from takes the code of its nearest neighbour outside (the longest
+// common prefix, ties to the lowest id): it joins the part it pokes out of at the bottom of the
+// tree. The tree stays a tree, so levels still nest; a node's vertices may then lie a few edges
+// outside its cell. (Decided for every vertex from the codes before any change, so the result
+// does not depend on the order or the threads.)
+void ClusterTree::PlaceIslands()
+{
+  constexpr int IslandVertices = 4;
+  constexpr double IslandCellEdges = 2.0;
+  const Id nv = this->NV;
+  const TriangleMesh& mesh = *this->Mesh;
+  const VertexTriangleAdjacency& adj = this->Topology->VertexTriangles;
+  // The depth of the cells at least IslandCellEdges times the longest edge at v: where they are
+  // smaller, every vertex would be alone in its cell.
+  auto islandDepth = [&](Id v) {
+    double longest = 0.0;
+    const double* p = mesh.Point(v);
+    for (Id i = adj.Begin(v); i < adj.End(v); ++i)
+    {
+      const Id* tri = mesh.Triangle(adj.Triangles[i]);
+      for (int k = 0; k < 3; ++k)
+      {
+        const double* q = mesh.Point(tri[k]);
+        longest = std::max(longest,
+          (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+            (p[2] - q[2]) * (p[2] - q[2]));
+      }
+    }
+    longest = IslandCellEdges * std::sqrt(longest);
+    return longest > 0.0 && this->Size > longest
+      ? std::min(MaxDepth, 3 * static_cast<int>(std::floor(std::log2(this->Size / longest))))
+      : -1;
+  };
+  const std::vector<std::uint64_t>& codes = this->Codes;
+  std::vector<std::uint64_t> placed(codes);
+  vtkSMPTools::For(0, nv, [&](Id begin, Id end) {
+    std::vector<Id> island;
+    auto inIsland = [&](Id w) { return std::find(island.begin(), island.end(), w) != island.end(); };
+    for (Id v = begin; v < end; ++v)
+    {
+      // v's connected part of its cell, unless it has more than IslandVertices vertices.
+      const int depth = islandDepth(v);
+      if (depth < 0)
+      {
+        continue;
+      }
+      island.assign(1, v);
+      bool large = false;
+      for (std::size_t m = 0; m < island.size() && !large; ++m)
+      {
+        const Id u = island[m];
+        for (Id i = adj.Begin(u); i < adj.End(u) && !large; ++i)
+        {
+          const Id* tri = mesh.Triangle(adj.Triangles[i]);
+          for (int k = 0; k < 3 && !large; ++k)
+          {
+            const Id w = tri[k];
+            if (CommonDepth(codes[u], codes[w]) >= depth && !inIsland(w))
+            {
+              island.push_back(w);
+              large = island.size() > static_cast<std::size_t>(IslandVertices);
+            }
+          }
+        }
+      }
+      if (large)
+      {
+        continue;
+      }
+      int nearest = -1;
+      Id outside = InvalidId;
+      for (const Id u : island)
+      {
+        for (Id i = adj.Begin(u); i < adj.End(u); ++i)
+        {
+          const Id* tri = mesh.Triangle(adj.Triangles[i]);
+          for (int k = 0; k < 3; ++k)
+          {
+            const Id w = tri[k];
+            const int common = inIsland(w) ? -1 : CommonDepth(codes[u], codes[w]);
+            if (common > nearest || (common == nearest && common >= 0 && w < outside))
+            {
+              nearest = common;
+              outside = w;
+            }
+          }
+        }
+      }
+      if (outside != InvalidId)
+      {
+        placed[v] = codes[outside];
+      }
+    }
+  });
+  this->Codes.swap(placed);
 }
 
 //------------------------------------------------------------------------------
@@ -623,16 +745,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   const Id nv = this->NV;
   this->FindCurves();
   Builder builder(*this);
-  builder.Morton.resize(nv);
-  vtkSMPTools::For(0,
-    nv,
-    [&](Id begin, Id end)
-    {
-      for (Id v = begin; v < end; ++v)
-      {
-        builder.Morton[v] = this->Morton(v);
-      }
-    });
+  this->ComputeCodes();
 
   // Vertices bucketed by their cell at TierDepth (stable: each cell lists its vertices by id).
   const int shift = MaxDepth - TierDepth;
@@ -640,7 +753,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   std::vector<Id> keyOffsets(static_cast<size_t>(numberOfKeys) + 1, 0);
   for (Id v = 0; v < nv; ++v)
   {
-    ++keyOffsets[(builder.Morton[v] >> shift) + 1];
+    ++keyOffsets[(this->Codes[v] >> shift) + 1];
   }
   std::vector<Id> cells;
   for (Id key = 0; key < numberOfKeys; ++key)
@@ -656,7 +769,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
     std::vector<Id> cursor(keyOffsets.begin(), keyOffsets.end() - 1);
     for (Id v = 0; v < nv; ++v)
     {
-      cellVertices[cursor[builder.Morton[v] >> shift]++] = v;
+      cellVertices[cursor[this->Codes[v] >> shift]++] = v;
     }
   }
 

@@ -1,7 +1,8 @@
 // MeshLOD core: the cluster tree of adaptive octree vertex clustering (see OctreeClustering.h).
 //
 // A node is a set of vertices that lie in one cell of a subdivision of the bounding cube and are
-// connected by mesh edges inside that cell. The subdivision is an octree whose every split is
+// connected by mesh edges inside that cell (up to islands, a few vertices that poke through a
+// cell face: they count as lying in the cell of their nearest neighbour, see PlaceIslands). The subdivision is an octree whose every split is
 // made as three binary splits (x, then y, then z): octree depth k is depth 3 k here, and the
 // depths in between are halves and quarters of octree cells. Going up, the parts of the child
 // cells merge where edges join them inside the parent cell; each merge is a node, so the tree
@@ -140,8 +141,10 @@ public:
   double CellSize(int depth) const;
   /// The cell of `depth` holding vertex v: lowest corner (relative to Centre) and edge lengths.
   void CellBox(Id v, int depth, double low[3], double extent[3]) const;
-  /// Morton code of vertex v's finest cell (x bits highest within each level).
-  std::uint64_t Morton(Id v) const;
+  /// Morton code of vertex v's finest cell (x bits highest within each level); an island's
+  /// vertex has its outside neighbour's code (see PlaceIslands).
+  std::uint64_t Morton(Id v) const { return this->Codes[v]; }
+  std::vector<std::uint64_t> Codes; // per vertex
   /// The deepest depth at which two vertices share a cell.
   int CommonDepth(Id a, Id b) const { return CommonDepth(this->Morton(a), this->Morton(b)); }
   static int CommonDepth(std::uint64_t a, std::uint64_t b)
@@ -191,6 +194,8 @@ public:
 private:
   struct Builder;
   void ComputeFrame();
+  void ComputeCodes();
+  void PlaceIslands();
   void FindCurves();
   void ComputeOrder();
 };

@@ -5,7 +5,8 @@
 // ----------
 // The candidates are the nodes of a ClusterTree: the sets of vertices that lie in one cell of
 // the octree over the bounding cube and are connected by edges inside that cell (the paper's
-// "related" vertices, §3). A cell holding several connected parts yields one candidate per
+// "related" vertices, §3; a few vertices poking through a cell face count as lying in their
+// neighbours' cell, ClusterTree::PlaceIslands). A cell holding several connected parts yields one candidate per
 // part, and each part is clustered on its own. Every octree split is made as three binary
 // splits, so between an octree cell and its eight children lie its halves and quarters: a
 // candidate slightly too coarse halves instead of falling apart in eight.
@@ -20,7 +21,8 @@
 //     curve that goes on outside the node at both ends (CurveMayMerge),
 //   - no triangle joining it to the outside flips when its inside vertex moves to the
 //     representative (triangles whose two outside vertices share a cell of the node's size are
-//     not counted: they fall into one neighbouring cluster and vanish),
+//     not counted: they fall into one neighbouring cluster and vanish; nor are those that still
+//     face the way the node's coherent surface normal does, see HasFlip),
 //   - and its error is at most epsilon.
 // For a given epsilon the clusters are the topmost such nodes (a single vertex always qualifies,
 // with error 0): the octree is refined exactly where the error requires it.
@@ -34,8 +36,8 @@
 // paper's fixed-point iteration from e2 = 0. The placement is a pseudo-inverse solve that stays
 // at the vertex centroid along directions the planes leave free; a cluster on an open boundary
 // then moves to the closest point of its boundary edges, so boundaries stay in place. The error
-// is the largest of the root mean squared distance to all planes, the same to the boundary
-// planes alone, and half the distance to the farthest plane, in world units. Every node's e1
+// is the largest of the root mean squared distance to all planes, the largest distance to a
+// boundary plane, and half the distance to the farthest plane, in world units. Every node's e1
 // is known from the tree (a lower bound); a node is evaluated in full only when a cut reaches
 // it.
 //

@@ -233,9 +233,13 @@ struct OctreeClustering::Internals
   void UpdateThreshold(Id index);
   void MovedNormal(Id item, const double v0[3], double moved[3]) const;
   void AddCrossingTerms(const double v0[3], const octree::EvaluationScratch& crossing, Quadric& q) const;
-  bool HasFlip(const double v0[3], const octree::EvaluationScratch& crossing, int depth) const;
+  bool HasFlip(const double v0[3],
+    const octree::EvaluationScratch& crossing,
+    int depth,
+    const double* surface) const;
   bool CurveMayMerge(Id node) const;
   void Evaluate(Id index, octree::EvaluationScratch& scratch);
+  double BoundaryDistance(const std::vector<Id>& edges, const double v0[3]) const;
   void ProjectOnBoundary(const std::vector<Id>& edges, double v0[3]) const;
   void RepresentativeOf(Id node, double out[3]) const;
   double NodeError(Id node) const;
@@ -258,6 +262,7 @@ struct OctreeClustering::Internals
   Id MarkFins(octree::Synthesis& s);
   Id MarkPinches(octree::Synthesis& s);
   Id MarkBreaks(octree::Synthesis& s);
+  Id MarkPinchedVertices(octree::Synthesis& s);
   void LabelPreviousPieces();
   std::vector<octree::CurveEdge> CurveEdgesOf(std::vector<Id>& shrunk) const;
   // Mark the changed clusters among `clusters` as not mergeable; returns how many were. With

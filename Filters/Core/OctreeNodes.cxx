@@ -1,7 +1,6 @@
 // Octree clustering: evaluating a node of the cluster tree (see OctreeClusteringInternals.h).
 #include "OctreeClusteringInternals.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +8,12 @@
 namespace meshlod
 {
 using namespace octree;
+
+namespace
+{
+// A cluster's surface normal counts as coherent (see Evaluate) from this ratio up.
+constexpr double CoherentNormal = 0.25;
+} // namespace
 
 //------------------------------------------------------------------------------
 bool OctreeClustering::Internals::CheapInadmissible(Id index) const
@@ -75,9 +80,17 @@ void OctreeClustering::Internals::AddCrossingTerms(const double v0[3],
 // triangle whose two outside vertices share a cell of the cluster's size will most likely fall
 // into one neighbouring cluster and vanish, so it is not held against the cluster (otherwise the
 // thin triangles of isosurfaces would forbid almost every cluster on a curved surface).
+//
+// With `surface` (the cluster's area-weighted normal, given when it is coherent), a moved
+// triangle that turns against its own normal but still faces the way the cluster's surface does
+// is not a flip: on a rough surface (a scan, noisy data) the input triangles' normals scatter
+// about the surface's, and the test against them alone refused nearly every node up to the
+// coarsest (a noisy sphere asked for 1% of its triangles kept eleven times that many). The
+// level's triangles are still checked against the surface around their clusters (MarkFolds).
 bool OctreeClustering::Internals::HasFlip(const double v0[3],
   const EvaluationScratch& crossing,
-  int depth) const
+  int depth,
+  const double* surface) const
 {
   for (size_t i = 0; i < crossing.Crossing.size(); ++i)
   {
@@ -90,12 +103,43 @@ bool OctreeClustering::Internals::HasFlip(const double v0[3],
     }
     double moved[3];
     this->MovedNormal(item, v0, moved);
-    if (!(Dot(crossing.Normals.data() + 3 * i, moved) > 0.0))
+    if (!(Dot(crossing.Normals.data() + 3 * i, moved) > 0.0) &&
+      !(surface != nullptr && Dot(surface, moved) > 0.0))
     {
       return true;
     }
   }
   return false;
+}
+
+//------------------------------------------------------------------------------
+// The largest distance from v0 (relative coordinates) to the planes through the given boundary
+// edges perpendicular to their triangles (the planes of BoundaryEdgeQuadric).
+double OctreeClustering::Internals::BoundaryDistance(const std::vector<Id>& edges,
+  const double v0[3]) const
+{
+  double largest = 0.0;
+  for (const Id item : edges)
+  {
+    const Id* tri = this->Mesh.Triangle(item / 3);
+    const int k = static_cast<int>(item % 3);
+    double p[3][3];
+    this->Tree.RelativeTriangle(tri, p);
+    double n[3];
+    Normal(p[0], p[1], p[2], n);
+    const double* a = p[k];
+    const double* b = p[(k + 1) % 3];
+    const double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double m[3] = { e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2],
+      e[0] * n[1] - e[1] * n[0] };
+    const double length = std::sqrt(Dot(m, m));
+    if (length > 0.0)
+    {
+      const double w[3] = { v0[0] - a[0], v0[1] - a[1], v0[2] - a[2] };
+      largest = std::max(largest, std::abs(Dot(m, w)) / length);
+    }
+  }
+  return largest;
 }
 
 //------------------------------------------------------------------------------
@@ -189,10 +233,10 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
 {
   const Id node = this->NV + index;
   const ClusterNode& n = this->Tree.Nodes[index];
-  Quadric q1, boundary;
+  Quadric q1;
   double* slot = this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[index]);
   this->Tree.RelatedQuadric(
-    node, q1, &scratch.Crossing, slot + 3, &boundary, &scratch.BoundaryEdges, &scratch.Related);
+    node, q1, &scratch.Crossing, slot + 3, nullptr, &scratch.BoundaryEdges, &scratch.Related);
   const size_t crossings = scratch.Crossing.size();
   scratch.Planes.resize(crossings);
   scratch.Normals.resize(3 * crossings);
@@ -274,15 +318,14 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
     value = errorAt(v0);
   }
   // The error: the root mean squared distance to the planes of the related triangle set, and
-  // separately to the boundary-edge planes (few, so they would hardly count in the mean: an
-  // open boundary is kept within epsilon too). No single plane may be farther than twice that:
-  // a mean lets elongated or bent clusters stray far at their ends.
+  // separately the largest distance to a boundary edge's perpendicular plane (few, so they would
+  // hardly count in the mean: an open boundary is kept within epsilon too; their own root mean
+  // square let a large cluster at a corner of a rough height field sit 39 edges along one side,
+  // cutting the corner off). No single plane may be farther than twice that: a mean lets
+  // elongated or bent clusters stray far at their ends.
   const double weight = q1.Weight();
   double error = weight > 0.0 ? std::sqrt(value / weight) : 0.0;
-  if (boundary.Weight() > 0.0)
-  {
-    error = std::max(error, std::sqrt(boundary.Evaluate(v0) / boundary.Weight()));
-  }
+  error = std::max(error, this->BoundaryDistance(scratch.BoundaryEdges, v0));
   double farthest = 0.0;
   for (size_t i = 0; i < scratch.Related.size(); i += 4)
   {
@@ -292,7 +335,14 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   error = std::max(error, 0.5 * farthest);
   std::copy_n(v0, 3, slot);
   slot[6] = static_cast<float>(error); // as a threshold, in single precision
-  this->State[index] = this->HasFlip(v0, crossing, n.Depth) || !this->CurveMayMerge(node)
+  // The cluster's normal is coherent when its triangles mostly face one way: the length of their
+  // summed normals (twice their area each) is at least CoherentNormal times twice their area
+  // (the weight of the face planes, plus the boundary planes' if any).
+  const double* normal = slot + 3;
+  const bool coherent =
+    Dot(normal, normal) >= 4.0 * CoherentNormal * CoherentNormal * weight * weight;
+  this->State[index] = this->HasFlip(v0, crossing, n.Depth, coherent ? normal : nullptr) ||
+      !this->CurveMayMerge(node)
     ? NodeState::Inadmissible
     : NodeState::Admissible;
   this->UpdateThreshold(index);

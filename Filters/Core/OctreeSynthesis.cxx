@@ -1,6 +1,7 @@
 // Octree clustering: a level from a cut of the cluster tree (see OctreeClusteringInternals.h).
 #include "OctreeClusteringInternals.h"
 
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -450,6 +451,125 @@ Id OctreeClustering::Internals::MarkChanged(Synthesis& s,
 }
 
 //------------------------------------------------------------------------------
+// Pinched vertices: a cluster whose kept triangles form two or more fans that share no edge
+// (their far edges, the cluster's link, fall apart), where one of those triangles is involved.
+// A thin part whose cross-section fell into a cluster can pinch there instead of breaking:
+// the pieces on either side stay joined at that one cluster, so MarkBreaks, which joins pieces
+// at their clusters, does not see the break (a thin tube came out as a chain of 12 closed
+// pieces). Clusters holding curve points or locked vertices have several fans by nature and
+// are left alone. Like folds, the changed clusters of the triangles around it are marked.
+Id OctreeClustering::Internals::MarkPinchedVertices(Synthesis& s)
+{
+  const Id kept = static_cast<Id>(s.From.size());
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  // The kept triangles around each cluster (counting sort by cluster).
+  std::vector<Id> offsets(static_cast<size_t>(clusters) + 1, 0);
+  for (Id j = 0; j < kept; ++j)
+  {
+    for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
+    {
+      ++offsets[s.Triangles[3 * j + c] + 1];
+    }
+  }
+  for (Id k = 0; k < clusters; ++k)
+  {
+    offsets[k + 1] += offsets[k];
+  }
+  std::vector<Id> around(offsets[clusters]);
+  {
+    std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
+    for (Id j = 0; j < kept; ++j)
+    {
+      for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
+      {
+        around[cursor[s.Triangles[3 * j + c]]++] = j;
+      }
+    }
+  }
+  std::vector<unsigned char> pinched(clusters, 0);
+  struct LinkScratch
+  {
+    std::vector<Id> Ends, Vertices, Up;
+  };
+  vtkSMPThreadLocal<LinkScratch> scratch;
+  vtkSMPTools::For(0,
+    clusters,
+    [&](Id begin, Id end)
+    {
+      LinkScratch& mine = scratch.Local();
+      for (Id k = begin; k < end; ++k)
+      {
+        const Id first = offsets[k], last = offsets[k + 1];
+        const Id node = s.Cut[k];
+        const bool locked =
+          this->Tree.IsLeaf(node) ? this->Tree.IsLocked(node) : this->Tree.Internal(node).Locked;
+        if (last - first < 2 || locked || this->Tree.HoldsCurve(node))
+        {
+          continue;
+        }
+        bool involved = false;
+        mine.Ends.clear();
+        for (Id x = first; x < last; ++x)
+        {
+          const Id j = around[x];
+          involved = involved || s.Involved(j);
+          const Id* tri = s.Triangles.data() + 3 * j;
+          for (int c = 0; c < 3; ++c)
+          {
+            if (tri[c] != k)
+            {
+              mine.Ends.push_back(tri[c]);
+            }
+          }
+        }
+        if (!involved)
+        {
+          continue;
+        }
+        // Components of the link: union-find over its vertices, numbered by sorting.
+        mine.Vertices = mine.Ends;
+        std::sort(mine.Vertices.begin(), mine.Vertices.end());
+        mine.Vertices.erase(
+          std::unique(mine.Vertices.begin(), mine.Vertices.end()), mine.Vertices.end());
+        const Id n = static_cast<Id>(mine.Vertices.size());
+        mine.Up.resize(n);
+        std::iota(mine.Up.begin(), mine.Up.end(), Id(0));
+        auto local = [&](Id v)
+        {
+          return static_cast<Id>(
+            std::lower_bound(mine.Vertices.begin(), mine.Vertices.end(), v) -
+            mine.Vertices.begin());
+        };
+        Id components = n;
+        for (std::size_t e = 0; e + 1 < mine.Ends.size(); e += 2)
+        {
+          const Id a = FindRoot(mine.Up, local(mine.Ends[e]));
+          const Id b = FindRoot(mine.Up, local(mine.Ends[e + 1]));
+          if (a != b)
+          {
+            mine.Up[std::max(a, b)] = std::min(a, b);
+            --components;
+          }
+        }
+        pinched[k] = components > 1 ? 1 : 0;
+      }
+    });
+  std::vector<Id> marks;
+  for (Id k = 0; k < clusters; ++k)
+  {
+    if (pinched[k])
+    {
+      for (Id x = offsets[k]; x < offsets[k + 1]; ++x)
+      {
+        const auto corners = s.Triangles.begin() + 3 * around[x];
+        marks.insert(marks.end(), corners, corners + 3);
+      }
+    }
+  }
+  return this->MarkChanged(s, marks, false);
+}
+
+//------------------------------------------------------------------------------
 // The edges between clusters that curve edges of the input join (a curve where sheets meet,
 // and the edges of more than two triangles between two locked vertices), with the number of
 // triangles each must keep, sorted; empty on a mesh without such curves. `shrunk` receives
@@ -833,9 +953,10 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
     Id marked = folds + this->MarkFins(s) + this->MarkPinches(s);
     if (marked == 0)
     {
-      // Breaks last, once the level is otherwise clean (a serial pass over the triangles: once
-      // or twice per trial instead of on every pass).
+      // Breaks and pinched vertices last, once the level is otherwise clean (passes over the
+      // triangles: once or twice per trial instead of on every pass).
       marked = this->MarkBreaks(s);
+      marked = marked > 0 ? marked : this->MarkPinchedVertices(s);
     }
     if (marked == 0)
     {
