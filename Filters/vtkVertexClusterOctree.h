@@ -38,7 +38,8 @@
  * point of its boundary edges, so every boundary point of a level lies on the input's
  * boundary. The cluster error is the largest of the root of the area-weighted mean squared
  * distance to all the planes, the largest distance to a boundary plane (so an open boundary,
- * corners included, stays within epsilon), and half the distance to the farthest plane (a mean alone lets elongated or bent clusters stray at their ends), in
+ * corners included, stays within epsilon; not with BoundaryWeight 0), and half the distance to
+ * the farthest plane (a mean alone lets elongated or bent clusters stray at their ends), in
  * world units; it is what epsilon bounds (the surface typically stays within 2-3 epsilon of the
  * input).
  *

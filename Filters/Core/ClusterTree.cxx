@@ -411,7 +411,11 @@ void ClusterTree::ComputeCodes()
 // common prefix, ties to the lowest id): it joins the part it pokes out of at the bottom of the
 // tree. The tree stays a tree, so levels still nest; a node's vertices may then lie a few edges
 // outside its cell. (Decided for every vertex from the codes before any change, so the result
-// does not depend on the order or the threads.)
+// does not depend on the order or the threads. Two islands facing each other across a cell face
+// may take each other's codes and stay islands; passing over neighbours in islands, or taking
+// only the prefix of the neighbour's cell at the island's depth, came out no better on the
+// noisy meshes tried, and the latter clearly worse: a noisy sphere asked for 1% kept 1,425
+// triangles for 782 instead of 877, at three times the RMS distance.)
 void ClusterTree::PlaceIslands()
 {
   constexpr int IslandVertices = 4;
@@ -436,15 +440,19 @@ void ClusterTree::PlaceIslands()
       }
     }
     longest = IslandCellEdges * std::sqrt(longest);
-    return longest > 0.0 && this->Size > longest
-      ? std::min(MaxDepth, 3 * static_cast<int>(std::floor(std::log2(this->Size / longest))))
-      : -1;
+    if (!(longest > 0.0) || !(this->Size > longest))
+    {
+      return -1;
+    }
+    const double octreeDepth = std::floor(std::log2(this->Size / longest));
+    return 3 * static_cast<int>(std::min<double>(AxisBits, octreeDepth));
   };
   const std::vector<std::uint64_t>& codes = this->Codes;
   std::vector<std::uint64_t> placed(codes);
   vtkSMPTools::For(0, nv, [&](Id begin, Id end) {
     std::vector<Id> island;
-    auto inIsland = [&](Id w) { return std::find(island.begin(), island.end(), w) != island.end(); };
+    auto inIsland = [&](Id w)
+    { return std::find(island.begin(), island.end(), w) != island.end(); };
     for (Id v = begin; v < end; ++v)
     {
       // v's connected part of its cell, unless it has more than IslandVertices vertices.

@@ -2,11 +2,11 @@
 //
 // A node is a set of vertices that lie in one cell of a subdivision of the bounding cube and are
 // connected by mesh edges inside that cell (up to islands, a few vertices that poke through a
-// cell face: they count as lying in the cell of their nearest neighbour, see PlaceIslands). The subdivision is an octree whose every split is
-// made as three binary splits (x, then y, then z): octree depth k is depth 3 k here, and the
-// depths in between are halves and quarters of octree cells. Going up, the parts of the child
-// cells merge where edges join them inside the parent cell; each merge is a node, so the tree
-// has the vertices as leaves (ids [0, NV)) and the internal nodes above them (ids NV + i, a
+// cell face: they count as lying in the cell of their nearest neighbour, see PlaceIslands).
+// The subdivision is an octree whose every split is made as three binary splits (x, then y,
+// then z): octree depth k is depth 3 k here, and the depths in between are halves and quarters
+// of octree cells. Going up, the parts of the child cells merge where edges join them inside
+// the parent cell; each merge is a node, so the tree has the vertices as leaves (ids [0, NV)) and the internal nodes above them (ids NV + i, a
 // parent always after its children). The vertices of a node occupy one contiguous range of a
 // depth-first vertex order (Order / PosOf).
 //
@@ -139,7 +139,8 @@ public:
   }
   /// The longest edge of the cell of a node formed at `depth`.
   double CellSize(int depth) const;
-  /// The cell of `depth` holding vertex v: lowest corner (relative to Centre) and edge lengths.
+  /// The cell of `depth` of vertex v's code (for an island's vertex, its neighbour's cell):
+  /// lowest corner (relative to Centre) and edge lengths.
   void CellBox(Id v, int depth, double low[3], double extent[3]) const;
   /// Morton code of vertex v's finest cell (x bits highest within each level); an island's
   /// vertex has its outside neighbour's code (see PlaceIslands).

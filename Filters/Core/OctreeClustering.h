@@ -6,10 +6,10 @@
 // The candidates are the nodes of a ClusterTree: the sets of vertices that lie in one cell of
 // the octree over the bounding cube and are connected by edges inside that cell (the paper's
 // "related" vertices, §3; a few vertices poking through a cell face count as lying in their
-// neighbours' cell, ClusterTree::PlaceIslands). A cell holding several connected parts yields one candidate per
-// part, and each part is clustered on its own. Every octree split is made as three binary
-// splits, so between an octree cell and its eight children lie its halves and quarters: a
-// candidate slightly too coarse halves instead of falling apart in eight.
+// neighbours' cell, ClusterTree::PlaceIslands). A cell holding several connected parts yields
+// one candidate per part, and each part is clustered on its own. Every octree split is made as
+// three binary splits, so between an octree cell and its eight children lie its halves and
+// quarters: a candidate slightly too coarse halves instead of falling apart in eight.
 //
 // Refinement (§2.4, §2.5)
 // -----------------------

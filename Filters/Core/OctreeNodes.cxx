@@ -325,7 +325,10 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   // elongated or bent clusters stray far at their ends.
   const double weight = q1.Weight();
   double error = weight > 0.0 ? std::sqrt(value / weight) : 0.0;
-  error = std::max(error, this->BoundaryDistance(scratch.BoundaryEdges, v0));
+  if (this->Options.BoundaryWeight > 0.0)
+  {
+    error = std::max(error, this->BoundaryDistance(scratch.BoundaryEdges, v0));
+  }
   double farthest = 0.0;
   for (size_t i = 0; i < scratch.Related.size(); i += 4)
   {
