@@ -6,9 +6,9 @@
 // The subdivision is an octree whose every split is made as three binary splits (x, then y,
 // then z): octree depth k is depth 3 k here, and the depths in between are halves and quarters
 // of octree cells. Going up, the parts of the child cells merge where edges join them inside
-// the parent cell; each merge is a node, so the tree has the vertices as leaves (ids [0, NV)) and the internal nodes above them (ids NV + i, a
-// parent always after its children). The vertices of a node occupy one contiguous range of a
-// depth-first vertex order (Order / PosOf).
+// the parent cell; each merge is a node, so the tree has the vertices as leaves (ids [0, NV))
+// and the internal nodes above them (ids NV + i, a parent always after its children). The
+// vertices of a node occupy one contiguous range of a depth-first vertex order (Order / PosOf).
 //
 // Built bottom-up like Kruskal's algorithm: every half-edge is sorted by the depth at which its
 // two ends part (the common prefix of their Morton codes), and a union-find merges the parts of
