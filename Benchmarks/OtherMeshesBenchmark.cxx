@@ -1,12 +1,14 @@
-// Beyond isosurfaces: vtkTriangleCollapseDecimation (defaults) against vtkQuadricDecimation on
-// meshes made by VTK's own sources, the kinds a user feeds in besides marching-cubes output:
-// a CAD-like faceted solid, a parametric surface with a seam, scan-like noisy spheres, a
-// non-orientable surface, a superquadric with rounded edges and the smoothed surfaces between
-// the regions of a segmented volume, where three sheets meet along curves. Prints a markdown
-// table (quality and Euler characteristics; no timing) that run-benchmarks.sh appends to
+// Beyond isosurfaces: vtkTriangleCollapseDecimation (defaults) against vtkQuadricDecimation,
+// and vtkVertexClusterOctree against vtkQuadricClustering, on meshes made by VTK's own sources,
+// the kinds a user feeds in besides marching-cubes output: a CAD-like faceted solid, a
+// parametric surface with a seam, scan-like noisy spheres, a non-orientable surface, a
+// superquadric with rounded edges and the smoothed surfaces between the regions of a segmented
+// volume, where three sheets meet along curves. Prints two markdown tables (quality and Euler
+// characteristics, or the counts reached; no timing) that run-benchmarks.sh appends to
 // RESULTS.md.
 //
 //   OtherMeshesBenchmark [samples]   (surface samples per side for the distances, default 100000)
+#include "BenchmarkMethods.h"
 #include "MeshLODHierarchyChecks.h"
 #include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestMeshes.h"
@@ -32,9 +34,11 @@
 #include "vtkSuperquadricSource.h"
 #include "vtkWindowedSincPolyDataFilter.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -200,6 +204,12 @@ std::vector<TestMesh> Meshes()
   return meshes;
 }
 
+// a / b, for distances that may be 0.
+double Ratio(double a, double b)
+{
+  return b > 0.0 ? a / b : (a > 0.0 ? 1e9 : 1.0);
+}
+
 // The level of `hierarchy` whose triangle count is nearest to `target`.
 vtkPolyData* Nearest(vtkMultiBlockDataSet* hierarchy, vtkIdType target)
 {
@@ -228,6 +238,18 @@ int main(int argc, char* argv[])
               "Euler characteristic: level 0, ours, QD |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::vector<std::string> notes;
+  // The octree and the grid clustering come from the main benchmark's registry, with its
+  // settings (the octree's levels at the targets, the grid searched for the octree's count).
+  std::vector<meshlod::benchmark::Method> methods;
+  meshlod::benchmark::RegisterVTKMethods(methods);
+  meshlod::benchmark::RegisterMeshLODMethods(methods);
+  auto method = [&](const std::string& name) {
+    return *std::find_if(methods.begin(), methods.end(),
+      [&](const meshlod::benchmark::Method& m) { return m.Name == name; });
+  };
+  const meshlod::benchmark::Method octree = method("vtkVertexClusterOctree");
+  const meshlod::benchmark::Method grid = method("vtkQuadricClustering");
+  std::ostringstream octreeRows;
   for (const TestMesh& test : Meshes())
   {
     vtkSmartPointer<vtkPolyData> mesh = test.Make();
@@ -247,17 +269,35 @@ int main(int argc, char* argv[])
       const meshlod::SurfaceDistance ours = meshlod::MeasureSurfaceDistance(mesh, level, options);
       const meshlod::SurfaceDistance theirs =
         meshlod::MeasureSurfaceDistance(mesh, peer->GetOutput(), options);
-      auto ratio = [](double a, double b) { return b > 0.0 ? a / b : (a > 0.0 ? 1e9 : 1.0); };
+
       std::printf(
         "| %s | %lld | %g%% | %lld | %.3g | %.3g | %.3g | %.3g | %.2f | %.2f | %lld, %lld, %lld |\n",
         test.Name.c_str(), static_cast<long long>(triangles), 100.0 * fraction,
         static_cast<long long>(level->GetNumberOfPolys()), ours.HausdorffPercent(),
         ours.RmsPercent(), theirs.HausdorffPercent(), theirs.RmsPercent(),
-        ratio(ours.Hausdorff, theirs.Hausdorff), ratio(ours.Rms, theirs.Rms),
+        Ratio(ours.Hausdorff, theirs.Hausdorff), Ratio(ours.Rms, theirs.Rms),
         EulerCharacteristic(vtkPolyData::SafeDownCast(decimate->GetHierarchy()->GetBlock(0))),
         EulerCharacteristic(level),
         EulerCharacteristic(peer->GetOutput()));
       std::fflush(stdout);
+    }
+    const std::vector<vtkIdType> targets = { triangles / 10, triangles / 100 };
+    const std::vector<vtkSmartPointer<vtkPolyData>> levels = octree.Hierarchy(mesh, targets);
+    for (std::size_t i = 0; i < targets.size(); ++i)
+    {
+      vtkPolyData* level = levels[i];
+      const vtkSmartPointer<vtkPolyData> peer = grid.Prepare(mesh, level->GetNumberOfPolys())();
+      const meshlod::SurfaceDistance ours = meshlod::MeasureSurfaceDistance(mesh, level, options);
+      const meshlod::SurfaceDistance theirs = meshlod::MeasureSurfaceDistance(mesh, peer, options);
+      char row[512];
+      std::snprintf(row, sizeof(row),
+        "| %s | %lld | %lld | %lld | %lld | %.3g | %.3g | %.3g | %.3g | %.2f | %.2f |\n",
+        test.Name.c_str(), static_cast<long long>(triangles),
+        static_cast<long long>(targets[i]), static_cast<long long>(level->GetNumberOfPolys()),
+        static_cast<long long>(peer->GetNumberOfPolys()), ours.HausdorffPercent(),
+        ours.RmsPercent(), theirs.HausdorffPercent(), theirs.RmsPercent(),
+        Ratio(ours.Hausdorff, theirs.Hausdorff), Ratio(ours.Rms, theirs.Rms));
+      octreeRows << row;
     }
   }
   std::printf("\n");
@@ -265,5 +305,14 @@ int main(int argc, char* argv[])
   {
     std::printf("%s\n", note.c_str());
   }
+  std::printf("\nvtkVertexClusterOctree (levels at 10%% and 1%% of the input) and vtkQuadricClustering "
+              "(grid searched for the octree's count) on the same meshes; a count the octree "
+              "misses is reported by a warning, and the grid is compared at the count reached:"
+              "\n\n");
+  std::printf("| mesh | triangles | target | octree triangles | vtkQuadricClustering triangles | "
+              "Hausdorff %% | RMS %% | vtkQuadricClustering Hausdorff %% | RMS %% | "
+              "Hausdorff x QC | RMS x QC |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("%s", octreeRows.str().c_str());
   return 0;
 }
