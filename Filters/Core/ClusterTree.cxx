@@ -404,8 +404,9 @@ void ClusterTree::ComputeCodes()
 // small groups poke through it: they lie in the cell beyond, cut off from the rest of that cell.
 // Left there they would be clusters of their own (joined to the rest only far up the tree),
 // single vertices next to clusters of hundreds: on a noisy sphere asked for 1% of its triangles
-// such pairs folded one triangle in eleven, and splitting them again to remove the folds left
-// ten times the triangles asked for. So a group of at most IslandVertices vertices that is a
+// the first cut (783 triangles, 134 of its 428 clusters of 1 to 4 vertices) had 70 clusters to
+// split for folds and 64 for fins and pinched edges, and splitting them again, pass after pass,
+// left ten times the triangles asked for. So a group of at most IslandVertices vertices that is a
 // whole connected part of a cell at least IslandCellEdges times as long as the longest edge at
 // the vertex the group is found from takes the code of its nearest neighbour outside (the longest
 // common prefix, ties to the lowest id): it joins the part it pokes out of at the bottom of the
