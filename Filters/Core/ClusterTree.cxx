@@ -570,7 +570,6 @@ void ClusterTree::RelatedQuadric(Id node,
   Quadric& q,
   std::vector<Id>* crossing,
   double normal[3],
-  Quadric* boundaryQ,
   std::vector<Id>* boundaryEdges,
   std::vector<double>* planes) const
 {
@@ -578,10 +577,6 @@ void ClusterTree::RelatedQuadric(Id node,
   if (planes)
   {
     planes->clear();
-  }
-  if (boundaryQ)
-  {
-    boundaryQ->Clear();
   }
   if (boundaryEdges)
   {
@@ -660,10 +655,6 @@ void ClusterTree::RelatedQuadric(Id node,
           Quadric edge;
           BoundaryEdgeQuadric(p[e], p[(e + 1) % 3], n, this->Options.BoundaryWeight, edge);
           q.Add(edge);
-          if (boundaryQ)
-          {
-            boundaryQ->Add(edge);
-          }
           if (boundaryEdges)
           {
             boundaryEdges->push_back(3 * t + e);

@@ -177,15 +177,13 @@ public:
 
   /// The quadric of the related triangle set of `node`, recomputed from its vertices; with
   /// `crossing`, also the triangles with exactly one vertex inside (3 t + that corner), with
-  /// `normal` the sum of the area-weighted normals of its triangles, with `boundary` the
-  /// boundary-edge planes alone (they are also in q), with `boundaryEdges` the boundary edges
-  /// with an end inside (3 t + k for edge k of triangle t) and with `planes` the triangles'
-  /// planes (unit normal and offset, 4 numbers each).
+  /// `normal` the sum of the area-weighted normals of its triangles, with `boundaryEdges` the
+  /// boundary edges with an end inside (3 t + k for edge k of triangle t) and with `planes` the
+  /// triangles' planes (unit normal and offset, 4 numbers each).
   void RelatedQuadric(Id node,
     Quadric& q,
     std::vector<Id>* crossing,
     double normal[3],
-    Quadric* boundary = nullptr,
     std::vector<Id>* boundaryEdges = nullptr,
     std::vector<double>* planes = nullptr) const;
 

@@ -125,18 +125,13 @@ double OctreeClustering::Internals::BoundaryDistance(const std::vector<Id>& edge
     const int k = static_cast<int>(item % 3);
     double p[3][3];
     this->Tree.RelativeTriangle(tri, p);
-    double n[3];
+    double n[3], m[3];
     Normal(p[0], p[1], p[2], n);
     const double* a = p[k];
-    const double* b = p[(k + 1) % 3];
-    const double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-    const double m[3] = { e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2],
-      e[0] * n[1] - e[1] * n[0] };
-    const double length = std::sqrt(Dot(m, m));
-    if (length > 0.0)
+    if (BoundaryEdgePlane(a, p[(k + 1) % 3], n, m))
     {
       const double w[3] = { v0[0] - a[0], v0[1] - a[1], v0[2] - a[2] };
-      largest = std::max(largest, std::abs(Dot(m, w)) / length);
+      largest = std::max(largest, std::abs(Dot(m, w)));
     }
   }
   return largest;
@@ -236,7 +231,7 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   Quadric q1;
   double* slot = this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[index]);
   this->Tree.RelatedQuadric(
-    node, q1, &scratch.Crossing, slot + 3, nullptr, &scratch.BoundaryEdges, &scratch.Related);
+    node, q1, &scratch.Crossing, slot + 3, &scratch.BoundaryEdges, &scratch.Related);
   const size_t crossings = scratch.Crossing.size();
   scratch.Planes.resize(crossings);
   scratch.Normals.resize(3 * crossings);

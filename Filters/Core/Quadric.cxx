@@ -164,6 +164,28 @@ void TriangleQuadric(const double a[3],
 }
 
 //------------------------------------------------------------------------------
+bool BoundaryEdgePlane(const double a[3],
+  const double b[3],
+  const double faceNormal[3],
+  double unit[3])
+{
+  const double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double m[3] = { e[1] * faceNormal[2] - e[2] * faceNormal[1],
+    e[2] * faceNormal[0] - e[0] * faceNormal[2],
+    e[0] * faceNormal[1] - e[1] * faceNormal[0] };
+  const double length = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+  if (!(length > 0.0))
+  {
+    return false;
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    unit[i] = m[i] / length;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void BoundaryEdgeQuadric(const double a[3],
   const double b[3],
   const double faceNormal[3],
@@ -171,19 +193,12 @@ void BoundaryEdgeQuadric(const double a[3],
   Quadric& q)
 {
   q.Clear();
-  const double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-  double m[3] = { e[1] * faceNormal[2] - e[2] * faceNormal[1],
-    e[2] * faceNormal[0] - e[0] * faceNormal[2],
-    e[0] * faceNormal[1] - e[1] * faceNormal[0] };
-  const double length = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-  if (!(length > 0.0) || !(weight > 0.0))
+  double m[3];
+  if (!(weight > 0.0) || !BoundaryEdgePlane(a, b, faceNormal, m))
   {
     return;
   }
-  for (double& x : m)
-  {
-    x /= length;
-  }
+  const double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
   q.AddPlane(m, a, weight * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]));
 }
 

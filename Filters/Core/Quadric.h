@@ -101,6 +101,13 @@ VTKFILTERSMESHLOD_EXPORT void TriangleQuadric(const double a[3],
   Quadric& q,
   double normal[3]);
 
+/// The unit normal of the plane through the boundary edge (a, b) perpendicular to its triangle
+/// (whose normal is `faceNormal`, any length); false, and `unit` untouched, when degenerate.
+VTKFILTERSMESHLOD_EXPORT bool BoundaryEdgePlane(const double a[3],
+  const double b[3],
+  const double faceNormal[3],
+  double unit[3]);
+
 /// Quadric of the plane through the boundary edge (a, b) perpendicular to its triangle (whose
 /// normal is `faceNormal`, any length), weighted by `weight` times the squared edge length.
 VTKFILTERSMESHLOD_EXPORT void BoundaryEdgeQuadric(const double a[3],
