@@ -574,7 +574,8 @@ std::string Benchmark::TargetSummary() const
     { "vtkTriangleCollapseDecimation independent sets", "vtkQuadricDecimation" },
     { "vtkTriangleCollapseDecimation triangles only", "vtkQuadricDecimation" },
     { "vtkTriangleCollapseDecimation curvature", "vtkQuadricDecimation" },
-    { "vtkVertexClusterOctree", "vtkQuadricClustering" } };
+    { "vtkVertexClusterOctree", "vtkQuadricClustering" },
+    { "vtkVertexClusterOctree flipped edges", "vtkQuadricClustering" } };
   if (this->Opts.Targets.empty())
   {
     return std::string();

@@ -67,6 +67,28 @@ Method TriangleCollapse(const std::string& name, const std::string& settings,
   };
   return method;
 }
+Method VertexCluster(const std::string& name, const std::string& settings, bool flipEdges)
+{
+  Method method;
+  method.Name = name;
+  method.Settings = settings;
+  method.Parallel = true;
+  method.Hierarchy = [flipEdges](vtkPolyData* input, const std::vector<vtkIdType>& targets) {
+    vtkNew<vtkVertexClusterOctree> cluster;
+    cluster->SetInputData(input);
+    cluster->SetLevelModeToTargetTriangleCounts();
+    cluster->SetFlipEdges(flipEdges);
+    std::vector<vtkIdType> sorted(targets);
+    std::sort(sorted.rbegin(), sorted.rend());
+    for (const vtkIdType target : sorted)
+    {
+      cluster->AddTargetTriangleCount(target);
+    }
+    cluster->Update();
+    return NearestLevels(cluster->GetHierarchy(), targets);
+  };
+  return method;
+}
 } // namespace
 
 void RegisterMeshLODMethods(std::vector<Method>& methods)
@@ -102,24 +124,12 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
 
   // The octree clustering is compared with vtkQuadricClustering: one level per target, epsilon
   // searched by the filter inside the timed run.
-  Method octree;
-  octree.Name = "vtkVertexClusterOctree";
-  octree.Settings = "TargetTriangleCounts level mode, one level per target, defaults otherwise";
-  octree.Parallel = true;
-  octree.Hierarchy = [](vtkPolyData* input, const std::vector<vtkIdType>& targets) {
-    vtkNew<vtkVertexClusterOctree> cluster;
-    cluster->SetInputData(input);
-    cluster->SetLevelModeToTargetTriangleCounts();
-    std::vector<vtkIdType> sorted(targets);
-    std::sort(sorted.rbegin(), sorted.rend());
-    for (const vtkIdType target : sorted)
-    {
-      cluster->AddTargetTriangleCount(target);
-    }
-    cluster->Update();
-    return NearestLevels(cluster->GetHierarchy(), targets);
-  };
-  methods.push_back(octree);
+  methods.push_back(VertexCluster("vtkVertexClusterOctree",
+    "TargetTriangleCounts level mode, one level per target, defaults otherwise", false));
+  methods.push_back(VertexCluster("vtkVertexClusterOctree flipped edges",
+    "as vtkVertexClusterOctree, with FlipEdges on (each level's edges flipped towards the input; "
+    "for discrete levels, see the class docs)",
+    true));
 }
 
 } // namespace benchmark

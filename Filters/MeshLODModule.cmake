@@ -30,6 +30,7 @@ set(meshlod_private_headers
   Filters/Core/TextureAtlas.h
   Filters/Core/TriangleCollapse.h
   Filters/Core/TriangleMesh.h
+  Filters/Core/TriangulationFlips.h
   Filters/MeshLODBlend.h
   Filters/MeshLODGeomorphInternals.h
   Filters/MeshLODHierarchy.h
@@ -59,6 +60,7 @@ set(meshlod_sources
   Filters/Core/TextureAtlas.cxx
   Filters/Core/TriangleCollapse.cxx
   Filters/Core/TriangleMesh.cxx
+  Filters/Core/TriangulationFlips.cxx
   Filters/MeshLODBlend.cxx
   Filters/MeshLODGeomorphInternals.cxx
   Filters/MeshLODHierarchy.cxx

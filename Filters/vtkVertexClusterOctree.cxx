@@ -488,6 +488,7 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   options.MaximumCellSize = this->MaximumCellSize * unit;
   options.MaximumPointsPerCell = this->MaximumPointsPerCell;
   options.RepresentativeIterations = this->RepresentativeIterations;
+  options.FlipEdges = this->FlipEdges;
   options.BoundaryWeight = this->BoundaryWeight;
   // The clustering asks the topology only which edges are boundaries.
   in.Topology.KeepBoundaryFlagsOnly();
@@ -662,6 +663,7 @@ void vtkVertexClusterOctree::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumCellSize: " << this->MaximumCellSize << "\n";
   os << indent << "MaximumPointsPerCell: " << this->MaximumPointsPerCell << "\n";
   os << indent << "RepresentativeIterations: " << this->RepresentativeIterations << "\n";
+  os << indent << "FlipEdges: " << (this->FlipEdges ? "On" : "Off") << "\n";
   os << indent << "BoundaryWeight: " << this->BoundaryWeight << "\n";
   os << indent << "ComputeNormals: " << (this->ComputeNormals ? "On" : "Off") << "\n";
   os << indent << "MeasureLevelErrors: " << (this->MeasureLevelErrors ? "On" : "Off") << "\n";

@@ -91,6 +91,10 @@ struct VTKFILTERSMESHLOD_EXPORT OctreeClusteringOptions
   /// such clusters back into the previous level's points, which cannot fold or pinch, so a
   /// level never keeps either.
   int FlipPasses = 64;
+  /// Flip edges of each committed level towards the input (see TriangulationFlips.h): the same
+  /// points, counts and clusters, closer triangles, but no longer the images of the previous
+  /// level's triangles.
+  bool FlipEdges = false;
 };
 
 /// One level as produced by OctreeClustering; point ids refer to this level, "previous" ids to
@@ -111,6 +115,7 @@ struct VTKFILTERSMESHLOD_EXPORT ClusterLevel
   double EstimatedError = 0.0; // largest cluster error of the level (world units)
   Id ChangedClusters = 0;      // clusters that merged or moved
   Id FlippedTrianglesFixed = 0;
+  Id FlippedEdges = 0; // edges flipped towards the input once the level was chosen
 };
 
 class VTKFILTERSMESHLOD_EXPORT OctreeClustering

@@ -288,7 +288,10 @@ struct OctreeClustering::Internals
   /// what the level removes; replaces best with that trial and returns its count.
   Id BackOff(Id count, ClusterLevel& best);
   void Finalize(octree::Synthesis& s, ClusterLevel& level) const;
-  void Commit(const ClusterLevel& level);
+  // Makes the chosen level the current one, then flips its edges towards the input
+  // (Options.FlipEdges).
+  void Commit(ClusterLevel& level);
+  void FlipLevelEdges(ClusterLevel& level) const;
 };
 
 } // namespace meshlod

@@ -1,5 +1,6 @@
 // Octree clustering: a level from a cut of the cluster tree (see OctreeClusteringInternals.h).
 #include "OctreeClusteringInternals.h"
+#include "TriangulationFlips.h"
 
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
@@ -983,8 +984,42 @@ bool OctreeClustering::Internals::ClearRefusals()
 }
 
 //------------------------------------------------------------------------------
-void OctreeClustering::Internals::Commit(const ClusterLevel& level)
+void OctreeClustering::Internals::FlipLevelEdges(ClusterLevel& level) const
 {
+  // The walks over the input start at the vertex of each cluster nearest its representative.
+  const Id points = level.Mesh.GetNumberOfPoints();
+  std::vector<Id> start(points);
+  vtkSMPTools::For(0,
+    points,
+    [&](Id begin, Id end)
+    {
+      for (Id p = begin; p < end; ++p)
+      {
+        const Id node = level.PointNode[p];
+        const Id first = this->Tree.Position(node);
+        double nearest = std::numeric_limits<double>::infinity();
+        for (Id pos = first; pos < first + this->Tree.Count(node); ++pos)
+        {
+          const Id v = this->Tree.Order[pos];
+          const double* x = this->Mesh.Point(v);
+          const double* r = level.Mesh.Point(p);
+          const double d[3] = { x[0] - r[0], x[1] - r[1], x[2] - r[2] };
+          if (Dot(d, d) < nearest)
+          {
+            nearest = Dot(d, d);
+            start[p] = v;
+          }
+        }
+      }
+    });
+  level.FlippedEdges = ImproveTriangulation(
+    this->Mesh, this->Topology.VertexTriangles, start, level.EstimatedError, level.Mesh);
+}
+
+//------------------------------------------------------------------------------
+void OctreeClustering::Internals::Commit(ClusterLevel& level)
+{
+
   // The level's clusters qualify again: a trial made after this level's (and not kept) may
   // have marked some of them, and the next level's cut would then go below them and break the
   // nesting. Each was a cluster, so evaluated, admissible and within its epsilon.
@@ -1007,6 +1042,12 @@ void OctreeClustering::Internals::Commit(const ClusterLevel& level)
   this->PointVertexCount = level.PointVertexCount;
   this->CurrentEpsilon = level.Epsilon;
   this->LabelPreviousPieces();
+  // The next level is built from the triangles as clustered: flipped ones fed forward made the
+  // next level's folds worse (metaballs 1%: 0.16% -> 0.18% epsilon for the same count).
+  if (this->Options.FlipEdges)
+  {
+    this->FlipLevelEdges(level);
+  }
 }
 
 } // namespace meshlod

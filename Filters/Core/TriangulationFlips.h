@@ -1,0 +1,69 @@
+// MeshLOD core: edge flips that fit a simplified level's triangles closer to its input surface.
+//
+// Vertex clustering fixes the points of a level (the cluster representatives) but takes the
+// triangles between them from the input's connectivity, which often joins a quad of clusters
+// across the diagonal that cuts a curved surface instead of following it. Flipping such a
+// diagonal changes no point, no count and no cluster, so a level keeps its nesting and its
+// correspondence (MorphTargetId) while lying closer to the input.
+//
+// A flip of the edge (a, b) between triangles (a, b, c) and (b, a, d) to (c, a, d), (d, b, c) is
+// judged on the input surface itself, locally: points on the four triangles (their centroids and
+// the two diagonals' quarter points and midpoints) are projected onto the input by a walk over
+// its triangles from a vertex of a's cluster; a configuration's
+// error is the largest of its own points' distances to the input and of the projected points'
+// distances to it (both directions of a Hausdorff distance). The flip is made when it lowers
+// that error to RequiredGain of the old one or less. It is refused when it would fold (a new
+// triangle turned more than 60 degrees from the pair's summed normal), create an edge that
+// exists, or touch a boundary or non-manifold edge; and when the old error is at rounding level
+// (nothing to gain) or beyond twice the level's largest cluster error (the walk is lost: on an
+// extruded text it found points of a neighbouring letter's wall), or when the two
+// configurations lie within a tenth of that error of each other (too close to matter).
+//
+// Each sweep evaluates every interior edge in parallel against the sweep's triangles, then makes
+// the flips in the order of their gain, at most one per vertex (so that every flip made was
+// judged on the triangles it replaces); the result does not depend on the thread count.
+#ifndef meshlod_TriangulationFlips_h
+#define meshlod_TriangulationFlips_h
+
+#include "TriangleMesh.h"
+#include "vtkFiltersMeshLODModule.h"
+
+#include <vector>
+
+namespace meshlod
+{
+struct VTKFILTERSMESHLOD_EXPORT TriangulationFlipOptions
+{
+  /// Passes over the edges; a pass that flips nothing ends the loop early.
+  int MaximumSweeps = 4;
+  /// A flip must bring the local error to at most this fraction of the old one.
+  double RequiredGain = 0.8;
+};
+
+/// Flip edges of `level` towards `input` (see above). `startVertex[p]` is an input vertex near
+/// level point p (of the input part p represents); `errorBound` is the level's largest cluster
+/// error in world units. Returns the number of flips made.
+VTKFILTERSMESHLOD_EXPORT Id ImproveTriangulation(const TriangleMesh& input,
+  const VertexTriangleAdjacency& inputTriangles,
+  const std::vector<Id>& startVertex,
+  double errorBound,
+  TriangleMesh& level,
+  const TriangulationFlipOptions& options = TriangulationFlipOptions());
+
+/// Closest point of triangle (a, b, c) to p; returns the squared distance.
+VTKFILTERSMESHLOD_EXPORT double ClosestPointOnTriangle(const double p[3],
+  const double a[3],
+  const double b[3],
+  const double c[3],
+  double closest[3]);
+/// The same, also telling whether the closest point lies inside the triangle (not on an edge).
+VTKFILTERSMESHLOD_EXPORT double ClosestPointOnTriangle(const double p[3],
+  const double a[3],
+  const double b[3],
+  const double c[3],
+  double closest[3],
+  bool& inside);
+
+} // namespace meshlod
+
+#endif

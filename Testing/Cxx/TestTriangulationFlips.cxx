@@ -1,0 +1,242 @@
+// Edge flips towards the input (Core/TriangulationFlips, vtkVertexClusterOctree::FlipEdges):
+// closest points on a triangle, exact flips on a hand-made tent, refusals, and on an octree
+// hierarchy the same points and counts with a smaller distance to the input.
+#include "Core/TriangleMesh.h"
+#include "Core/TriangulationFlips.h"
+#include "MeshLODHierarchyChecks.h"
+#include "MeshLODSurfaceDistance.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestMeshes.h"
+#include "vtkVertexClusterOctree.h"
+
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <array>
+#include <iostream>
+#include <cmath>
+#include <vector>
+
+namespace
+{
+using namespace meshlod;
+
+//------------------------------------------------------------------------------
+void TestClosestPoint()
+{
+  const double a[3] = { 0, 0, 0 }, b[3] = { 1, 0, 0 }, c[3] = { 0, 1, 0 };
+  struct Case
+  {
+    double P[3];
+    double Closest[3];
+    bool Inside;
+  };
+  const Case cases[] = {
+    { { 0.2, 0.2, 1.0 }, { 0.2, 0.2, 0.0 }, true },  // over the face
+    { { -1.0, -1.0, 0.0 }, { 0.0, 0.0, 0.0 }, false }, // beyond corner a
+    { { 2.0, -0.5, 0.0 }, { 1.0, 0.0, 0.0 }, false },  // beyond corner b
+    { { 0.5, -1.0, 0.5 }, { 0.5, 0.0, 0.0 }, false },  // beyond edge ab
+    { { 1.0, 1.0, 0.0 }, { 0.5, 0.5, 0.0 }, false },   // beyond edge bc
+    { { -2.0, 0.5, 0.0 }, { 0.0, 0.5, 0.0 }, false },  // beyond edge ca
+  };
+  for (const Case& k : cases)
+  {
+    double q[3];
+    bool inside;
+    const double d2 = ClosestPointOnTriangle(k.P, a, b, c, q, inside);
+    double expected = 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      MESHLOD_CHECK_NEAR(q[i], k.Closest[i], 1e-12);
+      expected += (k.P[i] - k.Closest[i]) * (k.P[i] - k.Closest[i]);
+    }
+    MESHLOD_CHECK_NEAR(d2, expected, 1e-12);
+    MESHLOD_CHECK_EQ(inside, k.Inside);
+  }
+  // Collinear corners: the closest point of the segment they span.
+  const double e[3] = { 2, 0, 0 }, p[3] = { 1.5, 1, 0 };
+  double q[3];
+  MESHLOD_CHECK_NEAR(ClosestPointOnTriangle(p, a, b, e, q), 1.0, 1e-12);
+  MESHLOD_CHECK_NEAR(q[0], 1.5, 1e-12);
+}
+
+//------------------------------------------------------------------------------
+// The tent z = height * (1 - |x|) over [-1, 1]^2 as an n x n grid (n even, so that the ridge
+// x = 0 is a grid line), triangles facing +z.
+TriangleMesh Tent(int n, double height)
+{
+  TriangleMesh mesh;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      const double x = -1.0 + 2.0 * i / n, y = -1.0 + 2.0 * j / n;
+      mesh.Points.insert(mesh.Points.end(), { x, y, height * (1.0 - std::abs(x)) });
+    }
+  }
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const Id v = j * (n + 1) + i;
+      mesh.Triangles.insert(mesh.Triangles.end(), { v, v + 1, v + n + 2, v, v + n + 2, v + n + 1 });
+    }
+  }
+  return mesh;
+}
+
+// Level points A (-1, 0), B (1, 0), C (0, -1), D (0, 1) on the tent, as input vertices.
+struct TentQuad
+{
+  TriangleMesh Level;
+  std::vector<Id> Start;
+};
+
+TentQuad MakeQuad(const TriangleMesh& input, int n, const std::array<Id, 6>& triangles)
+{
+  TentQuad quad;
+  const Id half = n / 2;
+  const Id corners[4] = { half * (n + 1), half * (n + 1) + n, half, n * (n + 1) + half };
+  for (const Id v : corners)
+  {
+    quad.Level.Points.insert(quad.Level.Points.end(), input.Point(v), input.Point(v) + 3);
+    quad.Start.push_back(v);
+  }
+  quad.Level.Triangles.assign(triangles.begin(), triangles.end());
+  return quad;
+}
+
+void TestTentFlips()
+{
+  constexpr int n = 10;
+  const TriangleMesh input = Tent(n, 1.0);
+  VertexTriangleAdjacency adjacency;
+  adjacency.Build(input);
+  constexpr Id A = 0, B = 1, C = 2, D = 3;
+
+  // Across the ridge (diagonal AB, 1/sqrt(2) under it at the middle): flipped onto the ridge,
+  // where the two new triangles are the tent's faces exactly.
+  TentQuad across = MakeQuad(input, n, { B, A, C, A, B, D });
+  MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, across.Start, 0.5, across.Level), 1);
+  const std::vector<Id> flipped = { C, B, D, D, A, C };
+  MESHLOD_CHECK(across.Level.Triangles == flipped);
+  // Judged again, the flipped pair stays.
+  MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, across.Start, 0.5, across.Level), 0);
+
+  // Without an error bound (an exact level) or with one far below the local error (the walk
+  // would be lost) nothing is judged.
+  TentQuad unbounded = MakeQuad(input, n, { B, A, C, A, B, D });
+  MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, unbounded.Start, 0.0, unbounded.Level), 0);
+  MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, unbounded.Start, 0.1, unbounded.Level), 0);
+
+  // On a flat input either diagonal is exact: no flip.
+  const TriangleMesh flat = Tent(n, 0.0);
+  VertexTriangleAdjacency flatAdjacency;
+  flatAdjacency.Build(flat);
+  TentQuad plane = MakeQuad(flat, n, { B, A, C, A, B, D });
+  MESHLOD_CHECK_EQ(ImproveTriangulation(flat, flatAdjacency, plane.Start, 0.5, plane.Level), 0);
+
+  // A quad that is not convex at A (D moved out beyond A, so that the other diagonal passes
+  // outside the quad): one flipped triangle would face down.
+  TentQuad folded = MakeQuad(input, n, { B, A, C, A, B, D });
+  const double pulled[3] = { -3.0, 1.0, 0.0 };
+  std::copy_n(pulled, 3, folded.Level.Point(D));
+  MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, folded.Start, 0.5, folded.Level), 0);
+
+  // A boundary edge (one triangle) is never flipped.
+  TentQuad single = MakeQuad(input, n, { B, A, C, B, A, C });
+  single.Level.Triangles.resize(3);
+  MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, single.Start, 0.5, single.Level), 0);
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkMultiBlockDataSet> Octree(vtkPolyData* mesh, bool flip)
+{
+  vtkNew<vtkVertexClusterOctree> octree;
+  octree->SetInputData(mesh);
+  octree->SetLevelModeToTargetTriangleCounts();
+  octree->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 10);
+  octree->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 100);
+  octree->SetFlipEdges(flip);
+  octree->Update();
+  return octree->GetHierarchy();
+}
+
+void TestOctreeFlips()
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Metaballs, 80);
+  const auto plain = Octree(mesh, false);
+  const auto flipped = Octree(mesh, true);
+  MESHLOD_CHECK_EQ(plain->GetNumberOfBlocks(), 3u);
+  MESHLOD_CHECK_EQ(flipped->GetNumberOfBlocks(), 3u);
+  SurfaceDistanceOptions options;
+  options.SamplesPerSurface = 50000;
+  for (unsigned int i = 1; i < 3 && flipped->GetNumberOfBlocks() == 3; ++i)
+  {
+    vtkPolyData* a = testing::Level(plain, i);
+    vtkPolyData* b = testing::Level(flipped, i);
+    // The same points and counts; only diagonals differ.
+    MESHLOD_CHECK_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
+    MESHLOD_CHECK_EQ(a->GetNumberOfPolys(), b->GetNumberOfPolys());
+    vtkIdType moved = 0;
+    const bool samePoints = a->GetNumberOfPoints() == b->GetNumberOfPoints();
+    for (vtkIdType p = 0; samePoints && p < a->GetNumberOfPoints(); ++p)
+    {
+      double x[3], y[3];
+      a->GetPoint(p, x);
+      b->GetPoint(p, y);
+      moved += (x[0] != y[0] || x[1] != y[1] || x[2] != y[2]) ? 1 : 0;
+    }
+    MESHLOD_CHECK_EQ(moved, 0);
+    const testing::MeshReport report = testing::InspectMesh(b);
+    MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
+    MESHLOD_CHECK_EQ(report.DuplicateTriangles, 0);
+    MESHLOD_CHECK_EQ(report.DegenerateTriangles, 0);
+    MESHLOD_CHECK(report.ConsistentlyOriented);
+    MESHLOD_CHECK_EQ(report.EulerCharacteristic, testing::InspectMesh(a).EulerCharacteristic);
+    MESHLOD_CHECK_EQ(testing::CountFlippedTriangles(testing::Level(flipped, i - 1), b), 0);
+    vtkIdType changed = 0;
+    const auto ta = testing::Triangles(a), tb = testing::Triangles(b);
+    for (size_t t = 0; t < ta.size() && ta.size() == tb.size(); ++t)
+    {
+      changed += ta[t] == tb[t] ? 0 : 1;
+    }
+    const SurfaceDistance before = MeasureSurfaceDistance(mesh, a, options);
+    const SurfaceDistance after = MeasureSurfaceDistance(mesh, b, options);
+    std::cout << "  level " << i << ": " << b->GetNumberOfPolys() << " triangles, " << changed
+              << " changed by flips; RMS " << before.RmsPercent() << "% -> " << after.RmsPercent()
+              << "%, Hausdorff " << before.HausdorffPercent() << "% -> "
+              << after.HausdorffPercent() << "%\n";
+    MESHLOD_CHECK_GT(changed, 0);
+    MESHLOD_CHECK_LT(after.Rms, 0.95 * before.Rms);
+    MESHLOD_CHECK_LE(after.Hausdorff, 1.02 * before.Hausdorff);
+  }
+  // The points still nest; the flipped levels' triangles are no longer images of the finer
+  // level's (what FlipEdges documents), the unflipped ones are.
+  MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(plain), 0);
+  MESHLOD_CHECK_GT(testing::CountCorrespondenceViolations(flipped), 0);
+
+  // Same flips for any thread count.
+  for (unsigned int i = 1; i < 3; ++i)
+  {
+    const auto runs = testing::RunWithBothBackends(
+      [&]
+      {
+        auto level = vtkSmartPointer<vtkPolyData>::New();
+        level->ShallowCopy(testing::Level(Octree(mesh, true), i));
+        return level;
+      });
+    MESHLOD_CHECK(testing::SameMesh(runs.first, runs.second));
+  }
+}
+} // namespace
+
+int TestTriangulationFlips(int, char*[])
+{
+  TestClosestPoint();
+  TestTentFlips();
+  TestOctreeFlips();
+  return meshlod::testing::Result();
+}
