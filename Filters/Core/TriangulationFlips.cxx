@@ -194,6 +194,7 @@ struct FlipJudge
     Id hint = starts[0];
     const Quad quad{ { { { pa, pb, pc }, { pb, pa, pd } }, { { pc, pa, pd }, { pd, pb, pc } } } };
     double error[2] = { 0.0, 0.0 };
+    double sum[2] = { 0.0, 0.0 };
     // One sample p of configuration `own`: its distance to the input, and the distance of its
     // closest input point to either configuration.
     auto sample = [&](const double p[3], int own)
@@ -216,7 +217,9 @@ struct FlipJudge
       const double d = Distance2(p, q);
       for (int y = 0; y < 2; ++y)
       {
-        error[y] = std::max(error[y], std::max(own == y ? d : 0.0, quad.Distance2(y, q)));
+        const double e = std::max(own == y ? d : 0.0, quad.Distance2(y, q));
+        error[y] = std::max(error[y], e);
+        sum[y] += e;
       }
     };
     // Each configuration's diagonal at its quarter points and midpoint, and its triangles'
@@ -244,7 +247,7 @@ struct FlipJudge
       }
     }
     before = error[0];
-    after = error[1];
+    after = sum[1] <= sum[0] ? error[1] : before; // a larger sum: no gain (see the header)
     // Nothing to gain at rounding level; beyond the level's error bound the walk went astray.
     return before > 1e-10 * Distance2(pa, pb) && before <= this->ErrorBound2;
   }
