@@ -50,13 +50,20 @@ double ReductionTo(vtkPolyData* input, const std::vector<vtkIdType>& targets)
   return std::min(0.999999, 1.0 - smallest / static_cast<double>(input->GetNumberOfPolys()));
 }
 
-Method TriangleCollapse(const std::string& name, const std::string& settings,
-  void (*configure)(vtkTriangleCollapseDecimation*))
+// A threaded hierarchy method; the caller sets its Hierarchy.
+Method ThreadedMethod(const std::string& name, const std::string& settings)
 {
   Method method;
   method.Name = name;
   method.Settings = settings;
   method.Parallel = true;
+  return method;
+}
+
+Method TriangleCollapse(const std::string& name, const std::string& settings,
+  void (*configure)(vtkTriangleCollapseDecimation*))
+{
+  Method method = ThreadedMethod(name, settings);
   method.Hierarchy = [configure](vtkPolyData* input, const std::vector<vtkIdType>& targets) {
     vtkNew<vtkTriangleCollapseDecimation> decimate;
     decimate->SetInputData(input);
@@ -67,12 +74,10 @@ Method TriangleCollapse(const std::string& name, const std::string& settings,
   };
   return method;
 }
+
 Method VertexCluster(const std::string& name, const std::string& settings, bool flipEdges)
 {
-  Method method;
-  method.Name = name;
-  method.Settings = settings;
-  method.Parallel = true;
+  Method method = ThreadedMethod(name, settings);
   method.Hierarchy = [flipEdges](vtkPolyData* input, const std::vector<vtkIdType>& targets) {
     vtkNew<vtkVertexClusterOctree> cluster;
     cluster->SetInputData(input);

@@ -115,7 +115,6 @@ struct VTKFILTERSMESHLOD_EXPORT ClusterLevel
   double EstimatedError = 0.0; // largest cluster error of the level (world units)
   Id ChangedClusters = 0;      // clusters that merged or moved
   Id FlippedTrianglesFixed = 0;
-  Id FlippedEdges = 0; // edges flipped towards the input once the level was chosen
 };
 
 class VTKFILTERSMESHLOD_EXPORT OctreeClustering

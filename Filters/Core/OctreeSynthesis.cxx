@@ -1012,14 +1012,13 @@ void OctreeClustering::Internals::FlipLevelEdges(ClusterLevel& level) const
         }
       }
     });
-  level.FlippedEdges = ImproveTriangulation(
+  ImproveTriangulation(
     this->Mesh, this->Topology.VertexTriangles, start, level.EstimatedError, level.Mesh);
 }
 
 //------------------------------------------------------------------------------
 void OctreeClustering::Internals::Commit(ClusterLevel& level)
 {
-
   // The level's clusters qualify again: a trial made after this level's (and not kept) may
   // have marked some of them, and the next level's cut would then go below them and break the
   // nesting. Each was a cluster, so evaluated, admissible and within its epsilon.
