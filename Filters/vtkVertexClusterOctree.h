@@ -279,11 +279,11 @@ public:
    * closer to the input (judged by the local surface distance both ways). Points, triangle
    * counts, clusters and MorphTargetId stay as they are, and the next level is clustered from
    * the unflipped triangles. On the benchmark isosurfaces it lowers the RMS distance by 10-20%
-   * and the Hausdorff distance by up to 10%, for about a third more time. The price: a level's
-   * triangles are then no longer exactly what the finer level's triangles become through
-   * MorphTargetId, so a geomorph into a flipped level ends on its unflipped triangles and the
-   * flipped quads change at the switch (a small pop). For discrete levels (no geomorph) turn it
-   * on. Default off.
+   * and the Hausdorff distance by up to 10%, for up to 1.7 times the time on one thread (about
+   * 1.3 times on two). The price: a level's triangles are then no longer exactly what the finer
+   * level's triangles become through MorphTargetId, so a geomorph into a flipped level ends on
+   * its unflipped triangles and the flipped quads change at the switch (a small pop). For
+   * discrete levels (no geomorph) turn it on. Default off.
    */
   vtkSetMacro(FlipEdges, bool);
   vtkGetMacro(FlipEdges, bool);
