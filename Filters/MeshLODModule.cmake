@@ -31,6 +31,7 @@ set(meshlod_private_headers
   Filters/Core/TriangleCollapse.h
   Filters/Core/TriangleMesh.h
   Filters/Core/TriangulationFlips.h
+  Filters/Core/Vector3.h
   Filters/MeshLODBlend.h
   Filters/MeshLODGeomorphInternals.h
   Filters/MeshLODHierarchy.h

@@ -1,4 +1,5 @@
 #include "CollapseMesh.h"
+#include "Vector3.h"
 
 #include "vtkSMPTools.h"
 
@@ -10,25 +11,6 @@ namespace meshlod
 {
 namespace
 {
-void Subtract(const double* a, const double* b, double* out)
-{
-  out[0] = a[0] - b[0];
-  out[1] = a[1] - b[1];
-  out[2] = a[2] - b[2];
-}
-
-void Cross(const double* a, const double* b, double* out)
-{
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-double Dot(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 // Whether two vectors with dot product `dot` and squared lengths' product `norms2` make an
 // angle whose cosine is at least `cosine`.
 bool WithinAngle(double dot, double norms2, double cosine)

@@ -7,6 +7,7 @@
 #define meshlod_OctreeClusteringInternals_h
 
 #include "OctreeClustering.h"
+#include "Vector3.h"
 
 #include "vtkSMPTools.h"
 
@@ -24,26 +25,6 @@ constexpr double MaximumCrossingWeight = 100.0;
 // Fixed blocks for the deterministic parallel compactions (independent of the thread count).
 constexpr Id BlockSize = 16384;
 constexpr float Infinite = std::numeric_limits<float>::infinity();
-
-inline void Cross(const double u[3], const double v[3], double out[3])
-{
-  out[0] = u[1] * v[2] - u[2] * v[1];
-  out[1] = u[2] * v[0] - u[0] * v[2];
-  out[2] = u[0] * v[1] - u[1] * v[0];
-}
-
-inline double Dot(const double u[3], const double v[3])
-{
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
-
-// Normal (not normalised) of triangle (a, b, c).
-inline void Normal(const double a[3], const double b[3], const double c[3], double n[3])
-{
-  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-  Cross(u, v, n);
-}
 
 // Keep the i in [0, n) for which keep(i) holds, in order, calling write(i, slot): counts per
 // fixed block, a serial prefix sum, then the writes, so the result does not depend on how the
