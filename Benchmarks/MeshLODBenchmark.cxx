@@ -574,6 +574,7 @@ std::string Benchmark::TargetSummary() const
     { "vtkTriangleCollapseDecimation independent sets", "vtkQuadricDecimation" },
     { "vtkTriangleCollapseDecimation triangles only", "vtkQuadricDecimation" },
     { "vtkTriangleCollapseDecimation curvature", "vtkQuadricDecimation" },
+    { "vtkTriangleCollapseDecimation curvature fit deviation", "vtkQuadricDecimation" },
     { "vtkVertexClusterOctree", "vtkQuadricClustering" },
     { "vtkVertexClusterOctree flipped edges", "vtkQuadricClustering" } };
   if (this->Opts.Targets.empty())

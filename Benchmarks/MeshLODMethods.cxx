@@ -126,6 +126,17 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     });
   curvature.MaximumInputTriangles = 700000;
   methods.push_back(curvature);
+  Method deviation = TriangleCollapse("vtkTriangleCollapseDecimation curvature fit deviation",
+    "curvature method ranked by CurvatureCost FIT_DEVIATION (the new triangles' squared "
+    "deviation from the fitted surface), greedy schedule (serial for this method), 8 levels; "
+    "one-thread row only",
+    [](vtkTriangleCollapseDecimation* d) {
+      d->SetMethodToCurvature();
+      d->SetCurvatureCostToFitDeviation();
+    });
+  deviation.MaximumInputTriangles = 700000;
+  deviation.Parallel = false;
+  methods.push_back(deviation);
 
   // The octree clustering is compared with vtkQuadricClustering: one level per target, epsilon
   // searched by the filter inside the timed run.

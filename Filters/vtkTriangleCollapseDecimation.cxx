@@ -56,6 +56,11 @@ const char* vtkTriangleCollapseDecimation::GetOperatorAsString() const
   return this->Operator == TRIANGLES ? "Triangles" : "TrianglesAndEdges";
 }
 
+const char* vtkTriangleCollapseDecimation::GetCurvatureCostAsString() const
+{
+  return this->CurvatureCost == FIT_DEVIATION ? "FitDeviation" : "Weight";
+}
+
 const char* vtkTriangleCollapseDecimation::GetScheduleAsString() const
 {
   return this->Schedule == GREEDY ? "Greedy" : "IndependentSets";
@@ -166,6 +171,9 @@ int vtkTriangleCollapseDecimation::RequestData(
   options.CurvatureWeight = this->CurvatureWeight;
   options.AngleWeight = this->AngleWeight;
   options.ValenceWeight = this->ValenceWeight;
+  options.CurvatureRanking = this->CurvatureCost == FIT_DEVIATION
+    ? meshlod::CurvatureCost::FitDeviation
+    : meshlod::CurvatureCost::Weight;
   options.BoundaryWeight = this->BoundaryWeight;
   options.MaximumNormalDeviation = this->MaximumNormalDeviation;
   options.MaximumFitPoints = this->MaximumFitPoints;
@@ -305,6 +313,7 @@ void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CurvatureWeight: " << this->CurvatureWeight << "\n";
   os << indent << "AngleWeight: " << this->AngleWeight << "\n";
   os << indent << "ValenceWeight: " << this->ValenceWeight << "\n";
+  os << indent << "CurvatureCost: " << this->GetCurvatureCostAsString() << "\n";
   os << indent << "BoundaryWeight: " << this->BoundaryWeight << "\n";
   os << indent << "MaximumNormalDeviation: " << this->MaximumNormalDeviation << "\n";
   os << indent << "MaximumFitPoints: " << this->MaximumFitPoints << "\n";

@@ -33,6 +33,18 @@ double ShapeMeasure(const double* p0, const double* p1, const double* p2)
   const double cosC = (a * a + b * b - c * c) / (2.0 * a * b);
   return std::max(0.0, 2.0 * (cosA + cosB + cosC - 1.0));
 }
+// x in a fit's frame: (u, v) in the plane, d along the normal, from the frame's origin.
+void FrameCoordinates(const double* x, const double origin[3], const double normal[3],
+  const SurfaceFitResult& fit, double& u, double& v, double& d)
+{
+  u = v = d = 0.0;
+  for (int i = 0; i < 3; ++i)
+  {
+    u += (x[i] - origin[i]) * fit.U[i];
+    v += (x[i] - origin[i]) * fit.V[i];
+    d += (x[i] - origin[i]) * normal[i];
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -188,7 +200,18 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   }
   const int valence = std::max(0, triangles - 9 + (boundary ? 1 : 0));
   c.ValenceTerm = std::abs(valence - 6) / ValenceNormalization;
-  c.Cost = this->CurvatureWeight(c);
+  if (this->Options.CurvatureRanking == CurvatureCost::Weight)
+  {
+    c.Cost = this->CurvatureWeight(c);
+  }
+  else
+  {
+    // Where the fit fails even on the extended stencil (too few distinct points), the merged
+    // planes measure the same thing: an area-weighted squared distance.
+    c.Cost = scratch.Fit.Valid ? this->FitDeviation(scratch.RimEdges, scratch.FitOrigin,
+                                   c.Normal, scratch.Fit, c.Position)
+                               : q.Evaluate(c.Position);
+  }
   c.Error = q.RmsDistance(c.Position);
   return true;
 }
@@ -335,21 +358,12 @@ double CollapseCostModel::BalancedHeight(const std::vector<Id>& rimEdges,
   // midpoints (exact for quadratics). The h that makes the area-weighted mean difference zero is
   // linear in h. At h = f(0, 0) (the paper's point, on the surface) the triangles are chords
   // lying inside a convex surface, which costs error everywhere along them.
-  const auto frame = [&](const double* x, double& u, double& v, double& d) {
-    u = v = d = 0.0;
-    for (int i = 0; i < 3; ++i)
-    {
-      u += (x[i] - centroid[i]) * fit.U[i];
-      v += (x[i] - centroid[i]) * fit.V[i];
-      d += (x[i] - centroid[i]) * normal[i];
-    }
-  };
   double weighted = 0.0, total = 0.0;
   for (std::size_t e = 0; e + 1 < rimEdges.size(); e += 2)
   {
     double ua, va, da, ub, vb, db;
-    frame(this->State.Mesh.Point(rimEdges[e]), ua, va, da);
-    frame(this->State.Mesh.Point(rimEdges[e + 1]), ub, vb, db);
+    FrameCoordinates(this->State.Mesh.Point(rimEdges[e]), centroid, normal, fit, ua, va, da);
+    FrameCoordinates(this->State.Mesh.Point(rimEdges[e + 1]), centroid, normal, fit, ub, vb, db);
     const double area = 0.5 * std::abs(ua * vb - va * ub);
     const double surface = fit.At(0.5 * ua, 0.5 * va) + fit.At(0.5 * ub, 0.5 * vb) +
       fit.At(0.5 * (ua + ub), 0.5 * (va + vb));
@@ -357,6 +371,30 @@ double CollapseCostModel::BalancedHeight(const std::vector<Id>& rimEdges,
     total += area;
   }
   return total > 0.0 ? weighted / total : fit.Height;
+}
+
+//------------------------------------------------------------------------------
+double CollapseCostModel::FitDeviation(const std::vector<Id>& rimEdges, const double origin[3],
+  const double normal[3], const SurfaceFitResult& fit, const double position[3]) const
+{
+  // Over a new triangle (p, a, b) the height difference g = linear - f is quadratic, and the
+  // midpoint rule (the mean of g^2 at the edge midpoints) integrates quadratics exactly; for
+  // g^2, of degree four, it is an estimate that is exact where g is linear.
+  double up, vp, dp;
+  FrameCoordinates(position, origin, normal, fit, up, vp, dp);
+  double deviation = 0.0;
+  for (std::size_t e = 0; e + 1 < rimEdges.size(); e += 2)
+  {
+    double ua, va, da, ub, vb, db;
+    FrameCoordinates(this->State.Mesh.Point(rimEdges[e]), origin, normal, fit, ua, va, da);
+    FrameCoordinates(this->State.Mesh.Point(rimEdges[e + 1]), origin, normal, fit, ub, vb, db);
+    const double area = 0.5 * std::abs((ua - up) * (vb - vp) - (va - vp) * (ub - up));
+    const double pa = 0.5 * (dp + da) - fit.At(0.5 * (up + ua), 0.5 * (vp + va));
+    const double pb = 0.5 * (dp + db) - fit.At(0.5 * (up + ub), 0.5 * (vp + vb));
+    const double ab = 0.5 * (da + db) - fit.At(0.5 * (ua + ub), 0.5 * (va + vb));
+    deviation += area * (pa * pa + pb * pb + ab * ab) / 3.0;
+  }
+  return deviation;
 }
 
 //------------------------------------------------------------------------------
@@ -470,6 +508,8 @@ void CollapseCostModel::FitSurface(
     height = std::max(-scale, std::min(scale, balanced));
   }
   c.Kappa = fit.Valid ? fit.AbsoluteCurvature : 0.0;
+  scratch.Fit = fit;
+  std::copy_n(centroid, 3, scratch.FitOrigin);
   for (int i = 0; i < 3; ++i)
   {
     c.Position[i] = centroid[i] + height * c.Normal[i];

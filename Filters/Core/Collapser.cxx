@@ -89,7 +89,8 @@ void Collapser::EvaluateAll()
 {
   const Id nt = this->InitialTriangles;
   vtkSMPThreadLocal<CostScratch> scratch;
-  if (this->Options.Method == CollapseMethod::Quadric)
+  if (this->Options.Method == CollapseMethod::Quadric ||
+    this->Options.CurvatureRanking == CurvatureCost::FitDeviation)
   {
     vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
       CostScratch& local = scratch.Local();
@@ -100,7 +101,7 @@ void Collapser::EvaluateAll()
     });
     return;
   }
-  // Curvature: first the raw curvatures (kept in Costs), then the weights.
+  // Paper 000's weight: first the raw curvatures (kept in Costs), then the weights.
   vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
     CostScratch& local = scratch.Local();
     for (Id t = begin; t < end; ++t)

@@ -39,6 +39,13 @@ enum class CollapseOperator
   TrianglesAndEdges = 1, // the triangle, or its cheapest edge when that is much cheaper
 };
 
+/// How the curvature method ranks its collapses.
+enum class CurvatureCost
+{
+  Weight = 0,       // paper 000's weight W = A (wk kappa + wa alpha + wv V)
+  FitDeviation = 1, // the new triangles' squared deviation from the fitted surface
+};
+
 enum class CollapseSchedule
 {
   IndependentSets = 0,
@@ -66,6 +73,7 @@ struct TriangleCollapseOptions
   double CurvatureWeight = 1.0 / 3.0;
   double AngleWeight = 1.0 / 3.0;
   double ValenceWeight = 1.0 / 3.0;
+  CurvatureCost CurvatureRanking = CurvatureCost::Weight;
   /// Weight of the planes through boundary edges, relative to the area-weighted surface
   /// planes (the plane of an edge of length l gets BoundaryWeight * l^2).
   double BoundaryWeight = 10.0;

@@ -8,6 +8,8 @@
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkNew.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTriangleFilter.h"
 
@@ -123,11 +125,56 @@ void TestCollapsePointOnSphere()
     MESHLOD_CHECK_NEAR(c.Kappa, 2.0, 0.1); // both principal curvatures of the unit sphere are 1
   }
 }
+
+// CurvatureCost FitDeviation: the cost of a collapse is the integral of the new triangles'
+// squared height above the fitted surface. On a plane it is zero; on a sphere it is positive
+// and, an area times a squared length, grows 2^4 = 16 times when the sphere's radius doubles.
+double FitDeviationCost(vtkPolyData* mesh, Id t)
+{
+  vtkNew<vtkTriangleFilter> caller;
+  InputMesh input;
+  ReadInputMesh(mesh, caller, input);
+  TriangleCollapseOptions options;
+  options.Method = CollapseMethod::Curvature;
+  options.CurvatureRanking = CurvatureCost::FitDeviation;
+  const std::vector<double> original = input.Mesh.Points;
+  CollapseMesh state;
+  LevelTracker tracker;
+  tracker.Initialize(input.Mesh.GetNumberOfPoints(), true);
+  state.Initialize(std::move(input.Mesh), std::move(input.Topology), 1.0);
+  CollapseCostModel model(options, state, tracker, original);
+  CostScratch scratch;
+  CollapseCandidate c;
+  MESHLOD_CHECK(model.Evaluate(t, c, scratch));
+  return c.Cost;
+}
+
+void TestFitDeviation()
+{
+  // An interior triangle of a flat grid (the grid's middle row).
+  MESHLOD_CHECK_EQ(FitDeviationCost(testing::MakeGrid(8, 8), 70), 0.0);
+  vtkSmartPointer<vtkPolyData> unit = testing::MakeIcosphere(3);
+  vtkNew<vtkPolyData> doubled;
+  doubled->DeepCopy(unit);
+  for (vtkIdType i = 0; i < doubled->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    doubled->GetPoint(i, x);
+    doubled->GetPoints()->SetPoint(i, 2.0 * x[0], 2.0 * x[1], 2.0 * x[2]);
+  }
+  for (const Id t : { 0, 100, 700 })
+  {
+    const double cost = FitDeviationCost(unit, t);
+    MESHLOD_CHECK_GT(cost, 0.0);
+    MESHLOD_CHECK_NEAR(FitDeviationCost(doubled, t) / cost, 16.0, 1e-6);
+  }
+}
 } // namespace
 
 int TestLocalSurfaceFit(int, char*[])
 {
   TestExactQuadratic();
   TestCollapsePointOnSphere();
+  TestFitDeviation();
   return meshlod::testing::Result();
 }

@@ -61,7 +61,7 @@ def same_mesh(a, b):
     return points_of(a) == points_of(b) and triangles_of(a) == triangles_of(b)
 
 
-def test_hierarchy(contour, decimate):
+def test_hierarchy(contour, decimate, largest_hausdorff=0.1):
     contour.Update()
     input_triangles = contour.GetOutput().GetNumberOfPolys()
     check(input_triangles > 5000, "input has %d triangles" % input_triangles)
@@ -104,8 +104,9 @@ def test_hierarchy(contour, decimate):
             check(estimated == 0 and hausdorff == 0 and rms == 0, "level 0 has no error")
         else:
             check(estimated > 0 and 0 < rms <= hausdorff, "errors of level %d" % i)
-            # World units; the volume spans 2, the surface about 1.8: far below 5% of that.
-            check(hausdorff < 0.1, "Hausdorff %g on level %d" % (hausdorff, i))
+            # World units; the volume spans 2, the surface about 1.8: the quadric method stays
+            # far below 5% of that.
+            check(hausdorff < largest_hausdorff, "Hausdorff %g on level %d" % (hausdorff, i))
     return hierarchy
 
 
@@ -155,6 +156,18 @@ decimate.SetNumberOfLevels(LEVELS)
 decimate.ComputeLevelErrorOn()
 hierarchy = test_hierarchy(contour, decimate)
 test_geomorph(decimate, hierarchy)
+
+# The curvature method ranked by its fitted surface's deviation, set through the wrapping.
+curvature = meshlod.vtkTriangleCollapseDecimation()
+curvature.SetInputConnection(contour.GetOutputPort())
+curvature.SetNumberOfLevels(LEVELS)
+curvature.ComputeLevelErrorOn()
+curvature.SetMethodToCurvature()
+curvature.SetCurvatureCostToFitDeviation()
+check(curvature.GetCurvatureCostAsString() == "FitDeviation", "CurvatureCost setter")
+# At the last level, 64 triangles for three spheres, the curvature method is far coarser than
+# the quadric one (Hausdorff 0.19 here; paper 000's weight: 0.21).
+test_hierarchy(contour, curvature, 0.25)
 if failures:
     print(len(failures), "check(s) failed")
     sys.exit(1)
