@@ -128,8 +128,8 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
   methods.push_back(curvature);
   Method deviation = TriangleCollapse("vtkTriangleCollapseDecimation curvature fit deviation",
     "curvature method ranked by CurvatureCost FIT_DEVIATION (the new triangles' squared "
-    "deviation from the fitted surface), greedy schedule (serial for this method), 8 levels; "
-    "one-thread row only",
+    "deviation from the fitted surface, or the merged planes' where larger), greedy schedule "
+    "(serial for this method), 8 levels; one-thread row only",
     [](vtkTriangleCollapseDecimation* d) {
       d->SetMethodToCurvature();
       d->SetCurvatureCostToFitDeviation();

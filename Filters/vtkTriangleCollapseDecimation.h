@@ -39,8 +39,8 @@
  *   boundaries stay in place. The weight is a curvature and shape heuristic, not an error: at
  *   equal triangle counts this method's error is several times that of the quadric method
  *   (Benchmarks/RESULTS.md). SetCurvatureCostToFitDeviation() ranks the collapses by the
- *   new triangles' squared deviation from the fitted surface instead, which cuts that error
- *   to about a third (still 2-2.7x the quadric method's Hausdorff distance, 1.2-1.7x its RMS).
+ *   new triangles' squared deviation from the fitted surface instead (see CurvatureCost), at
+ *   about a quarter of that error.
  *
  * A collapse is made only when it is legal (paper 000, section 3, generalised to open
  * meshes):
@@ -326,14 +326,18 @@ public:
   ///@{
   /**
    * Curvature method: how collapses are ranked. WEIGHT (the default) is paper 000's weight
-   * W = A (wk kappa + wa alpha + wv V) from the three weights above. FIT_DEVIATION ranks by
-   * the integral over the new triangles of their squared height above the fitted surface
-   * (its fit includes the ancestral points, so the deviation it measures is from the input
-   * surface, including what earlier collapses cost); the three weights are then not used. The
-   * fit, the collapse point and the legality rules are the same. On the benchmark isosurfaces
-   * FIT_DEVIATION's error is about a third of WEIGHT's at equal triangle counts
-   * (Benchmarks/RESULTS.md): the paper's weight is dominated by the area, so it makes
-   * triangles of even size rather than small ones where the surface bends.
+   * W = A (wk kappa + wa alpha + wv V) from the three weights above, at the collapse point
+   * described in the class docs. FIT_DEVIATION ranks by the integral over the new triangles
+   * of their squared height above the fitted surface (the fit includes the ancestral points,
+   * so this is a deviation from the input surface, what earlier collapses cost included), or
+   * by the merged planes' area-weighted squared distance at the collapse point where that is
+   * larger (the planes see what a quadratic smooths over: a crease, a stencil grown around
+   * much of a small sphere); the collapse point, on the same normal, is where the deviation
+   * is least; the three weights are not used. The fit and the legality rules are the same.
+   * On the benchmark isosurfaces FIT_DEVIATION's Hausdorff distance is 1.3-1.6x and its RMS
+   * distance 0.9-1.3x vtkQuadricDecimation's, against 4.7-9.4x and 2.6-3.4x for WEIGHT
+   * (Benchmarks/RESULTS.md): the paper's weight is dominated by the area, so it evens out the
+   * triangles' sizes instead of keeping small ones where the surface bends.
    */
   vtkSetClampMacro(CurvatureCost, int, WEIGHT, FIT_DEVIATION);
   vtkGetMacro(CurvatureCost, int);

@@ -206,11 +206,17 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   }
   else
   {
-    // Where the fit fails even on the extended stencil (too few distinct points), the merged
-    // planes measure the same thing: an area-weighted squared distance.
-    c.Cost = scratch.Fit.Valid ? this->FitDeviation(scratch.RimEdges, scratch.FitOrigin,
-                                   c.Normal, scratch.Fit, c.Position)
-                               : q.Evaluate(c.Position);
+    // The merged planes measure the same kind of thing, an area-weighted squared distance, at
+    // the collapse point: the larger of the two counts. The planes see what a quadratic
+    // smooths over (a crease, a stencil grown around much of a small sphere), the fit sees the
+    // new triangles between the point and the rim. Where the fit fails even on the extended
+    // stencil (too few distinct points) the planes alone.
+    c.Cost = q.Evaluate(c.Position);
+    if (scratch.Fit.Valid)
+    {
+      c.Cost = std::max(c.Cost,
+        this->FitDeviation(scratch.RimEdges, scratch.FitOrigin, c.Normal, scratch.Fit, c.Position));
+    }
   }
   c.Error = q.RmsDistance(c.Position);
   return true;
@@ -349,8 +355,9 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
 }
 
 //------------------------------------------------------------------------------
-double CollapseCostModel::BalancedHeight(const std::vector<Id>& rimEdges,
-  const double centroid[3], const double normal[3], const SurfaceFitResult& fit) const
+double CollapseCostModel::CollapseHeight(const std::vector<Id>& rimEdges,
+  const double centroid[3], const double normal[3], const SurfaceFitResult& fit,
+  bool leastDeviation) const
 {
   // The new triangles join the collapse point p = c + h n to the stencil boundary polygon. Over
   // one of them, (p, a, b) seen in the fit's frame, the mean of the linear triangle is the mean
@@ -358,6 +365,9 @@ double CollapseCostModel::BalancedHeight(const std::vector<Id>& rimEdges,
   // midpoints (exact for quadratics). The h that makes the area-weighted mean difference zero is
   // linear in h. At h = f(0, 0) (the paper's point, on the surface) the triangles are chords
   // lying inside a convex surface, which costs error everywhere along them.
+  // FitDeviation's squared differences at the midpoints of the spokes (p, a) and (p, b) are
+  // quadratic in h, the one at the midpoint of (a, b) does not depend on it: its least h
+  // leaves out the (a, b) term, which the mean-difference height makes up for by lifting p.
   double weighted = 0.0, total = 0.0;
   for (std::size_t e = 0; e + 1 < rimEdges.size(); e += 2)
   {
@@ -365,9 +375,9 @@ double CollapseCostModel::BalancedHeight(const std::vector<Id>& rimEdges,
     FrameCoordinates(this->State.Mesh.Point(rimEdges[e]), centroid, normal, fit, ua, va, da);
     FrameCoordinates(this->State.Mesh.Point(rimEdges[e + 1]), centroid, normal, fit, ub, vb, db);
     const double area = 0.5 * std::abs(ua * vb - va * ub);
-    const double surface = fit.At(0.5 * ua, 0.5 * va) + fit.At(0.5 * ub, 0.5 * vb) +
-      fit.At(0.5 * (ua + ub), 0.5 * (va + vb));
-    weighted += area * (surface - da - db);
+    const double spokes = fit.At(0.5 * ua, 0.5 * va) + fit.At(0.5 * ub, 0.5 * vb) - 0.5 * (da + db);
+    const double rim = fit.At(0.5 * (ua + ub), 0.5 * (va + vb)) - 0.5 * (da + db);
+    weighted += area * (leastDeviation ? spokes : spokes + rim);
     total += area;
   }
   return total > 0.0 ? weighted / total : fit.Height;
@@ -498,14 +508,15 @@ void CollapseCostModel::FitSurface(
   }
   // The collapse point is on the normal through the centroid (paper 000: at the fitted
   // surface, c + f(0, 0) n), at the height where the new triangles lie on the fitted surface on
-  // average (see BalancedHeight). A quadratic fitted to points spread far beyond the triangle can
-  // extrapolate wildly at its centre; the surface cannot be further from the centroid than about
-  // the triangle's size.
+  // average or, ranked by FitDeviation, at its least (see CollapseHeight). A quadratic fitted
+  // to points spread far beyond the triangle can extrapolate wildly at its centre; the surface
+  // cannot be further from the centroid than about the triangle's size.
   double height = 0.0;
   if (fit.Valid && place)
   {
-    const double balanced = this->BalancedHeight(rimEdges, centroid, c.Normal, fit);
-    height = std::max(-scale, std::min(scale, balanced));
+    const double best = this->CollapseHeight(rimEdges, centroid, c.Normal, fit,
+      this->Options.CurvatureRanking == CurvatureCost::FitDeviation);
+    height = std::max(-scale, std::min(scale, best));
   }
   c.Kappa = fit.Valid ? fit.AbsoluteCurvature : 0.0;
   scratch.Fit = fit;

@@ -109,14 +109,14 @@ private:
   // Edge k of the triangle into c; returns its cost.
   double Edge(const Id* tri, int k, CollapseCandidate& c) const;
   // Curvature method: the fit's curvature into the candidate and, with `place`, the collapse
-  // point on the normal through the centroid (see BalancedHeight).
+  // point on the normal through the centroid (see CollapseHeight).
   void FitSurface(
     const Id* tri, CollapseCandidate& candidate, CostScratch& scratch, bool place) const;
   // The height along the normal through the centroid at which the new triangles, from the
   // collapse point to the far edges of the ring triangles (FitSurface gathers them), lie on the
-  // fitted surface on average.
-  double BalancedHeight(const std::vector<Id>& rimEdges, const double centroid[3],
-    const double normal[3], const SurfaceFitResult& fit) const;
+  // fitted surface on average or, with `leastDeviation`, at which their FitDeviation is least.
+  double CollapseHeight(const std::vector<Id>& rimEdges, const double centroid[3],
+    const double normal[3], const SurfaceFitResult& fit, bool leastDeviation) const;
   // The integral over the new triangles (from `position` to the rim edges) of their squared
   // height above the fitted surface, by the midpoint rule (exact for a quadratic integrand):
   // how far the collapse leaves the surface the fit sees, its ancestral points included.
