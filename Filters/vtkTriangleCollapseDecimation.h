@@ -334,8 +334,8 @@ public:
    * larger (the planes see what a quadratic smooths over: a crease, a stencil grown around
    * much of a small sphere); the collapse point, on the same normal, is where the deviation
    * is least; the three weights are not used. The fit and the legality rules are the same.
-   * On the benchmark isosurfaces FIT_DEVIATION's Hausdorff distance is 1.3-1.6x and its RMS
-   * distance 0.9-1.3x vtkQuadricDecimation's, against 4.7-9.4x and 2.6-3.4x for WEIGHT
+   * On the benchmark isosurfaces FIT_DEVIATION's Hausdorff distance is 1.1-1.6x and its RMS
+   * distance 0.9-1.3x vtkQuadricDecimation's, against 4.7-8.9x and 2.6-3.4x for WEIGHT
    * (Benchmarks/RESULTS.md): the paper's weight is dominated by the area, so it evens out the
    * triangles' sizes instead of keeping small ones where the surface bends.
    */
