@@ -93,16 +93,17 @@ void TestExactQuadratic()
   MESHLOD_CHECK(!FitQuadraticHeightField(zero, up, points.data(), 10, 0.1).Valid);
 }
 
-// On a sphere the paper's collapse point c + f(0, 0) n lies on the sphere, and the new
-// triangles, chords of a convex surface, lie inside it. The collapse point is placed where they
-// lie on the fitted surface on average: outside the sphere, by a fraction of the sagitta.
-void TestCollapsePointOnSphere()
+// The curvature method's evaluation of the given triangles of a mesh, as the filter's first
+// pass makes it (the candidates' collapse points, curvatures and costs).
+std::vector<CollapseCandidate> EvaluateCurvature(
+  vtkPolyData* mesh, CurvatureCost ranking, const std::vector<Id>& triangles)
 {
   vtkNew<vtkTriangleFilter> caller;
   InputMesh input;
-  ReadInputMesh(testing::MakeIcosphere(3), caller, input);
+  ReadInputMesh(mesh, caller, input);
   TriangleCollapseOptions options;
   options.Method = CollapseMethod::Curvature;
+  options.CurvatureRanking = ranking;
   const std::vector<double> original = input.Mesh.Points;
   CollapseMesh state;
   LevelTracker tracker;
@@ -110,10 +111,22 @@ void TestCollapsePointOnSphere()
   state.Initialize(std::move(input.Mesh), std::move(input.Topology), 1.0);
   CollapseCostModel model(options, state, tracker, original);
   CostScratch scratch;
-  for (const Id t : { 0, 100, 700 })
+  std::vector<CollapseCandidate> candidates(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i)
   {
-    CollapseCandidate c;
-    MESHLOD_CHECK(model.Evaluate(t, c, scratch));
+    MESHLOD_CHECK(model.Evaluate(triangles[i], candidates[i], scratch));
+  }
+  return candidates;
+}
+
+// On a sphere the paper's collapse point c + f(0, 0) n lies on the sphere, and the new
+// triangles, chords of a convex surface, lie inside it. The collapse point is placed where they
+// lie on the fitted surface on average: outside the sphere, by a fraction of the sagitta.
+void TestCollapsePointOnSphere()
+{
+  for (const CollapseCandidate& c :
+    EvaluateCurvature(testing::MakeIcosphere(3), CurvatureCost::Weight, { 0, 100, 700 }))
+  {
     const double radius =
       std::sqrt(c.Position[0] * c.Position[0] + c.Position[1] * c.Position[1] +
         c.Position[2] * c.Position[2]);
@@ -131,22 +144,7 @@ void TestCollapsePointOnSphere()
 // and, an area times a squared length, grows 2^4 = 16 times when the sphere's radius doubles.
 double FitDeviationCost(vtkPolyData* mesh, Id t)
 {
-  vtkNew<vtkTriangleFilter> caller;
-  InputMesh input;
-  ReadInputMesh(mesh, caller, input);
-  TriangleCollapseOptions options;
-  options.Method = CollapseMethod::Curvature;
-  options.CurvatureRanking = CurvatureCost::FitDeviation;
-  const std::vector<double> original = input.Mesh.Points;
-  CollapseMesh state;
-  LevelTracker tracker;
-  tracker.Initialize(input.Mesh.GetNumberOfPoints(), true);
-  state.Initialize(std::move(input.Mesh), std::move(input.Topology), 1.0);
-  CollapseCostModel model(options, state, tracker, original);
-  CostScratch scratch;
-  CollapseCandidate c;
-  MESHLOD_CHECK(model.Evaluate(t, c, scratch));
-  return c.Cost;
+  return EvaluateCurvature(mesh, CurvatureCost::FitDeviation, { t })[0].Cost;
 }
 
 void TestFitDeviation()
