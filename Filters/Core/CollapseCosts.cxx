@@ -33,18 +33,6 @@ double ShapeMeasure(const double* p0, const double* p1, const double* p2)
   const double cosC = (a * a + b * b - c * c) / (2.0 * a * b);
   return std::max(0.0, 2.0 * (cosA + cosB + cosC - 1.0));
 }
-// x in a fit's frame: (u, v) in the plane, d along the normal, from the frame's origin.
-void FrameCoordinates(const double* x, const double origin[3], const double normal[3],
-  const SurfaceFitResult& fit, double& u, double& v, double& d)
-{
-  u = v = d = 0.0;
-  for (int i = 0; i < 3; ++i)
-  {
-    u += (x[i] - origin[i]) * fit.U[i];
-    v += (x[i] - origin[i]) * fit.V[i];
-    d += (x[i] - origin[i]) * normal[i];
-  }
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -215,7 +203,7 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
     if (scratch.Fit.Valid)
     {
       c.Cost = std::max(c.Cost,
-        this->FitDeviation(scratch.RimEdges, scratch.FitOrigin, c.Normal, scratch.Fit, c.Position));
+        this->FitDeviation(scratch.RimEdges, scratch.Fit, c.Position));
     }
   }
   c.Error = q.RmsDistance(c.Position);
@@ -355,9 +343,8 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
 }
 
 //------------------------------------------------------------------------------
-double CollapseCostModel::CollapseHeight(const std::vector<Id>& rimEdges,
-  const double centroid[3], const double normal[3], const SurfaceFitResult& fit,
-  bool leastDeviation) const
+double CollapseCostModel::CollapseHeight(
+  const std::vector<Id>& rimEdges, const SurfaceFitResult& fit, bool leastDeviation) const
 {
   // The new triangles join the collapse point p = c + h n to the stencil boundary polygon. Over
   // one of them, (p, a, b) seen in the fit's frame, the mean of the linear triangle is the mean
@@ -372,8 +359,8 @@ double CollapseCostModel::CollapseHeight(const std::vector<Id>& rimEdges,
   for (std::size_t e = 0; e + 1 < rimEdges.size(); e += 2)
   {
     double ua, va, da, ub, vb, db;
-    FrameCoordinates(this->State.Mesh.Point(rimEdges[e]), centroid, normal, fit, ua, va, da);
-    FrameCoordinates(this->State.Mesh.Point(rimEdges[e + 1]), centroid, normal, fit, ub, vb, db);
+    fit.Frame(this->State.Mesh.Point(rimEdges[e]), ua, va, da);
+    fit.Frame(this->State.Mesh.Point(rimEdges[e + 1]), ub, vb, db);
     const double area = 0.5 * std::abs(ua * vb - va * ub);
     const double spokes = fit.At(0.5 * ua, 0.5 * va) + fit.At(0.5 * ub, 0.5 * vb) - 0.5 * (da + db);
     const double rim = fit.At(0.5 * (ua + ub), 0.5 * (va + vb)) - 0.5 * (da + db);
@@ -384,20 +371,20 @@ double CollapseCostModel::CollapseHeight(const std::vector<Id>& rimEdges,
 }
 
 //------------------------------------------------------------------------------
-double CollapseCostModel::FitDeviation(const std::vector<Id>& rimEdges, const double origin[3],
-  const double normal[3], const SurfaceFitResult& fit, const double position[3]) const
+double CollapseCostModel::FitDeviation(
+  const std::vector<Id>& rimEdges, const SurfaceFitResult& fit, const double position[3]) const
 {
   // Over a new triangle (p, a, b) the height difference g = linear - f is quadratic, and the
   // midpoint rule (the mean of g^2 at the edge midpoints) integrates quadratics exactly; for
   // g^2, of degree four, it is an estimate that is exact where g is linear.
   double up, vp, dp;
-  FrameCoordinates(position, origin, normal, fit, up, vp, dp);
+  fit.Frame(position, up, vp, dp);
   double deviation = 0.0;
   for (std::size_t e = 0; e + 1 < rimEdges.size(); e += 2)
   {
     double ua, va, da, ub, vb, db;
-    FrameCoordinates(this->State.Mesh.Point(rimEdges[e]), origin, normal, fit, ua, va, da);
-    FrameCoordinates(this->State.Mesh.Point(rimEdges[e + 1]), origin, normal, fit, ub, vb, db);
+    fit.Frame(this->State.Mesh.Point(rimEdges[e]), ua, va, da);
+    fit.Frame(this->State.Mesh.Point(rimEdges[e + 1]), ub, vb, db);
     const double area = 0.5 * std::abs((ua - up) * (vb - vp) - (va - vp) * (ub - up));
     const double pa = 0.5 * (dp + da) - fit.At(0.5 * (up + ua), 0.5 * (vp + va));
     const double pb = 0.5 * (dp + db) - fit.At(0.5 * (up + ub), 0.5 * (vp + vb));
@@ -514,13 +501,12 @@ void CollapseCostModel::FitSurface(
   double height = 0.0;
   if (fit.Valid && place)
   {
-    const double best = this->CollapseHeight(rimEdges, centroid, c.Normal, fit,
-      this->Options.CurvatureRanking == CurvatureCost::FitDeviation);
+    const double best = this->CollapseHeight(
+      rimEdges, fit, this->Options.CurvatureRanking == CurvatureCost::FitDeviation);
     height = std::max(-scale, std::min(scale, best));
   }
   c.Kappa = fit.Valid ? fit.AbsoluteCurvature : 0.0;
   scratch.Fit = fit;
-  std::copy_n(centroid, 3, scratch.FitOrigin);
   for (int i = 0; i < 3; ++i)
   {
     c.Position[i] = centroid[i] + height * c.Normal[i];

@@ -49,8 +49,7 @@ struct CostScratch
   std::vector<Id> Vertices;
   std::vector<double> Points;
   std::vector<Id> RimEdges; // curvature method: the far edges of the ring triangles, (a, b) pairs
-  SurfaceFitResult Fit;     // curvature method: the last fit and its frame's origin
-  double FitOrigin[3] = { 0, 0, 0 };
+  SurfaceFitResult Fit;     // curvature method: the last fit
   /// After a collapse every triangle around the survivor is evaluated again, and each edge
   /// from the survivor belongs to two of them: between BeginSpokes(v) and EndSpokes() the
   /// solutions of edges from v are kept and reused (they are the same numbers either way).
@@ -115,13 +114,13 @@ private:
   // The height along the normal through the centroid at which the new triangles, from the
   // collapse point to the far edges of the ring triangles (FitSurface gathers them), lie on the
   // fitted surface on average or, with `leastDeviation`, at which their FitDeviation is least.
-  double CollapseHeight(const std::vector<Id>& rimEdges, const double centroid[3],
-    const double normal[3], const SurfaceFitResult& fit, bool leastDeviation) const;
+  double CollapseHeight(
+    const std::vector<Id>& rimEdges, const SurfaceFitResult& fit, bool leastDeviation) const;
   // The integral over the new triangles (from `position` to the rim edges) of their squared
   // height above the fitted surface, by the midpoint rule (exact for a quadratic integrand):
   // how far the collapse leaves the surface the fit sees, its ancestral points included.
-  double FitDeviation(const std::vector<Id>& rimEdges, const double origin[3],
-    const double normal[3], const SurfaceFitResult& fit, const double position[3]) const;
+  double FitDeviation(
+    const std::vector<Id>& rimEdges, const SurfaceFitResult& fit, const double position[3]) const;
 
   const TriangleCollapseOptions& Options;
   const CollapseMesh& State;

@@ -3,6 +3,7 @@
 #include "vtk_eigen.h"
 #include VTK_EIGEN(Dense)
 
+#include <algorithm>
 #include <cmath>
 
 namespace meshlod
@@ -11,6 +12,8 @@ SurfaceFitResult FitQuadraticHeightField(
   const double origin[3], const double normal[3], const double* xyz, int count, double scale)
 {
   SurfaceFitResult result;
+  std::copy_n(origin, 3, result.Origin);
+  std::copy_n(normal, 3, result.N);
   if (count < 6 || !(scale > 0.0))
   {
     return result;

@@ -19,10 +19,22 @@ struct VTKFILTERSMESHLOD_EXPORT SurfaceFitResult
   double Height = 0.0;             // f(0, 0), in world units along the normal
   double AbsoluteCurvature = 0.0;  // |kappa1| + |kappa2| at (0, 0), in 1 / world units
   double Kappa1 = 0.0, Kappa2 = 0.0;
-  /// The frame (u and v axes; n is the given normal) and f's coefficients in world units:
+  /// The frame (origin, u and v axes, the given normal n) and f's coefficients in world units:
   /// f(u, v) = C[0] u^2 + C[1] u v + C[2] v^2 + C[3] u + C[4] v + C[5].
-  double U[3] = { 1, 0, 0 }, V[3] = { 0, 1, 0 };
+  double Origin[3] = { 0, 0, 0 };
+  double U[3] = { 1, 0, 0 }, V[3] = { 0, 1, 0 }, N[3] = { 0, 0, 1 };
   double C[6] = { 0, 0, 0, 0, 0, 0 };
+  /// x in the frame: (u, v) in the plane and d along the normal.
+  void Frame(const double* x, double& u, double& v, double& d) const
+  {
+    u = v = d = 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      u += (x[i] - this->Origin[i]) * this->U[i];
+      v += (x[i] - this->Origin[i]) * this->V[i];
+      d += (x[i] - this->Origin[i]) * this->N[i];
+    }
+  }
   double At(double u, double v) const
   {
     return this->C[0] * u * u + this->C[1] * u * v + this->C[2] * v * v + this->C[3] * u +
