@@ -574,7 +574,7 @@ std::string Benchmark::TargetSummary() const
     { "vtkTriangleCollapseDecimation independent sets", "vtkQuadricDecimation" },
     { "vtkTriangleCollapseDecimation triangles only", "vtkQuadricDecimation" },
     { "vtkTriangleCollapseDecimation curvature", "vtkQuadricDecimation" },
-    { "vtkTriangleCollapseDecimation curvature fit deviation", "vtkQuadricDecimation" },
+    { "vtkTriangleCollapseDecimation curvature paper weight", "vtkQuadricDecimation" },
     { "vtkVertexClusterOctree", "vtkQuadricClustering" },
     { "vtkVertexClusterOctree flipped edges", "vtkQuadricClustering" } };
   if (this->Opts.Targets.empty())

@@ -119,24 +119,23 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
       d->SetOperatorToTriangles();
     }));
   Method curvature = TriangleCollapse("vtkTriangleCollapseDecimation curvature",
-    "curvature method (paper 000 weights 1/3 each), IndependentSets schedule, 8 levels",
+    "curvature method with its defaults: CurvatureCost FIT_DEVIATION (the new triangles' "
+    "squared deviation from the fitted surface, or the merged planes' where larger), greedy "
+    "schedule (serial for this method), 8 levels; one-thread row only",
+    [](vtkTriangleCollapseDecimation* d) { d->SetMethodToCurvature(); });
+  curvature.MaximumInputTriangles = 700000;
+  curvature.Parallel = false;
+  methods.push_back(curvature);
+  Method paper = TriangleCollapse("vtkTriangleCollapseDecimation curvature paper weight",
+    "curvature method as in paper 000: CurvatureCost WEIGHT (weights 1/3 each), "
+    "IndependentSets schedule, 8 levels",
     [](vtkTriangleCollapseDecimation* d) {
       d->SetMethodToCurvature();
+      d->SetCurvatureCostToWeight();
       d->SetScheduleToIndependentSets();
     });
-  curvature.MaximumInputTriangles = 700000;
-  methods.push_back(curvature);
-  Method deviation = TriangleCollapse("vtkTriangleCollapseDecimation curvature fit deviation",
-    "curvature method ranked by CurvatureCost FIT_DEVIATION (the new triangles' squared "
-    "deviation from the fitted surface, or the merged planes' where larger), greedy schedule "
-    "(serial for this method), 8 levels; one-thread row only",
-    [](vtkTriangleCollapseDecimation* d) {
-      d->SetMethodToCurvature();
-      d->SetCurvatureCostToFitDeviation();
-    });
-  deviation.MaximumInputTriangles = 700000;
-  deviation.Parallel = false;
-  methods.push_back(deviation);
+  paper.MaximumInputTriangles = 700000;
+  methods.push_back(paper);
 
   // The octree clustering is compared with vtkQuadricClustering: one level per target, epsilon
   // searched by the filter inside the timed run.

@@ -26,21 +26,24 @@
  *   Triangulations", IEEE Visualization 1997): a least-squares quadratic height field
  *   f(u, v) is fitted over the triangle's stencil and its ancestral points (the original
  *   vertices merged into its corners, at most MaximumFitPoints of them as an evenly strided
- *   subset; an extended stencil when the fit is singular). The weight is
- *   W = A (wk kappa + wa alpha + wv V) with the absolute curvature kappa (normalised by the
- *   largest in the input), the shape measure alpha and the valence penalty V = |val - 6| / 12,
- *   weighted by CurvatureWeight, AngleWeight and ValenceWeight (which must sum to 1). The
- *   collapse point is on the normal through the centroid c, as in the paper, but not at the
+ *   subset; an extended stencil when the fit is singular). Collapses are ranked by
+ *   CurvatureCost. By default (FIT_DEVIATION) a collapse costs the integral over the new
+ *   triangles of their squared height above the fitted surface, or the merged planes'
+ *   area-weighted squared distance at the collapse point where that is larger; the collapse
+ *   point is on the normal through the centroid c at the height where that deviation is least,
+ *   or the merged planes' minimiser when that costs less. With WEIGHT, paper 000's own ranking,
+ *   the weight is W = A (wk kappa + wa alpha + wv V) with the absolute curvature kappa
+ *   (normalised by the largest in the input), the shape measure alpha and the valence penalty
+ *   V = |val - 6| / 12, weighted by CurvatureWeight, AngleWeight and ValenceWeight (which must
+ *   sum to 1); the collapse point is on the normal through c, as in the paper, but not at the
  *   fitted surface (c + f(0, 0) n): at the height where the new triangles lie on the fitted
  *   surface on average (at f(0, 0) they are chords inside a convex surface; on the benchmark
  *   meshes this lowers the RMS error by about a third). The paper collapses only triangles with
  *   a complete stencil, none touching a boundary; here a triangle with a boundary vertex
  *   collapses to the minimiser of its merged planes, boundary planes included, so that open
- *   boundaries stay in place. The weight is a curvature and shape heuristic, not an error: at
- *   equal triangle counts this method's error is several times that of the quadric method
- *   (Benchmarks/RESULTS.md). SetCurvatureCostToFitDeviation() ranks the collapses by the
- *   new triangles' squared deviation from the fitted surface instead (see CurvatureCost), at
- *   about a quarter of that error.
+ *   boundaries stay in place. The paper's weight is a curvature and shape heuristic, not an
+ *   error: at equal triangle counts its error is several times that of the quadric method,
+ *   and FIT_DEVIATION's is about a quarter of it (Benchmarks/RESULTS.md).
  *
  * A collapse is made only when it is legal (paper 000, section 3, generalised to open
  * meshes):
@@ -325,19 +328,20 @@ public:
 
   ///@{
   /**
-   * Curvature method: how collapses are ranked. WEIGHT (the default) is paper 000's weight
-   * W = A (wk kappa + wa alpha + wv V) from the three weights above, at the collapse point
-   * described in the class docs. FIT_DEVIATION ranks by the integral over the new triangles
-   * of their squared height above the fitted surface (the fit includes the ancestral points,
-   * so this is a deviation from the input surface, what earlier collapses cost included), or
-   * by the merged planes' area-weighted squared distance at the collapse point where that is
-   * larger (the planes see what a quadratic smooths over: a crease, a stencil grown around
-   * much of a small sphere); the collapse point, on the same normal, is where the deviation
-   * is least; the three weights are not used. The fit and the legality rules are the same.
-   * On the benchmark isosurfaces FIT_DEVIATION's Hausdorff distance is 1.1-1.6x and its RMS
-   * distance 0.9-1.3x vtkQuadricDecimation's, against 4.7-8.9x and 2.6-3.4x for WEIGHT
-   * (Benchmarks/RESULTS.md): the paper's weight is dominated by the area, so it evens out the
-   * triangles' sizes instead of keeping small ones where the surface bends.
+   * Curvature method: how collapses are ranked. FIT_DEVIATION (the default) ranks by the
+   * integral over the new triangles of their squared height above the fitted surface (the fit
+   * includes the ancestral points, so this is a deviation from the input surface, what earlier
+   * collapses cost included), or by the merged planes' area-weighted squared distance at the
+   * collapse point where that is larger (the planes see what a quadratic smooths over: a
+   * crease, a stencil grown around much of a small sphere). Two collapse points compete: the
+   * point on the normal through the centroid where the deviation is least, and the merged
+   * planes' minimiser; the one of lower cost is taken. The three weights are not used.
+   * WEIGHT is paper 000's weight W = A (wk kappa + wa alpha + wv V) from the three weights
+   * above, at the collapse point described in the class docs. The fit and the legality rules
+   * are the same for both. On the benchmark isosurfaces FIT_DEVIATION's Hausdorff and RMS
+   * distances are 1.1-1.4x vtkQuadricDecimation's, against 4.7-8.9x and 2.6-3.4x for
+   * WEIGHT (Benchmarks/RESULTS.md): the paper's weight is dominated by the area, so it evens
+   * out the triangles' sizes instead of keeping small ones where the surface bends.
    */
   vtkSetClampMacro(CurvatureCost, int, WEIGHT, FIT_DEVIATION);
   vtkGetMacro(CurvatureCost, int);
@@ -422,7 +426,7 @@ protected:
   double CurvatureWeight = 1.0 / 3.0;
   double AngleWeight = 1.0 / 3.0;
   double ValenceWeight = 1.0 / 3.0;
-  int CurvatureCost = WEIGHT;
+  int CurvatureCost = FIT_DEVIATION;
   double BoundaryWeight = 10.0;
   double MaximumNormalDeviation = 90.0;
   int MaximumFitPoints = 48;

@@ -73,7 +73,7 @@ struct TriangleCollapseOptions
   double CurvatureWeight = 1.0 / 3.0;
   double AngleWeight = 1.0 / 3.0;
   double ValenceWeight = 1.0 / 3.0;
-  CurvatureCost CurvatureRanking = CurvatureCost::Weight;
+  CurvatureCost CurvatureRanking = CurvatureCost::FitDeviation;
   /// Weight of the planes through boundary edges, relative to the area-weighted surface
   /// planes (the plane of an edge of length l gets BoundaryWeight * l^2).
   double BoundaryWeight = 10.0;

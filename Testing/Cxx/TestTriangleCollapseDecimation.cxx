@@ -145,7 +145,7 @@ void TestClosedIsosurface()
   {
     int Method, Schedule, Operator, CurvatureCost;
     const char* Label;
-    // Measured on this mesh: 0.30, 0.39, 0.53, 1.55 and 0.51; about 1.3-2x margin.
+    // Measured on this mesh: 0.30, 0.39, 0.53, 1.55 and 0.36; about 1.3-2x margin.
     double MaxHausdorffPercentAt10;
   };
   const Variant variants[] = {
@@ -163,7 +163,7 @@ void TestClosedIsosurface()
       "curvature", 2.5 },
     { vtkTriangleCollapseDecimation::CURVATURE, vtkTriangleCollapseDecimation::GREEDY,
       vtkTriangleCollapseDecimation::TRIANGLES, vtkTriangleCollapseDecimation::FIT_DEVIATION,
-      "curvature fit deviation", 0.8 },
+      "curvature fit deviation", 0.6 },
   };
   std::vector<SurfaceDistance> at10Distances;
   for (const Variant& v : variants)
@@ -202,12 +202,12 @@ void TestClosedIsosurface()
     MESHLOD_CHECK_GT(Field(Level(h, 4), names::EstimatedError), 0.0);
     at10Distances.push_back(d);
   }
-  // Ranked by the fitted surface's deviation the curvature method's error is a third to a half
-  // of that of paper 000's weight (0.33x and 0.41x here; less on the benchmark meshes).
+  // Ranked by the fitted surface's deviation the curvature method's error is a quarter to two
+  // fifths of that of paper 000's weight (0.23x and 0.37x here; less on the benchmark meshes).
   const SurfaceDistance& weight = at10Distances[3];
   const SurfaceDistance& deviation = at10Distances[4];
-  MESHLOD_CHECK_LE(deviation.Hausdorff, 0.5 * weight.Hausdorff);
-  MESHLOD_CHECK_LE(deviation.Rms, 0.55 * weight.Rms);
+  MESHLOD_CHECK_LE(deviation.Hausdorff, 0.35 * weight.Hausdorff);
+  MESHLOD_CHECK_LE(deviation.Rms, 0.5 * weight.Rms);
 }
 
 // The torus keeps its hole: Euler characteristic 0 on every level.
@@ -244,9 +244,10 @@ void TestOpenSurface(int method)
     MESHLOD_CHECK_GT(r.BoundaryEdges, 0);
     // Boundary vertices stay within a fraction of the level's typical edge length of the
     // input boundary. Measured, quadric method: up to 0.23 of it at the coarsest level, far less
-    // before. The curvature method collapses whole triangles, which cut the boundary's corners,
-    // and its weights do not see the boundary: up to 0.46 down to 3% of the input (level 6),
-    // 0.6 to 1.6 at the two coarsest levels (about 100 and 60 triangles), which are left out.
+    // before. The curvature method collapses whole triangles, which cut the boundary's corners:
+    // up to 0.27 down to 3% of the input (level 6), 0.25 and 0.58 at the two coarsest levels
+    // (about 100 and 60 triangles), which are left out. (Ranked by paper 000's weight, which
+    // does not see the boundary: up to 0.46, and 0.6 to 1.6.)
     const double deviation = testing::BoundaryDeviation(sheet, Level(h, i));
     std::cerr << "  boundary deviation level " << i << ": " << deviation / TypicalEdge(Level(h, i))
               << " edge lengths\n";
@@ -257,7 +258,7 @@ void TestOpenSurface(int method)
     }
     else if (i <= 6)
     {
-      MESHLOD_CHECK_LE(deviation, 0.6 * TypicalEdge(Level(h, i)));
+      MESHLOD_CHECK_LE(deviation, 0.45 * TypicalEdge(Level(h, i)));
       MESHLOD_CHECK_LE(deviation, 0.05 * diagonal);
     }
   }
@@ -999,9 +1000,14 @@ void TestNoisySurface()
 // perturbed by up to 8% it stopped at 5,144 of 19,600 triangles, asked for 196. A run that
 // would stop short now relaxes the test once (a ring triangle already on the wrong side of the
 // plane may stay there) and goes on: this sphere reaches 1% at 2.3x vtkQuadricDecimation's
-// Hausdorff and 2.0x its RMS distance. Runs that reach their targets under the strict test
-// are unchanged.
-void TestNoisySurfaceCurvature()
+// Hausdorff and 2.0x its RMS distance with paper 000's weight. Runs that reach their targets
+// under the strict test are unchanged. Ranked by the fit's deviation (the default) the run
+// does worse on this rough input, 3.2x and 5.0x: between 3,500 and 2,000 triangles it makes
+// long triangles that cut across the sphere near its poles (valence 100 in the input), which
+// the fit to noisy points does not price. (On the same sphere without noise the fit's
+// deviation gives 0.92% of the diagonal at the 1% level, the weight 2.4%, vtkQuadricDecimation
+// 0.87%, as the largest distance of a level's triangles to the input.)
+void TestNoisySurfaceCurvature(int ranking, double maxHausdorffRatio, double maxRmsRatio)
 {
   const double amplitude = 0.08;
   vtkSmartPointer<vtkPolyData> sphere = NoisySphere(amplitude);
@@ -1009,6 +1015,7 @@ void TestNoisySurfaceCurvature()
   vtkNew<vtkTriangleCollapseDecimation> filter;
   filter->SetInputData(sphere);
   filter->SetMethodToCurvature();
+  filter->SetCurvatureCost(ranking);
   filter->SetTargetReduction(0.99);
   filter->Update();
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
@@ -1017,10 +1024,44 @@ void TestNoisySurfaceCurvature()
   const testing::MeshReport report = testing::InspectMesh(coarse);
   MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
   MESHLOD_CHECK_EQ(report.EulerCharacteristic, 2);
-  const PeerComparison c = CompareWithQuadricDecimation(
-    sphere, coarse, "noisy sphere (" + std::to_string(amplitude) + "), curvature method");
-  MESHLOD_CHECK_LE(c.Ours.Hausdorff, 4.0 * c.Theirs.Hausdorff);
-  MESHLOD_CHECK_LE(c.Ours.Rms, 4.0 * c.Theirs.Rms);
+  const PeerComparison c = CompareWithQuadricDecimation(sphere, coarse,
+    "noisy sphere (" + std::to_string(amplitude) + "), curvature method, ranked by " +
+      filter->GetCurvatureCostAsString());
+  MESHLOD_CHECK_LE(c.Ours.Hausdorff, maxHausdorffRatio * c.Theirs.Hausdorff);
+  MESHLOD_CHECK_LE(c.Ours.Rms, maxRmsRatio * c.Theirs.Rms);
+}
+
+// The same UV sphere without noise, at 1%: ranked by the fit's deviation the curvature method
+// is within 1.5x of vtkQuadricDecimation's distances (measured: 1.14x and 1.06x), far below
+// paper 000's weight (3.7x and 2.3x).
+void TestSmoothSphereCurvature()
+{
+  vtkSmartPointer<vtkPolyData> sphere = NoisySphere(0.0);
+  SurfaceDistance distances[2];
+  for (const int ranking :
+    { vtkTriangleCollapseDecimation::FIT_DEVIATION, vtkTriangleCollapseDecimation::WEIGHT })
+  {
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->SetInputData(sphere);
+    filter->SetMethodToCurvature();
+    filter->SetCurvatureCost(ranking);
+    filter->SetTargetReduction(0.99);
+    filter->Update();
+    vtkMultiBlockDataSet* h = filter->GetHierarchy();
+    vtkPolyData* coarse = Level(h, h->GetNumberOfBlocks() - 1);
+    MESHLOD_CHECK_LE(coarse->GetNumberOfPolys(), sphere->GetNumberOfPolys() / 100 + 3);
+    const PeerComparison c = CompareWithQuadricDecimation(sphere, coarse,
+      std::string("smooth sphere, curvature method, ranked by ") +
+        filter->GetCurvatureCostAsString());
+    if (ranking == vtkTriangleCollapseDecimation::FIT_DEVIATION)
+    {
+      MESHLOD_CHECK_LE(c.Ours.Hausdorff, 1.5 * c.Theirs.Hausdorff);
+      MESHLOD_CHECK_LE(c.Ours.Rms, 1.5 * c.Theirs.Rms);
+    }
+    distances[ranking == vtkTriangleCollapseDecimation::WEIGHT ? 1 : 0] = c.Ours;
+  }
+  MESHLOD_CHECK_LE(distances[0].Hausdorff, 0.6 * distances[1].Hausdorff);
+  MESHLOD_CHECK_LE(distances[0].Rms, 0.6 * distances[1].Rms);
 }
 
 // Non-orientable surfaces (a Moebius strip, Boy's surface) cannot be oriented consistently:
@@ -1034,8 +1075,9 @@ void TestNoisySurfaceCurvature()
 // a ring triangle across the seam by its orientation: the Moebius strip stopped at 277
 // triangles (21x vtkQuadricDecimation's Hausdorff and 24x its RMS distance), Boy's surface at
 // 452 (18x, 11x). On such a mesh the test now asks that no new triangle changes side of the
-// collapsing triangle's plane: both reach 1%, at 4.8x and 5.9x, and 3.3x and 3.2x (the
-// curvature method's usual distance from vtkQuadricDecimation on isosurfaces).
+// collapsing triangle's plane: both reach 1%, ranked by the fit's deviation (the default) at
+// 1.4x and 2.0x, and 0.9x and 1.2x (with paper 000's weight at 4.8x and 5.9x, and 3.3x and
+// 3.2x, its usual distance from vtkQuadricDecimation on isosurfaces).
 template <typename Surface>
 void CheckNonOrientable(const char* name, bool curvature)
 {
@@ -1095,8 +1137,8 @@ void CheckNonOrientable(const char* name, bool curvature)
     MESHLOD_CHECK_LE(worst, 2);
   }
   const PeerComparison c = CompareWithQuadricDecimation(input, coarse, label);
-  MESHLOD_CHECK_LE(c.Ours.Hausdorff, (curvature ? 8.0 : 2.0) * c.Theirs.Hausdorff);
-  MESHLOD_CHECK_LE(c.Ours.Rms, (curvature ? 8.0 : 1.5) * c.Theirs.Rms);
+  MESHLOD_CHECK_LE(c.Ours.Hausdorff, (curvature ? 3.0 : 2.0) * c.Theirs.Hausdorff);
+  MESHLOD_CHECK_LE(c.Ours.Rms, (curvature ? 3.0 : 1.5) * c.Theirs.Rms);
 }
 
 void TestNonOrientable()
@@ -1259,7 +1301,9 @@ int TestTriangleCollapseDecimation(int, char*[])
   TestHighValenceFan();
   TestFarFromOrigin();
   TestNoisySurface();
-  TestNoisySurfaceCurvature();
+  TestNoisySurfaceCurvature(vtkTriangleCollapseDecimation::WEIGHT, 4.0, 4.0);
+  TestNoisySurfaceCurvature(vtkTriangleCollapseDecimation::FIT_DEVIATION, 4.5, 6.5);
+  TestSmoothSphereCurvature();
   TestNonOrientable();
   TestErrorJumpWarning();
   TestExtrudedSolid();
