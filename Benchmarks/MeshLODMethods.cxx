@@ -123,7 +123,6 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     "squared deviation from the fitted surface, or the merged planes' where larger), greedy "
     "schedule (serial for this method), 8 levels; one-thread row only",
     [](vtkTriangleCollapseDecimation* d) { d->SetMethodToCurvature(); });
-  curvature.MaximumInputTriangles = 700000;
   curvature.Parallel = false;
   methods.push_back(curvature);
   Method paper = TriangleCollapse("vtkTriangleCollapseDecimation curvature paper weight",

@@ -242,6 +242,8 @@ private:
   // What the last evaluation of each triangle chose (CollapseCandidate::Choice), so that the
   // check of a chosen triangle solves for that collapse only.
   std::vector<std::uint8_t> Choices;
+  // Greedy schedule, curvature method: 1 for a triangle whose cost awaits re-evaluation.
+  std::vector<std::uint8_t> Stale;
   std::vector<std::int64_t> Targets;
   std::size_t NextTarget = 0;
   Id InitialTriangles = 0;

@@ -13,6 +13,10 @@ namespace
 constexpr std::int64_t ParkedRetryCollapses = 256;
 // ... or after one collapse per this many waiting triangles, if that is later.
 constexpr std::size_t ParkedRetryShare = 4;
+// A triangle whose cost awaits re-evaluation waits in the heap at this fraction of its old cost
+// (see GreedySteps). (0.7: about 10% faster on the 154k metaballs, same levels, but on a noisy sphere
+// at 1% the paper's weight went from 2.1x to 8x vtkQuadricDecimation's Hausdorff distance.)
+constexpr double StaleCostFactor = 0.5;
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -45,6 +49,10 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
   // A new cost for triangle s; a triangle that cannot collapse any more leaves the heap.
   auto reweigh = [&](Id s) {
     this->Lot.Unpark(s);
+    if (widen)
+    {
+      this->Stale[s] = 0;
+    }
     this->Costs[s] = this->EvaluateCost(s, scratch);
     if (this->Costs[s] < InfiniteCost)
     {
@@ -55,6 +63,32 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
       heap.Remove(s);
     }
   };
+  // The curvature method's triangles one ring out are re-weighted lazily (each re-weighting is
+  // a fit, a dozen per collapse): marked stale, they wait in the heap at StaleCostFactor times
+  // their old cost and are re-weighted when they come to its top. Many are marked again, or
+  // die, before they do. A stale triangle whose new cost is at least that fraction of its old
+  // one comes up no later than it would have with its new cost, so wherever no cost falls
+  // below half, the order is exactly that of re-weighting at once (ranked by the fit's
+  // deviation, the 154k metaballs and a smooth sphere give the same levels), in about half the
+  // time.
+  auto defer = [&](Id s) {
+    if (!(this->Costs[s] < InfiniteCost))
+    {
+      reweigh(s);
+      return;
+    }
+    this->Lot.Unpark(s);
+    if (!this->Stale[s])
+    {
+      this->Costs[s] *= StaleCostFactor;
+      this->Stale[s] = 1;
+    }
+    heap.Update(s);
+  };
+  if (widen)
+  {
+    this->Stale.resize(this->InitialTriangles, 0);
+  }
   std::int64_t nextRelease = this->Clock + ParkedRetryCollapses;
   while (this->State.AliveTriangles > until)
   {
@@ -72,6 +106,11 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
       }
     }
     const Id t = heap.Pop();
+    if (widen && this->Stale[t])
+    {
+      reweigh(t);
+      continue;
+    }
     if (this->Check(t, star, c, scratch) != Legality::Legal)
     {
       this->Lot.Park(t, this->Clock);
@@ -118,7 +157,7 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
       this->State.ForEachTriangle(u, [&](Id s) {
         if (CornerOf(this->State.Mesh.Triangle(s), survivor) < 0)
         {
-          reweigh(s);
+          defer(s);
         }
       });
     }

@@ -999,10 +999,10 @@ void TestNoisySurface()
 // on a noisy surface refuses most of them once triangles are large: on the sphere with radii
 // perturbed by up to 8% it stopped at 5,144 of 19,600 triangles, asked for 196. A run that
 // would stop short now relaxes the test once (a ring triangle already on the wrong side of the
-// plane may stay there) and goes on: this sphere reaches 1% at 2.3x vtkQuadricDecimation's
-// Hausdorff and 2.0x its RMS distance with paper 000's weight. Runs that reach their targets
+// plane may stay there) and goes on: this sphere reaches 1% at 2.1x vtkQuadricDecimation's
+// Hausdorff and 1.6x its RMS distance with paper 000's weight. Runs that reach their targets
 // under the strict test are unchanged. Ranked by the fit's deviation (the default) the run
-// does worse on this rough input, 3.2x and 5.0x: between 3,500 and 2,000 triangles it makes
+// does worse on this rough input, 4.0x and 4.6x: between 3,500 and 2,000 triangles it makes
 // long triangles that cut across the sphere near its poles (valence 100 in the input), which
 // the fit to noisy points does not price. (On the same sphere without noise the fit's
 // deviation gives 0.92% of the diagonal at the 1% level, the weight 2.4%, vtkQuadricDecimation
@@ -1033,7 +1033,7 @@ void TestNoisySurfaceCurvature(int ranking, double maxHausdorffRatio, double max
 
 // The same UV sphere without noise, at 1%: ranked by the fit's deviation the curvature method
 // is within 1.5x of vtkQuadricDecimation's distances (measured: 1.14x and 1.06x), far below
-// paper 000's weight (3.7x and 2.3x).
+// paper 000's weight (4.0x and 2.3x).
 void TestSmoothSphereCurvature()
 {
   vtkSmartPointer<vtkPolyData> sphere = NoisySphere(0.0);
@@ -1302,7 +1302,7 @@ int TestTriangleCollapseDecimation(int, char*[])
   TestFarFromOrigin();
   TestNoisySurface();
   TestNoisySurfaceCurvature(vtkTriangleCollapseDecimation::WEIGHT, 4.0, 4.0);
-  TestNoisySurfaceCurvature(vtkTriangleCollapseDecimation::FIT_DEVIATION, 4.5, 6.5);
+  TestNoisySurfaceCurvature(vtkTriangleCollapseDecimation::FIT_DEVIATION, 5.0, 6.0);
   TestSmoothSphereCurvature();
   TestNonOrientable();
   TestErrorJumpWarning();
