@@ -1,9 +1,10 @@
-// Beyond isosurfaces: vtkTriangleCollapseDecimation (defaults) against vtkQuadricDecimation,
-// and vtkVertexClusterOctree against vtkQuadricClustering, on meshes made by VTK's own sources,
+// Beyond isosurfaces: vtkTriangleCollapseDecimation (defaults, then the curvature method)
+// against vtkQuadricDecimation, and vtkVertexClusterOctree against vtkQuadricClustering, on
+// meshes made by VTK's own sources,
 // the kinds a user feeds in besides marching-cubes output: a CAD-like faceted solid, a
 // parametric surface with a seam, scan-like noisy spheres, a non-orientable surface, a
 // superquadric with rounded edges and the smoothed surfaces between the regions of a segmented
-// volume, where three sheets meet along curves. Prints two markdown tables (quality and Euler
+// volume, where three sheets meet along curves. Prints three markdown tables (quality and Euler
 // characteristics, or the counts reached; no timing) that run-benchmarks.sh appends to
 // RESULTS.md.
 //
@@ -225,6 +226,46 @@ vtkPolyData* Nearest(vtkMultiBlockDataSet* hierarchy, vtkIdType target)
   }
   return best;
 }
+void PrintQuadricDecimationHeader()
+{
+  std::printf("| mesh | triangles | target | output triangles | Hausdorff %% | RMS %% | "
+              "vtkQuadricDecimation Hausdorff %% | RMS %% | Hausdorff x QD | RMS x QD | "
+              "Euler characteristic: level 0, ours, QD |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+}
+
+// The rows of a hierarchy's levels nearest 10% and 1% of the input against vtkQuadricDecimation
+// at the same triangle counts.
+std::string QuadricDecimationRows(const TestMesh& test, vtkPolyData* mesh,
+  vtkTriangleCollapseDecimation* decimate, const meshlod::SurfaceDistanceOptions& options)
+{
+  const vtkIdType triangles = mesh->GetNumberOfPolys();
+  std::string rows;
+  for (const double fraction : { 0.1, 0.01 })
+  {
+    vtkPolyData* level =
+      Nearest(decimate->GetHierarchy(), static_cast<vtkIdType>(fraction * triangles));
+    vtkNew<vtkQuadricDecimation> peer;
+    peer->SetInputData(mesh);
+    peer->SetTargetReduction(
+      1.0 - static_cast<double>(level->GetNumberOfPolys()) / static_cast<double>(triangles));
+    peer->Update();
+    const meshlod::SurfaceDistance ours = meshlod::MeasureSurfaceDistance(mesh, level, options);
+    const meshlod::SurfaceDistance theirs =
+      meshlod::MeasureSurfaceDistance(mesh, peer->GetOutput(), options);
+    char row[512];
+    std::snprintf(row, sizeof(row),
+      "| %s | %lld | %g%% | %lld | %.3g | %.3g | %.3g | %.3g | %.2f | %.2f | %lld, %lld, %lld |\n",
+      test.Name.c_str(), static_cast<long long>(triangles), 100.0 * fraction,
+      static_cast<long long>(level->GetNumberOfPolys()), ours.HausdorffPercent(),
+      ours.RmsPercent(), theirs.HausdorffPercent(), theirs.RmsPercent(),
+      Ratio(ours.Hausdorff, theirs.Hausdorff), Ratio(ours.Rms, theirs.Rms),
+      EulerCharacteristic(vtkPolyData::SafeDownCast(decimate->GetHierarchy()->GetBlock(0))),
+      EulerCharacteristic(level), EulerCharacteristic(peer->GetOutput()));
+    rows += row;
+  }
+  return rows;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -233,10 +274,7 @@ int main(int argc, char* argv[])
   options.SamplesPerSurface = argc > 1 ? std::atoll(argv[1]) : 100000;
   options.MaximumVertexSamples = options.SamplesPerSurface;
 
-  std::printf("| mesh | triangles | target | output triangles | Hausdorff %% | RMS %% | "
-              "vtkQuadricDecimation Hausdorff %% | RMS %% | Hausdorff x QD | RMS x QD | "
-              "Euler characteristic: level 0, ours, QD |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  PrintQuadricDecimationHeader();
   std::vector<std::string> notes;
   // The octree and the grid clustering come from the main benchmark's registry, with its
   // settings (the octree's levels at the targets, the grid searched for the octree's count).
@@ -250,7 +288,7 @@ int main(int argc, char* argv[])
   const meshlod::benchmark::Method octree = method("vtkVertexClusterOctree");
   const meshlod::benchmark::Method flipped = method("vtkVertexClusterOctree flipped edges");
   const meshlod::benchmark::Method grid = method("vtkQuadricClustering");
-  std::ostringstream octreeRows;
+  std::ostringstream octreeRows, curvatureRows;
   for (const TestMesh& test : Meshes())
   {
     vtkSmartPointer<vtkPolyData> mesh = test.Make();
@@ -259,29 +297,13 @@ int main(int argc, char* argv[])
     vtkNew<vtkTriangleCollapseDecimation> decimate;
     decimate->SetInputData(mesh);
     decimate->Update();
-    for (const double fraction : { 0.1, 0.01 })
-    {
-      vtkPolyData* level = Nearest(decimate->GetHierarchy(), static_cast<vtkIdType>(fraction * triangles));
-      vtkNew<vtkQuadricDecimation> peer;
-      peer->SetInputData(mesh);
-      peer->SetTargetReduction(
-        1.0 - static_cast<double>(level->GetNumberOfPolys()) / static_cast<double>(triangles));
-      peer->Update();
-      const meshlod::SurfaceDistance ours = meshlod::MeasureSurfaceDistance(mesh, level, options);
-      const meshlod::SurfaceDistance theirs =
-        meshlod::MeasureSurfaceDistance(mesh, peer->GetOutput(), options);
-
-      std::printf(
-        "| %s | %lld | %g%% | %lld | %.3g | %.3g | %.3g | %.3g | %.2f | %.2f | %lld, %lld, %lld |\n",
-        test.Name.c_str(), static_cast<long long>(triangles), 100.0 * fraction,
-        static_cast<long long>(level->GetNumberOfPolys()), ours.HausdorffPercent(),
-        ours.RmsPercent(), theirs.HausdorffPercent(), theirs.RmsPercent(),
-        Ratio(ours.Hausdorff, theirs.Hausdorff), Ratio(ours.Rms, theirs.Rms),
-        EulerCharacteristic(vtkPolyData::SafeDownCast(decimate->GetHierarchy()->GetBlock(0))),
-        EulerCharacteristic(level),
-        EulerCharacteristic(peer->GetOutput()));
-      std::fflush(stdout);
-    }
+    std::printf("%s", QuadricDecimationRows(test, mesh, decimate, options).c_str());
+    std::fflush(stdout);
+    vtkNew<vtkTriangleCollapseDecimation> curvature;
+    curvature->SetInputData(mesh);
+    curvature->SetMethodToCurvature();
+    curvature->Update();
+    curvatureRows << QuadricDecimationRows(test, mesh, curvature, options);
     const std::vector<vtkIdType> targets = { triangles / 10, triangles / 100 };
     const std::vector<vtkSmartPointer<vtkPolyData>> levels = octree.Hierarchy(mesh, targets);
     // FlipEdges changes no count: the same grid answers both.
@@ -321,5 +343,9 @@ int main(int argc, char* argv[])
               "Hausdorff x QC | RMS x QC | flipped edges: Hausdorff, RMS x QC |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::printf("%s", octreeRows.str().c_str());
+  std::printf("\nvtkTriangleCollapseDecimation's curvature method (SetMethodToCurvature(), "
+              "defaults otherwise) and vtkQuadricDecimation, as in the first table:\n\n");
+  PrintQuadricDecimationHeader();
+  std::printf("%s", curvatureRows.str().c_str());
   return 0;
 }

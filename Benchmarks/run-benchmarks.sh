@@ -46,7 +46,8 @@ VTK_SMP_BACKEND_IN_USE=Sequential "$build/bin/MeshLODBenchmark" \
   echo "column is V - E + F of the validated input (level 0: seams stitched, degenerate triangles"
   echo "dropped), of our level and of vtkQuadricDecimation's output; where they differ the"
   echo "topology changed (on the segmented balls vtkQuadricDecimation's outputs have boundary"
-  echo "edges, which its input has none of). Then the same meshes with vtkVertexClusterOctree:"
+  echo "edges, which its input has none of). Then the same meshes with vtkVertexClusterOctree,"
+  echo "and with the curvature method of vtkTriangleCollapseDecimation:"
   echo
   "$build/bin/OtherMeshesBenchmark"
 } >> "$repo/Benchmarks/RESULTS.md"
