@@ -43,7 +43,7 @@
  *   collapses to the minimiser of its merged planes, boundary planes included, so that open
  *   boundaries stay in place. The paper's weight is a curvature and shape heuristic, not an
  *   error: at equal triangle counts its error is several times that of the quadric method,
- *   and FIT_DEVIATION's is about a quarter of it (Benchmarks/RESULTS.md).
+ *   and FIT_DEVIATION's is a seventh to a half of it (Benchmarks/RESULTS.md).
  *
  * A collapse is made only when it is legal (paper 000, section 3, generalised to open
  * meshes):
@@ -92,7 +92,11 @@
  *   PartitionedGreedy on (the default) the greedy order runs in parallel rounds: each round
  *   cuts space into the cells of a grid and runs the greedy loop in every cell at once, up to a
  *   cost threshold shared by all cells; a collapse that would reach into another cell waits
- *   for the next round, whose grid is shifted by half a cell.
+ *   for the next round, whose grid is shifted by half a cell. The curvature method's greedy
+ *   order is serial (its fits reach beyond a collapse's cells); it re-fits the triangles one
+ *   ring out from a collapse lazily, when they come to the top of the queue (exactly the same
+ *   order wherever no cost falls below half its old value), and takes 2.2-3.0x the time
+ *   vtkQuadricDecimation needs for one 10% target, for its whole hierarchy.
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
@@ -338,10 +342,18 @@ public:
    * planes' minimiser; the one of lower cost is taken. The three weights are not used.
    * WEIGHT is paper 000's weight W = A (wk kappa + wa alpha + wv V) from the three weights
    * above, at the collapse point described in the class docs. The fit and the legality rules
-   * are the same for both. On the benchmark isosurfaces FIT_DEVIATION's Hausdorff and RMS
-   * distances are 1.1-1.4x vtkQuadricDecimation's, against 4.7-8.9x and 2.6-3.4x for
-   * WEIGHT (Benchmarks/RESULTS.md): the paper's weight is dominated by the area, so it evens
-   * out the triangles' sizes instead of keeping small ones where the surface bends.
+   * are the same for both. On the benchmark isosurfaces FIT_DEVIATION's Hausdorff distance
+   * is 0.86-1.30x and its RMS distance 1.07-1.20x vtkQuadricDecimation's, against 4.7-8.9x
+   * and 2.6-3.4x for WEIGHT (Benchmarks/RESULTS.md): the paper's weight is dominated by the
+   * area, so it evens out the triangles' sizes instead of keeping small ones where the surface
+   * bends. On the other meshes of the benchmark (a torus, noisy spheres, Boy's surface, a
+   * superquadric) FIT_DEVIATION is at 1.0-1.8x and 1.0-1.3x. Where it falls short: a faceted
+   * solid (flat faces, sharp rims) is exact only down to about 18% of its triangles, and
+   * below that whole-triangle collapses cannot keep its long thin facets (11% of the diagonal
+   * at 1%; the quadric method stays exact); a very rough input with high-valence poles (a UV
+   * sphere with radial noise of an edge) gets long triangles across it at coarse levels (at
+   * 1% 4x vtkQuadricDecimation's Hausdorff distance, WEIGHT 2x); and where sheets meet the
+   * curves are kept, so such a mesh stops short of a low count.
    */
   vtkSetClampMacro(CurvatureCost, int, WEIGHT, FIT_DEVIATION);
   vtkGetMacro(CurvatureCost, int);
