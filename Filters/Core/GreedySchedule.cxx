@@ -14,8 +14,9 @@ constexpr std::int64_t ParkedRetryCollapses = 256;
 // ... or after one collapse per this many waiting triangles, if that is later.
 constexpr std::size_t ParkedRetryShare = 4;
 // A triangle whose cost awaits re-evaluation waits in the heap at this fraction of its old cost
-// (see GreedySteps). (0.7: about 10% faster on the 154k metaballs, same levels, but on a noisy sphere
-// at 1% the paper's weight went from 2.1x to 8x vtkQuadricDecimation's Hausdorff distance.)
+// (see GreedySteps). (0.7: about 10% faster on the 154k metaballs, same levels, but on a noisy
+// sphere at 1% the paper's weight went from 2.1x to 8x vtkQuadricDecimation's Hausdorff
+// distance.)
 constexpr double StaleCostFactor = 0.5;
 } // namespace
 
