@@ -168,7 +168,7 @@ check(curvature.GetCurvatureCostAsString() == "FitDeviation", "CurvatureCost def
 curvature.SetCurvatureCostToWeight()
 check(curvature.GetCurvatureCostAsString() == "Weight", "CurvatureCost setter")
 curvature.SetCurvatureCostToFitDeviation()
-check(curvature.GetCurvatureCost() == 1, "CurvatureCost setter")
+check(curvature.GetCurvatureCost() == curvature.FIT_DEVIATION, "CurvatureCost setter")
 # At the last level, 64 triangles for three spheres, the curvature method's Hausdorff distance
 # is 0.089 here, as the quadric method's (0.095); paper 000's weight gives 0.21.
 test_hierarchy(contour, curvature, 0.13)
