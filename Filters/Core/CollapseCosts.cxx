@@ -210,7 +210,7 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
         // the planes say so: the point of lower cost is taken. (On the benchmark isosurfaces
         // the Hausdorff distance fell by up to 18% and the RMS distance by 3-4%, except on the
         // metaballs at 1%, where it rose by 17%. Only the planes' optimal height on the
-        // normal instead: no gain, and twice the error on a noisy sphere.)
+        // normal instead: no gain, and half as much error again on a noisy sphere.)
         double planes[3];
         q.MinimizeRegularized(centroid, planes);
         const double cost =
