@@ -14,6 +14,7 @@ set(meshlod_nowrap_headers
 # Private headers (not installed): the VTK-free algorithm code under Core/ and the glue between
 # it and VTK. The tests in the build tree include them directly.
 set(meshlod_private_headers
+  Filters/Core/CacheHint.h
   Filters/Core/ClusterTree.h
   Filters/Core/CollapseCosts.h
   Filters/Core/CollapseMesh.h

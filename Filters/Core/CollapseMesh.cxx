@@ -152,6 +152,60 @@ void CollapseMesh::RebuildRows()
 }
 
 //------------------------------------------------------------------------------
+void CollapseMesh::Prefetch(Id t, int stage) const
+{
+  const Id* tri = this->Mesh.Triangle(t);
+  if (tri[0] == InvalidId)
+  {
+    return; // died meanwhile: its other corners may be stale
+  }
+  const auto vertex = [&](Id v) {
+    CacheHint(this->Mesh.Point(v));
+    CacheHint(this->Quadrics[v].Q);
+    CacheHint(this->Quadrics[v].Q + 9);
+    CacheHint(this->Facing.data() + 3 * static_cast<std::size_t>(v));
+    CacheHint(this->Flags.data() + v);
+    CacheHint(this->TriangleCounts.data() + v);
+  };
+  for (int k = 0; k < 3; ++k)
+  {
+    const Id v = tri[k];
+    if (stage == 0)
+    {
+      vertex(v);
+      CacheHint(this->Survivor.data() + v);
+      CacheHint(this->ChainNext.data() + v);
+      CacheHint(this->Rows.Offsets.data() + v);
+      continue;
+    }
+    const Id* row = this->Rows.Triangles.data() + this->Rows.Begin(v);
+    const Id* rowEnd = this->Rows.Triangles.data() + this->Rows.End(v);
+    if (stage == 1)
+    {
+      for (const Id* entry = row; entry < rowEnd; entry += 16)
+      {
+        CacheHint(entry);
+      }
+      continue;
+    }
+    for (const Id* entry = row; entry < rowEnd; ++entry)
+    {
+      const Id* around = this->Mesh.Triangle(*entry);
+      if (stage == 2)
+      {
+        CacheHint(around);
+      }
+      else if (around[0] != InvalidId)
+      {
+        vertex(around[0]);
+        vertex(around[1]);
+        vertex(around[2]);
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
 int CollapseMesh::Valence(Id v, std::vector<Id>& scratch) const
 {
   if (!this->IsLocked(v) && !this->IsCurve(v))

@@ -272,8 +272,32 @@ bool Collapser::TrySwap(Id t, Star& star, CollapseCandidate& c, CostScratch& scr
   return this->State.GatherStar(c.Members, c.MemberCount, star);
 }
 
+void Collapser::PrefetchRing(const Star& star) const
+{
+  for (std::size_t i = 0; i < star.Ring.size(); ++i)
+  {
+    const Id r = star.Ring[i];
+    const Id* tri = this->State.Mesh.Triangle(r);
+    const int k = star.RingCorner[i];
+    for (const Id u : { tri[(k + 1) % 3], tri[(k + 2) % 3] })
+    {
+      const double* q = this->State.Quadrics[u].Q;
+      CacheHint(q);
+      CacheHint(q + 9);
+    }
+    CacheHint(this->Costs.data() + r);
+    CacheHint(this->Spreads.data() + r);
+    CacheHint(this->Choices.data() + r);
+    if (!this->HeapPositions.empty())
+    {
+      CacheHint(this->HeapPositions.data() + r);
+    }
+  }
+}
+
 int Collapser::Collapse(const Star& star, CollapseCandidate& c, std::int64_t sequence)
 {
+  this->PrefetchRing(star);
   const double* points[3];
   for (int m = 0; m < star.MemberCount; ++m)
   {

@@ -8,6 +8,7 @@
 
 #include "CollapseCosts.h"
 #include "CollapseMesh.h"
+#include "IndexedHeap.h"
 #include "LevelTracker.h"
 #include "TriangleCollapse.h"
 
@@ -134,6 +135,39 @@ private:
   std::vector<Id> Waiting;
 };
 
+// The few cheapest candidates after the one being made (a heap's top and the top's two
+// children), whose neighbourhoods the greedy loops bring into the cache in stages
+// (CollapseMesh::Prefetch) while the current candidate is checked and made. The next candidate
+// is one of them or, as often, next to them: cheap candidates cluster where the surface is
+// flattest, and a collapse raises its neighbours' costs. Most of a greedy step's time is spent
+// waiting for memory: on the 611k gyroid, one thread, this takes about 12% off the whole run
+// (the levels are the same, it only reads).
+class UpcomingCandidates
+{
+public:
+  UpcomingCandidates(const IndexedHeap& heap, const CollapseMesh& mesh)
+    : Mesh(mesh)
+  {
+    this->Count = std::min<std::size_t>(3, heap.Count());
+    for (std::size_t i = 0; i < this->Count; ++i)
+    {
+      this->Ids[i] = heap.At(i);
+    }
+  }
+  void Prefetch(int stage) const
+  {
+    for (std::size_t i = 0; i < this->Count; ++i)
+    {
+      this->Mesh.Prefetch(this->Ids[i], stage);
+    }
+  }
+
+private:
+  const CollapseMesh& Mesh;
+  Id Ids[3] = { InvalidId, InvalidId, InvalidId };
+  std::size_t Count = 0;
+};
+
 class Collapser
 {
 public:
@@ -181,6 +215,9 @@ private:
   // Merge the star's members (safe in parallel for stars with disjoint stencils: it touches
   // only their triangles and groups). Returns the number of triangles removed.
   int Collapse(const Star& star, CollapseCandidate& c, std::int64_t sequence);
+  // Cache hints for the evaluations that follow a collapse of the star: the quadrics of the
+  // ring triangles' far corners and the ring triangles' costs (see UpcomingCandidates).
+  void PrefetchRing(const Star& star) const;
   // Whether the collapse evaluated for triangle t (or a fallback: the swap variant, the
   // cheapest edge) is legal; on Legal, c and star describe the collapse to make. Foreign when
   // the answer needs vertices of another block.

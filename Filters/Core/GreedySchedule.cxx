@@ -1,8 +1,6 @@
 // The greedy schedule (paper 002, section 2.4): always the cheapest legal collapse next.
 #include "Collapser.h"
 
-#include "IndexedHeap.h"
-
 #include <algorithm>
 
 namespace meshlod
@@ -112,11 +110,14 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
       reweigh(t);
       continue;
     }
+    const UpcomingCandidates upcoming(heap, this->State);
+    upcoming.Prefetch(0);
     if (this->Check(t, star, c, scratch) != Legality::Legal)
     {
       this->Lot.Park(t, this->Clock);
       continue;
     }
+    upcoming.Prefetch(1);
     if (!this->Finished())
     {
       this->LandOnTarget(t, this->State.AliveTriangles - this->CurrentTarget(), star, c);
@@ -135,6 +136,7 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
     {
       heap.Remove(d);
     }
+    upcoming.Prefetch(2);
 
     // New costs around the survivor; its neighbours' valences and its position changed, which
     // the parking lot takes note of. For the curvature method the triangles one ring further
@@ -151,6 +153,7 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
       }
     });
     scratch.EndSpokes();
+    upcoming.Prefetch(3);
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     for (const Id u : touched)

@@ -21,8 +21,6 @@
 // when thresholds find nothing more, the plain greedy loop (GreedySteps) finishes the level.
 #include "Collapser.h"
 
-#include "IndexedHeap.h"
-
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 
@@ -354,7 +352,10 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
       while (!heap.Empty() && out.Removed < quota)
       {
         const Id t = heap.Pop();
+        const UpcomingCandidates upcoming(heap, this->State);
+        upcoming.Prefetch(0);
         const Legality legality = this->Check(t, star, c, mine.Cost);
+        upcoming.Prefetch(1);
         if (legality == Legality::Foreign)
         {
           continue; // for a later round
@@ -377,6 +378,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
         const Id survivor = star.Members[0];
         // Collapse numbers interleave the cells, cheapest first in each.
         out.Removed += this->Collapse(star, c, sequence + out.Collapses * cellsBusy + b);
+        upcoming.Prefetch(2);
         out.Swaps += c.Swapped ? 1 : 0;
         ++out.Collapses;
         for (const Id d : star.Dying)
@@ -398,6 +400,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
           }
         });
         mine.Cost.EndSpokes();
+        upcoming.Prefetch(3);
       }
       heap.Clear();
       star.Owner = nullptr;
