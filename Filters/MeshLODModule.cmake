@@ -27,6 +27,7 @@ set(meshlod_private_headers
   Filters/Core/LocalSurfaceFit.h
   Filters/Core/OctreeClustering.h
   Filters/Core/OctreeClusteringInternals.h
+  Filters/Core/ParallelCompact.h
   Filters/Core/Quadric.h
   Filters/Core/TextureAtlas.h
   Filters/Core/TriangleCollapse.h

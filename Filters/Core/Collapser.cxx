@@ -314,15 +314,23 @@ int Collapser::Collapse(const Star& star, CollapseCandidate& c, std::int64_t seq
 //------------------------------------------------------------------------------
 double Collapser::LevelError() const
 {
-  // The largest RMS distance of a live vertex to the original planes merged into it.
-  double error = 0.0;
-  const Id nv = this->State.Mesh.GetNumberOfPoints();
-  for (Id v = 0; v < nv; ++v)
-  {
-    if (this->State.Survivor[v] == v)
+  // The largest RMS distance of a live vertex to the original planes merged into it (a
+  // largest value: the same whichever thread finds it).
+  vtkSMPThreadLocal<double> largest(0.0);
+  vtkSMPTools::For(0, this->State.Mesh.GetNumberOfPoints(), [&](Id begin, Id end) {
+    double& error = largest.Local();
+    for (Id v = begin; v < end; ++v)
     {
-      error = std::max(error, this->State.Quadrics[v].RmsDistance(this->State.Mesh.Point(v)));
+      if (this->State.Survivor[v] == v)
+      {
+        error = std::max(error, this->State.Quadrics[v].RmsDistance(this->State.Mesh.Point(v)));
+      }
     }
+  });
+  double error = 0.0;
+  for (const double e : largest)
+  {
+    error = std::max(error, e);
   }
   return error;
 }

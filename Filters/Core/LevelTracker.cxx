@@ -2,6 +2,7 @@
 
 #include "LevelData.h"
 #include "CollapseMesh.h"
+#include "ParallelCompact.h"
 
 #include "vtkSMPTools.h"
 
@@ -62,24 +63,26 @@ void LevelTracker::Merge(const Id* members, const double* weights, int count, st
 //------------------------------------------------------------------------------
 void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, LevelData& level)
 {
+  // Every pass is data-parallel, with the same result for any number of threads (compactions
+  // by fixed blocks, a sort of distinct keys): with two threads the serial passes here had
+  // been a tenth of the whole hierarchy's time.
   const TriangleMesh& mesh = state.Mesh;
   const Id nv = mesh.GetNumberOfPoints();
   const Id nt = mesh.GetNumberOfTriangles();
 
   // Live vertices (a live vertex has live triangles) and triangles, numbered in increasing id
   // order.
+  const auto liveVertex = [&](Id v) { return state.Survivor[v] == v && state.TriangleCount(v) > 0; };
+  const ParallelCompaction liveVertices(nv, liveVertex);
+  const Id count = liveVertices.Count();
   std::vector<Id>& newIndex = this->NewIndex; // kept between snapshots: no fresh pages each time
-  newIndex.assign(nv, InvalidId);
-  std::vector<Id> vertices;
-  for (Id v = 0; v < nv; ++v)
-  {
-    if (state.Survivor[v] == v && state.TriangleCount(v) > 0)
-    {
-      newIndex[v] = static_cast<Id>(vertices.size());
-      vertices.push_back(v);
-    }
-  }
-  const Id count = static_cast<Id>(vertices.size());
+  newIndex.resize(nv);
+  vtkSMPTools::Fill(newIndex.begin(), newIndex.end(), InvalidId);
+  std::vector<Id> vertices(count);
+  liveVertices.Write(liveVertex, [&](Id v, Id slot) {
+    newIndex[v] = slot;
+    vertices[slot] = v;
+  });
 
   level = LevelData();
   level.EstimatedError = estimatedError;
@@ -90,52 +93,70 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
       std::copy_n(mesh.Point(vertices[i]), 3, level.Mesh.Point(i));
     }
   });
-  level.Mesh.Triangles.reserve(3 * static_cast<std::size_t>(state.AliveTriangles));
-  level.LevelZeroTriangle.reserve(state.AliveTriangles);
-  for (Id t = 0; t < nt; ++t)
-  {
-    if (state.IsAlive(t))
-    {
-      const Id* tri = mesh.Triangle(t);
-      level.Mesh.Triangles.insert(
-        level.Mesh.Triangles.end(), { newIndex[tri[0]], newIndex[tri[1]], newIndex[tri[2]] });
-      level.LevelZeroTriangle.push_back(t);
-    }
-  }
+  const auto liveTriangle = [&](Id t) { return state.IsAlive(t); };
+  const ParallelCompaction liveTriangles(nt, liveTriangle);
+  level.Mesh.Triangles.resize(3 * static_cast<std::size_t>(liveTriangles.Count()));
+  level.LevelZeroTriangle.resize(liveTriangles.Count());
+  liveTriangles.Write(liveTriangle, [&](Id t, Id slot) {
+    const Id* tri = mesh.Triangle(t);
+    Id* out = level.Mesh.Triangle(slot);
+    out[0] = newIndex[tri[0]];
+    out[1] = newIndex[tri[1]];
+    out[2] = newIndex[tri[2]];
+    level.LevelZeroTriangle[slot] = t;
+  });
 
   // Point sources: the previous level's points of each group, with their weights.
-  level.Sources.Clear();
-  level.Sources.Offsets.reserve(count + 1);
-  level.Sources.Parents.reserve(this->PreviousVertices.size());
-  level.Sources.Weights.reserve(this->PreviousVertices.size());
-  for (const Id v : vertices)
-  {
-    for (Id u = v; u != InvalidId; u = this->GroupNext[u])
+  PointSources& sources = level.Sources;
+  sources.Offsets.resize(static_cast<std::size_t>(count) + 1);
+  sources.Offsets[0] = 0;
+  vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
     {
-      level.Sources.Parents.push_back(this->PreviousIndex[u]);
-      level.Sources.Weights.push_back(this->GroupWeight[u]);
+      Id members = 0;
+      for (Id u = vertices[i]; u != InvalidId; u = this->GroupNext[u])
+      {
+        ++members;
+      }
+      sources.Offsets[i + 1] = members;
     }
-    level.Sources.Offsets.push_back(static_cast<Id>(level.Sources.Parents.size()));
+  });
+  for (Id i = 0; i < count; ++i)
+  {
+    sources.Offsets[i + 1] += sources.Offsets[i];
   }
+  sources.Parents.resize(sources.Offsets[count]);
+  sources.Weights.resize(sources.Offsets[count]);
+  vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
+    {
+      Id slot = sources.Offsets[i];
+      for (Id u = vertices[i]; u != InvalidId; u = this->GroupNext[u], ++slot)
+      {
+        sources.Parents[slot] = this->PreviousIndex[u];
+        sources.Weights[slot] = this->GroupWeight[u];
+      }
+    }
+  });
 
   // Correspondence and collapse order of the previous level's points. Ranks are the order of
   // the last collapse of each group, renumbered 0, 1, 2, ...: sort the groups that collapsed by
-  // that collapse, and give every point the rank of the group it ends in.
-  std::vector<std::pair<std::int64_t, Id>> order; // (collapse, new point)
-  for (Id i = 0; i < count; ++i)
-  {
-    const std::int64_t sequence = this->GroupSequence[vertices[i]];
-    if (sequence >= 0)
-    {
-      order.emplace_back(sequence, i);
-    }
-  }
-  std::sort(order.begin(), order.end());
+  // that collapse (distinct numbers: one collapse, one survivor), and give every point the
+  // rank of the group it ends in.
+  const auto collapsed = [&](Id i) { return this->GroupSequence[vertices[i]] >= 0; };
+  const ParallelCompaction collapsedGroups(count, collapsed);
+  std::vector<std::pair<std::int64_t, Id>> order(collapsedGroups.Count()); // (collapse, point)
+  collapsedGroups.Write(collapsed, [&](Id i, Id slot) {
+    order[slot] = { this->GroupSequence[vertices[i]], i };
+  });
+  vtkSMPTools::Sort(order.begin(), order.end());
   std::vector<Id> rankOf(count, InvalidId);
-  for (std::size_t r = 0; r < order.size(); ++r)
-  {
-    rankOf[order[r].second] = static_cast<Id>(r);
-  }
+  vtkSMPTools::For(0, static_cast<Id>(order.size()), [&](Id begin, Id end) {
+    for (Id r = begin; r < end; ++r)
+    {
+      rankOf[order[r].second] = r;
+    }
+  });
   const Id previousCount = static_cast<Id>(this->PreviousVertices.size());
   level.Target.resize(previousCount);
   level.Rank.resize(previousCount);
@@ -153,15 +174,17 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   });
 
   // New groups for the next level.
-  for (Id i = 0; i < count; ++i)
-  {
-    const Id v = vertices[i];
-    this->GroupNext[v] = InvalidId;
-    this->GroupTail[v] = v;
-    this->GroupWeight[v] = 1.0f;
-    this->GroupSequence[v] = -1;
-    this->PreviousIndex[v] = i;
-  }
+  vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
+    {
+      const Id v = vertices[i];
+      this->GroupNext[v] = InvalidId;
+      this->GroupTail[v] = v;
+      this->GroupWeight[v] = 1.0f;
+      this->GroupSequence[v] = -1;
+      this->PreviousIndex[v] = i;
+    }
+  });
   this->PreviousVertices.swap(vertices);
 }
 

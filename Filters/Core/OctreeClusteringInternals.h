@@ -7,6 +7,7 @@
 #define meshlod_OctreeClusteringInternals_h
 
 #include "OctreeClustering.h"
+#include "ParallelCompact.h"
 #include "Vector3.h"
 
 #include "vtkSMPTools.h"
@@ -22,54 +23,7 @@ namespace octree
 {
 // The e2 weight (original area / new area)^2 is capped where a new triangle nearly degenerates.
 constexpr double MaximumCrossingWeight = 100.0;
-// Fixed blocks for the deterministic parallel compactions (independent of the thread count).
-constexpr Id BlockSize = 16384;
 constexpr float Infinite = std::numeric_limits<float>::infinity();
-
-// Keep the i in [0, n) for which keep(i) holds, in order, calling write(i, slot): counts per
-// fixed block, a serial prefix sum, then the writes, so the result does not depend on how the
-// blocks are spread over threads. Returns the number kept.
-template<typename Keep, typename Write>
-Id ParallelCompact(Id n, Keep keep, Write write)
-{
-  const Id blocks = (n + BlockSize - 1) / BlockSize;
-  std::vector<Id> offsets(static_cast<size_t>(blocks) + 1, 0);
-  vtkSMPTools::For(0,
-    blocks,
-    [&](Id begin, Id end)
-    {
-      for (Id b = begin; b < end; ++b)
-      {
-        Id count = 0;
-        for (Id i = b * BlockSize; i < std::min(n, (b + 1) * BlockSize); ++i)
-        {
-          count += keep(i) ? 1 : 0;
-        }
-        offsets[b + 1] = count;
-      }
-    });
-  for (Id b = 0; b < blocks; ++b)
-  {
-    offsets[b + 1] += offsets[b];
-  }
-  vtkSMPTools::For(0,
-    blocks,
-    [&](Id begin, Id end)
-    {
-      for (Id b = begin; b < end; ++b)
-      {
-        Id slot = offsets[b];
-        for (Id i = b * BlockSize; i < std::min(n, (b + 1) * BlockSize); ++i)
-        {
-          if (keep(i))
-          {
-            write(i, slot++);
-          }
-        }
-      }
-    });
-  return offsets[blocks];
-}
 
 enum class NodeState : std::uint8_t
 {

@@ -20,6 +20,7 @@
 // holding everything, its budget exactly what is left), which lands the level on its count;
 // when thresholds find nothing more, the plain greedy loop (GreedySteps) finishes the level.
 #include "Collapser.h"
+#include "ParallelCompact.h"
 
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
@@ -197,15 +198,15 @@ double Collapser::CostQuantile(double count) const
 {
   const Id live = static_cast<Id>(this->LiveTriangles.size());
   const Id stride = std::max<Id>(1, live / CostSamples);
-  std::vector<double> sample;
-  for (Id i = 0; i < live; i += stride)
-  {
-    const Id t = this->LiveTriangles[i];
-    if (this->State.IsAlive(t) && this->Costs[t] < InfiniteCost && !this->Lot.IsParked(t))
-    {
-      sample.push_back(this->Costs[t]);
-    }
-  }
+  // Every stride-th listed triangle that is alive, finite and not waiting, in list order.
+  const auto sampled = [&](Id i) {
+    const Id t = this->LiveTriangles[i * stride];
+    return this->State.IsAlive(t) && this->Costs[t] < InfiniteCost && !this->Lot.IsParked(t);
+  };
+  const ParallelCompaction samples((live + stride - 1) / stride, sampled);
+  std::vector<double> sample(samples.Count());
+  samples.Write(
+    sampled, [&](Id i, Id slot) { sample[slot] = this->Costs[this->LiveTriangles[i * stride]]; });
   if (sample.empty())
   {
     return -InfiniteCost;

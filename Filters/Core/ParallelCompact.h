@@ -1,0 +1,90 @@
+// MeshLOD core: keeping the items of a range that pass a test, in order, in parallel.
+#ifndef meshlod_ParallelCompact_h
+#define meshlod_ParallelCompact_h
+
+#include "TriangleMesh.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace meshlod
+{
+/// The i in [0, n) for which keep(i) holds, numbered 0, 1, 2, ... in increasing order: counts
+/// per fixed block of the range, a serial prefix sum over the blocks, then the numbering. The
+/// blocks do not depend on how vtkSMPTools spreads them over threads, so neither does the
+/// result. Two steps, so that the caller can size its outputs from Count() in between:
+///
+///   const ParallelCompaction live(n, keep);
+///   out.resize(live.Count());
+///   live.Write(keep, [&](Id i, Id slot) { out[slot] = i; });
+class ParallelCompaction
+{
+public:
+  static constexpr Id BlockSize = 16384;
+
+  template <typename Keep>
+  ParallelCompaction(Id n, Keep&& keep)
+    : Size(n)
+    , Offsets(static_cast<std::size_t>((n + BlockSize - 1) / BlockSize) + 1, 0)
+  {
+    const Id blocks = static_cast<Id>(this->Offsets.size()) - 1;
+    vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
+      for (Id b = begin; b < end; ++b)
+      {
+        Id count = 0;
+        for (Id i = b * BlockSize; i < std::min(n, (b + 1) * BlockSize); ++i)
+        {
+          count += keep(i) ? 1 : 0;
+        }
+        this->Offsets[b + 1] = count;
+      }
+    });
+    for (Id b = 0; b < blocks; ++b)
+    {
+      this->Offsets[b + 1] += this->Offsets[b];
+    }
+  }
+
+  /// How many pass.
+  Id Count() const { return this->Offsets.back(); }
+
+  /// Call write(i, slot) for every i that passes, slot being its number; `keep` must answer as
+  /// it did for the constructor.
+  template <typename Keep, typename Writer>
+  void Write(Keep&& keep, Writer&& write) const
+  {
+    const Id n = this->Size;
+    vtkSMPTools::For(0, static_cast<Id>(this->Offsets.size()) - 1, [&](Id begin, Id end) {
+      for (Id b = begin; b < end; ++b)
+      {
+        Id slot = this->Offsets[b];
+        for (Id i = b * BlockSize; i < std::min(n, (b + 1) * BlockSize); ++i)
+        {
+          if (keep(i))
+          {
+            write(i, slot++);
+          }
+        }
+      }
+    });
+  }
+
+private:
+  Id Size;
+  std::vector<Id> Offsets; // per block, the number passing before it; the total last
+};
+
+/// Both steps at once, for outputs sized beforehand; returns how many pass.
+template <typename Keep, typename Write>
+Id ParallelCompact(Id n, Keep&& keep, Write&& write)
+{
+  const ParallelCompaction compaction(n, keep);
+  compaction.Write(keep, write);
+  return compaction.Count();
+}
+
+} // namespace meshlod
+
+#endif
