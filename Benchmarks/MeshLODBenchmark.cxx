@@ -36,6 +36,7 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -265,24 +266,20 @@ vtkSmartPointer<vtkPolyData> Clean(vtkPolyData* mesh)
 struct Run
 {
   Outputs Results;
-  double Seconds = 0.0;     // fastest of the repeats
-  double CpuSeconds = 0.0;  // least CPU time of the calling thread over the repeats
-  long long PeakBytes = -1; // growth of the resident set during the first run, -1 unknown
-  int Repeats = 1;
+  double Seconds = 0.0;
+  double CpuSeconds = 0.0;  // CPU time of the calling thread
+  long long PeakBytes = -1; // growth of the resident set during the run, -1 unknown
 };
 
-/// Times `make`, keeping the fastest of several runs to damp the noise of a shared machine (on
-/// the two-core machines the results come from, one method's time swings by a third between
-/// runs minutes apart): at least three runs (two of over ten seconds), and runs of under a
-/// second are repeated up to five times (two seconds in all). Memory is taken from the first.
+/// Times one call of `make`, and the growth of the resident set while it runs.
 template <typename Make>
 Run Measure(Make&& make)
 {
   Run run;
   const bool peakReset = ResetPeakMemory();
   const long long before = StatusKilobytes("VmRSS");
-  double cpu = ThreadCpuSeconds();
-  Clock::time_point start = Clock::now();
+  const double cpu = ThreadCpuSeconds();
+  const Clock::time_point start = Clock::now();
   run.Results = make();
   run.Seconds = SecondsSince(start);
   run.CpuSeconds = ThreadCpuSeconds() - cpu;
@@ -291,23 +288,18 @@ Run Measure(Make&& make)
   {
     run.PeakBytes = 1024 * (peak - before);
   }
-  double spent = run.Seconds;
-  const int minimumRuns = run.Seconds > 10.0 ? 2 : 3;
-  while (run.Repeats < minimumRuns || (run.Seconds < 1.0 && spent < 2.0 && run.Repeats < 5))
-  {
-    run.Results.clear();
-    cpu = ThreadCpuSeconds();
-    start = Clock::now();
-    Outputs again = make();
-    const double seconds = SecondsSince(start);
-    run.CpuSeconds = std::min(run.CpuSeconds, ThreadCpuSeconds() - cpu);
-    spent += seconds;
-    run.Seconds = std::min(run.Seconds, seconds);
-    run.Results = std::move(again);
-    ++run.Repeats;
-  }
   return run;
 }
+
+// Repeats. The machines the results come from are shared: one method's time swings by a third
+// between runs minutes apart, and a slow phase can last a whole method's runs. So each method
+// runs once in each of several passes over all the methods of a mesh, and keeps its fastest
+// time: every method meets the slow and the fast phases alike.
+constexpr int Passes = 3;
+// Runs of over this many seconds skip the last pass (two runs in all) ...
+constexpr double LongRunSeconds = 10.0;
+// ... and runs of under this many are made twice per pass after the first (five in all).
+constexpr double ShortRunSeconds = 1.0;
 
 /// One line of the report.
 struct Row
@@ -369,6 +361,7 @@ public:
   {
     for (size_t m = 0; m < this->Meshes.size(); ++m)
     {
+      this->Reruns.clear();
       for (const Method& method : methods)
       {
         if (method.MaximumInputTriangles > 0 &&
@@ -382,6 +375,7 @@ public:
           this->RunMethod(m, method, this->Opts.Threads);
         }
       }
+      this->RepeatRuns();
     }
   }
 
@@ -432,12 +426,14 @@ private:
       return copy;
     };
 
+    // The first run of each timed job here (its outputs are measured), the others in the later
+    // passes (RepeatRuns).
     std::vector<Run> runs;
+    std::vector<std::function<Outputs()>> jobs;
     if (method.Hierarchy)
     {
       vtkSmartPointer<vtkPolyData> copy = MakeInput();
-      this->UseTimedBackend(threads);
-      runs.push_back(Measure([&]() { return method.Hierarchy(copy, targets); }));
+      jobs.emplace_back([&method, copy, targets]() { return method.Hierarchy(copy, targets); });
     }
     else
     {
@@ -446,9 +442,13 @@ private:
         vtkSmartPointer<vtkPolyData> copy = MakeInput();
         UseAllCores(this->Smp); // the untimed preparation may run the method many times
         const meshlod::benchmark::Job job = method.Prepare(copy, target);
-        this->UseTimedBackend(threads);
-        runs.push_back(Measure([&]() { return Outputs{ job() }; }));
+        jobs.emplace_back([job, copy]() { return Outputs{ job() }; });
       }
+    }
+    for (const auto& job : jobs)
+    {
+      this->UseTimedBackend(threads);
+      runs.push_back(Measure(job));
     }
 
     UseAllCores(this->Smp);
@@ -467,7 +467,7 @@ private:
       row.CpuSeconds = run.CpuSeconds;
       row.PeakBytes = run.PeakBytes;
       row.WholeHierarchy = static_cast<bool>(method.Hierarchy);
-      row.Repeats = run.Repeats;
+      row.Repeats = 1;
       const Clock::time_point start = Clock::now();
       const meshlod::SurfaceDistance distance =
         meshlod::MeasureSurfaceDistance(input, output, this->Yardstick);
@@ -490,7 +490,69 @@ private:
         yardstickSeconds);
       std::fflush(stdout);
       this->Rows.push_back(row);
+      Rerun& rerun = method.Hierarchy ? (t == 0 ? this->NewRerun(jobs[0], threads) : this->Reruns.back())
+                                      : this->NewRerun(jobs[t], threads);
+      rerun.Rows.push_back(this->Rows.size() - 1);
     }
+  }
+
+  // A timed job to run again in the later passes, and the rows its time goes to.
+  struct Rerun
+  {
+    std::function<Outputs()> Job;
+    int Threads = 1;
+    std::vector<size_t> Rows;
+  };
+
+  Rerun& NewRerun(const std::function<Outputs()>& job, int threads)
+  {
+    this->Reruns.push_back(Rerun{ job, threads, {} });
+    return this->Reruns.back();
+  }
+
+  // The later passes over the mesh's timed jobs (see Passes), every other one in reverse order
+  // so that no job always runs right after the same one. A row keeps its fastest time.
+  void RepeatRuns()
+  {
+    for (int pass = 1; pass < Passes; ++pass)
+    {
+      for (size_t k = 0; k < this->Reruns.size(); ++k)
+      {
+        const Rerun& rerun = this->Reruns[pass % 2 == 1 ? this->Reruns.size() - 1 - k : k];
+        Row& first = this->Rows[rerun.Rows.front()];
+        if (pass == Passes - 1 && first.Seconds > LongRunSeconds)
+        {
+          continue;
+        }
+        const int times = first.Seconds < ShortRunSeconds ? 2 : 1;
+        for (int time = 0; time < times; ++time)
+        {
+          this->UseTimedBackend(rerun.Threads);
+          const double cpu = ThreadCpuSeconds();
+          const Clock::time_point start = Clock::now();
+          {
+            const Outputs discarded = rerun.Job();
+          }
+          const double seconds = SecondsSince(start);
+          const double cpuSeconds = ThreadCpuSeconds() - cpu;
+          UseAllCores(this->Smp);
+          for (const size_t r : rerun.Rows)
+          {
+            Row& row = this->Rows[r];
+            row.Seconds = std::min(row.Seconds, seconds);
+            row.CpuSeconds = std::min(row.CpuSeconds, cpuSeconds);
+            ++row.Repeats;
+          }
+        }
+      }
+    }
+    for (const Rerun& rerun : this->Reruns)
+    {
+      const Row& row = this->Rows[rerun.Rows.front()];
+      std::printf("  %-28s %d thread(s): fastest of %d runs %.3f s\n", row.Method.c_str(),
+        rerun.Threads, row.Repeats, row.Seconds);
+    }
+    std::fflush(stdout);
   }
 
   const Row* Find(size_t mesh, const std::string& method, int threads, double fraction) const
@@ -518,6 +580,7 @@ private:
   meshlod::SurfaceDistanceOptions Yardstick;
   std::vector<Mesh> Meshes;
   std::vector<Row> Rows;
+  std::vector<Rerun> Reruns; // the current mesh's timed jobs
   double LongestYardstick = 0.0;
 };
 
@@ -667,9 +730,11 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
 
   md << "## Columns\n\n"
      << "- *time*: wall time of the method alone (filter construction, Update, output), the "
-        "fastest of at least three runs (two for runs of over ten seconds; runs under a second "
-        "up to five, two seconds in all). Untimed: generating the input, searching a grid "
-        "resolution, measuring the error.\n"
+        "fastest of its runs: one in each of three passes over all the methods of a mesh (two "
+        "passes for runs of over ten seconds; runs under a second twice in each pass after the "
+        "first), so that every method meets the slow and fast phases of a shared machine "
+        "alike. Untimed: generating the input, searching a grid resolution, measuring the "
+        "error.\n"
      << "- *CPU*: CPU time of the thread running the method, for single-thread rows (the whole "
         "method runs on it). Far below *time* means other programs were using the cores.\n"
      << "- *throughput*: input triangles per second (wall time).\n"
