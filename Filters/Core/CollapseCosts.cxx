@@ -259,6 +259,22 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
       }
     }
   }
+  CostScratch::RecentEdge* recent = nullptr;
+  if (scratch != nullptr && !scratch->RecentEdges.empty())
+  {
+    const Id low = std::min(a, b), high = std::max(a, b);
+    const std::uint32_t hash = static_cast<std::uint32_t>(low) * 0x9e3779b1u ^
+      static_cast<std::uint32_t>(high) * 0x85ebca6bu;
+    recent = &scratch->RecentEdges[(hash >> 16) & (scratch->RecentEdges.size() - 1)];
+    if (recent->Low == low && recent->High == high)
+    {
+      e = recent->Solution; // the same numbers whichever end comes first
+      e.Other = other;
+      return;
+    }
+    recent->Low = low;
+    recent->High = high;
+  }
   const double* pa = this->State.Mesh.Point(a);
   const double* pb = this->State.Mesh.Point(b);
   if (!this->State.EdgeMayMerge(a, b))
@@ -276,6 +292,10 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
     {
       scratch->Spokes.push_back(e);
     }
+    if (recent != nullptr)
+    {
+      recent->Solution = e;
+    }
     return;
   }
   const Quadric q = this->State.Quadrics[a] + this->State.Quadrics[b];
@@ -287,6 +307,10 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
   if (spoke)
   {
     scratch->Spokes.push_back(e);
+  }
+  if (recent != nullptr)
+  {
+    recent->Solution = e;
   }
 }
 

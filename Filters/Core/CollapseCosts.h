@@ -61,6 +61,16 @@ struct CostScratch
     this->Spokes.clear();
   }
   void EndSpokes() { this->SpokeCentre = InvalidId; }
+  /// While every triangle is evaluated in id order (Collapser::EvaluateAll), the solutions of
+  /// the edges met lately, in a small table indexed by a hash of the edge's ends: neighbouring
+  /// triangles mostly have neighbouring ids (a contouring filter writes a cell's triangles
+  /// together), so each edge, shared by two triangles, is mostly solved once. Empty otherwise.
+  struct RecentEdge
+  {
+    Id Low = InvalidId, High = InvalidId;
+    EdgeSolution Solution;
+  };
+  std::vector<RecentEdge> RecentEdges; // a power of two entries, or none
 };
 
 class CollapseCostModel

@@ -14,6 +14,8 @@ namespace
 {
 // Rows are rebuilt once this fraction of the triangles alive at the last rebuild has died.
 constexpr double RebuildAfterDying = 0.5;
+// Size of the table of recently solved edges in the first evaluation (CostScratch::RecentEdges).
+constexpr std::size_t RecentEdgeSlots = 64;
 
 // Moves the points so that their bounding box is centred on the origin; centre gets the shift.
 void TranslateToCentre(TriangleMesh& mesh, double centre[3])
@@ -94,6 +96,7 @@ void Collapser::EvaluateAll()
   {
     vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
       CostScratch& local = scratch.Local();
+      local.RecentEdges.assign(RecentEdgeSlots, CostScratch::RecentEdge());
       for (Id t = begin; t < end; ++t)
       {
         this->Costs[t] = this->EvaluateCost(t, local);
