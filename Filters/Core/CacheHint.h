@@ -6,7 +6,8 @@
 #ifndef meshlod_CacheHint_h
 #define meshlod_CacheHint_h
 
-#if defined(_MSC_VER) && !defined(__clang__)
+#if defined(_MSC_VER) && !defined(__clang__) && (defined(_M_X64) || defined(_M_IX86))
+#define MESHLOD_CACHE_HINT_SSE
 #include <xmmintrin.h>
 #endif
 
@@ -18,7 +19,7 @@ inline void CacheHint(const void* p)
 {
 #if defined(__GNUC__) || defined(__clang__)
   __builtin_prefetch(p);
-#elif defined(_MSC_VER)
+#elif defined(MESHLOD_CACHE_HINT_SSE)
   _mm_prefetch(static_cast<const char*>(p), _MM_HINT_T0);
 #else
   (void)p;
