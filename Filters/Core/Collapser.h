@@ -41,6 +41,8 @@ public:
   }
 
   bool IsParked(Id t) const { return this->ParkedAt[t] >= 0; }
+  /// Cache hint for IsParked(t).
+  void Hint(Id t) const { CacheHint(this->ParkedAt.data() + t); }
 
   /// Park t at `now`; a new waiting triangle joins `list` (the lot's own list by default;
   /// collapses running in parallel keep lists of their own and Adopt them afterwards).
@@ -196,7 +198,7 @@ private:
   std::int64_t BlockRound(std::int64_t budget, int round, bool& errorLimited);
   // The cost below which about `count` of the live, unparked triangles are (sampled);
   // -infinity when none has a finite cost.
-  double CostQuantile(double count) const;
+  double CostQuantile(double count);
   // List the live, unparked triangles costing at most `threshold` by cell of the grid (one cell
   // without a grid), leaving out those with corners in several cells; returns the number of
   // cells (see CellFirst).
@@ -299,6 +301,7 @@ private:
   std::vector<Id> Candidates;               // candidates, cell by cell
   std::vector<Id> CellFirst;                // cell -> its first candidate
   std::vector<Id> HeapPositions;            // shared by the cells' heaps
+  std::vector<double> CostSample;           // CostQuantile's scratch
 };
 
 } // namespace meshlod
