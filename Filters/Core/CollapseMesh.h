@@ -183,7 +183,7 @@ public:
   /// their rows of triangles, stage 2 those triangles, stage 3 the triangles' other corners.
   /// Each stage reads what the one before brought into the cache, so the greedy loops issue
   /// them for the next candidate in turn while the current one is checked and made. Changes
-  /// nothing, whatever t is.
+  /// nothing; t may have died since it was listed.
   void Prefetch(Id t, int stage) const;
 
   /// Number of live triangles around v (kept up to date by Apply, so O(1)).

@@ -150,7 +150,7 @@ public:
   UpcomingCandidates(const IndexedHeap& heap, const CollapseMesh& mesh)
     : Mesh(mesh)
   {
-    this->Count = std::min<std::size_t>(3, heap.Count());
+    this->Count = std::min<std::size_t>(3, heap.GetSize());
     for (std::size_t i = 0; i < this->Count; ++i)
     {
       this->Ids[i] = heap.At(i);

@@ -49,10 +49,9 @@ public:
   std::size_t GetSize() const { return this->Heap.size(); }
   bool Contains(Id id) const { return this->Position[id] != InvalidId; }
   Id Top() const { return this->Heap.front().Item; }
-  /// The id at position i of the heap's array (i < Count()): positions 1 and 2 hold the two
+  /// The id at position i of the heap's array (i < GetSize()): positions 1 and 2 hold the two
   /// candidates for the top after the next Pop.
   Id At(std::size_t i) const { return this->Heap[i].Item; }
-  std::size_t Count() const { return this->Heap.size(); }
 
   /// Add all ids for which keep(id) is true, then heapify in O(n).
   template <typename Keep>
