@@ -271,18 +271,26 @@ struct Run
   long long PeakBytes = -1; // growth of the resident set during the run, -1 unknown
 };
 
-/// Times one call of `make`, and the growth of the resident set while it runs.
+/// Times one call of `make` (wall and CPU time).
 template <typename Make>
-Run Measure(Make&& make)
+Run Time(Make&& make)
 {
   Run run;
-  const bool peakReset = ResetPeakMemory();
-  const long long before = StatusKilobytes("VmRSS");
   const double cpu = ThreadCpuSeconds();
   const Clock::time_point start = Clock::now();
   run.Results = make();
   run.Seconds = SecondsSince(start);
   run.CpuSeconds = ThreadCpuSeconds() - cpu;
+  return run;
+}
+
+/// Times one call of `make`, and the growth of the resident set while it runs.
+template <typename Make>
+Run Measure(Make&& make)
+{
+  const bool peakReset = ResetPeakMemory();
+  const long long before = StatusKilobytes("VmRSS");
+  Run run = Time(make);
   const long long peak = StatusKilobytes("VmHWM");
   if (peakReset && before >= 0 && peak >= 0)
   {
@@ -445,10 +453,12 @@ private:
         jobs.emplace_back([job, copy]() { return Outputs{ job() }; });
       }
     }
+    const size_t firstRerun = this->Reruns.size();
     for (const auto& job : jobs)
     {
       this->UseTimedBackend(threads);
       runs.push_back(Measure(job));
+      this->Reruns.push_back(Rerun{ job, threads, {} });
     }
 
     UseAllCores(this->Smp);
@@ -490,9 +500,8 @@ private:
         yardstickSeconds);
       std::fflush(stdout);
       this->Rows.push_back(row);
-      Rerun& rerun = method.Hierarchy ? (t == 0 ? this->NewRerun(jobs[0], threads) : this->Reruns.back())
-                                      : this->NewRerun(jobs[t], threads);
-      rerun.Rows.push_back(this->Rows.size() - 1);
+      // A hierarchy's one job gives every target's row; other methods have a job per target.
+      this->Reruns[firstRerun + (method.Hierarchy ? 0 : t)].Rows.push_back(this->Rows.size() - 1);
     }
   }
 
@@ -503,12 +512,6 @@ private:
     int Threads = 1;
     std::vector<size_t> Rows;
   };
-
-  Rerun& NewRerun(const std::function<Outputs()>& job, int threads)
-  {
-    this->Reruns.push_back(Rerun{ job, threads, {} });
-    return this->Reruns.back();
-  }
 
   // The later passes over the mesh's timed jobs (see Passes), every other one in reverse order
   // so that no job always runs right after the same one. A row keeps its fastest time.
@@ -528,19 +531,13 @@ private:
         for (int time = 0; time < times; ++time)
         {
           this->UseTimedBackend(rerun.Threads);
-          const double cpu = ThreadCpuSeconds();
-          const Clock::time_point start = Clock::now();
-          {
-            const Outputs discarded = rerun.Job();
-          }
-          const double seconds = SecondsSince(start);
-          const double cpuSeconds = ThreadCpuSeconds() - cpu;
+          const Run run = Time(rerun.Job);
           UseAllCores(this->Smp);
           for (const size_t r : rerun.Rows)
           {
             Row& row = this->Rows[r];
-            row.Seconds = std::min(row.Seconds, seconds);
-            row.CpuSeconds = std::min(row.CpuSeconds, cpuSeconds);
+            row.Seconds = std::min(row.Seconds, run.Seconds);
+            row.CpuSeconds = std::min(row.CpuSeconds, run.CpuSeconds);
             ++row.Repeats;
           }
         }

@@ -72,7 +72,9 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
 
   // Live vertices (a live vertex has live triangles) and triangles, numbered in increasing id
   // order.
-  const auto liveVertex = [&](Id v) { return state.Survivor[v] == v && state.TriangleCount(v) > 0; };
+  const auto liveVertex = [&](Id v) {
+    return state.Survivor[v] == v && state.TriangleCount(v) > 0;
+  };
   const ParallelCompaction liveVertices(nv, liveVertex);
   const Id count = liveVertices.Count();
   std::vector<Id>& newIndex = this->NewIndex; // kept between snapshots: no fresh pages each time
