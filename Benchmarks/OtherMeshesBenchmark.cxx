@@ -2,7 +2,8 @@
 // against vtkQuadricDecimation, and vtkVertexClusterOctree against vtkQuadricClustering, on
 // meshes made by VTK's own sources,
 // the kinds a user feeds in besides marching-cubes output: a CAD-like faceted solid, a
-// parametric surface with a seam, scan-like noisy spheres, a non-orientable surface, a
+// parametric surface with a seam, scan-like noisy spheres, open surfaces (a scan-like sphere
+// with holes, a terrain), a non-orientable surface, a
 // superquadric with rounded edges and the smoothed surfaces between the regions of a segmented
 // volume, where three sheets meet along curves. Prints three markdown tables (quality and Euler
 // characteristics, or the counts reached; no timing) that run-benchmarks.sh appends to
@@ -179,6 +180,15 @@ std::vector<TestMesh> Meshes()
       meshlod::testing::PerturbRadially(mesh, 0.08, 7);
       return mesh;
     } });
+  // Open surfaces, where the boundary's weight against the surface decides how many triangles
+  // the boundary keeps: a scan-like surface with holes and a terrain.
+  meshes.push_back({ "sphere with holes",
+    "icosphere (7 subdivisions), radii scaled by smooth bumps, six holes cut "
+    "(MeshLODTestMeshes: MakeBumpySphereWithHoles)",
+    [] { return meshlod::testing::MakeBumpySphereWithHoles(7); } });
+  meshes.push_back({ "terrain", "400 x 400 grid, heights a sum of sines at six frequencies "
+                                "(MeshLODTestMeshes: MakeTerrain)",
+    [] { return meshlod::testing::MakeTerrain(400); } });
   // Non-orientable: no orientation of its triangles is consistent everywhere.
   meshes.push_back({ "Boy's surface", "vtkParametricBoy, 300 x 300, no normals", [] {
                       vtkNew<vtkParametricBoy> boy;

@@ -53,7 +53,7 @@ double TriangleNormal(const double* p0, const double* p1, const double* p2, doub
 
 //------------------------------------------------------------------------------
 void CollapseMesh::Initialize(
-  TriangleMesh&& input, TriangleTopology&& topology, double boundaryWeight)
+  TriangleMesh&& input, TriangleTopology&& topology, double boundaryWeight, double boundaryScale)
 {
   this->Mesh = std::move(input);
   const TriangleMesh& mesh = this->Mesh;
@@ -111,8 +111,8 @@ void CollapseMesh::Initialize(
           if (topology.EdgeNeighbors[3 * static_cast<std::size_t>(t) + e] == BoundaryEdge)
           {
             Quadric side;
-            BoundaryEdgeQuadric(
-              mesh.Point(tri[e]), mesh.Point(tri[(e + 1) % 3]), normal, boundaryWeight, side);
+            BoundaryEdgeQuadric(mesh.Point(tri[e]), mesh.Point(tri[(e + 1) % 3]), normal,
+              boundaryWeight, side, boundaryScale);
             q += side;
           }
         }

@@ -126,8 +126,11 @@ public:
 
   /// Take over the mesh and its topology (both are moved from); classify vertices from the topology; accumulate area-weighted plane
   /// quadrics plus, on boundary edges, planes through the edge perpendicular to its triangle
-  /// weighted by boundaryWeight times the squared edge length.
-  void Initialize(TriangleMesh&& mesh, TriangleTopology&& topology, double boundaryWeight);
+  /// weighted by boundaryWeight times the edge length times boundaryScale (a length: the
+  /// boundary's planes weigh boundaryWeight * boundaryScale per unit of its length), or times
+  /// the edge length again when boundaryScale is 0.
+  void Initialize(TriangleMesh&& mesh, TriangleTopology&& topology, double boundaryWeight,
+    double boundaryScale);
 
   bool IsAlive(Id t) const { return this->Mesh.Triangles[3 * static_cast<std::size_t>(t)] != InvalidId; }
   bool IsLocked(Id v) const { return (this->Flags[v] & FlagLocked) != 0; }

@@ -18,7 +18,8 @@ constexpr double RebuildAfterDying = 0.5;
 constexpr std::size_t RecentEdgeSlots = 64;
 
 // Moves the points so that their bounding box is centred on the origin; centre gets the shift.
-void TranslateToCentre(TriangleMesh& mesh, double centre[3])
+// Returns the bounding box's diagonal.
+double TranslateToCentre(TriangleMesh& mesh, double centre[3])
 {
   double lo[3], hi[3];
   mesh.GetBounds(lo, hi);
@@ -30,6 +31,8 @@ void TranslateToCentre(TriangleMesh& mesh, double centre[3])
   {
     mesh.Points[i] -= centre[i % 3];
   }
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+    (hi[2] - lo[2]) * (hi[2] - lo[2]));
 }
 } // namespace
 
@@ -43,7 +46,7 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   // The engine works about the centre of the bounding box: a quadric's constant term grows
   // with the square of the distance to the origin, and far from it (a mesh in world or map
   // coordinates) its evaluation cancels away the error it measures. Levels are moved back.
-  TranslateToCentre(mesh, this->Centre);
+  const double diagonal = TranslateToCentre(mesh, this->Centre);
   const bool curvature = options.Method == CollapseMethod::Curvature;
   if (curvature)
   {
@@ -53,7 +56,10 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   // (The input's parts were oriented consistently where they can be: see ReadInputMesh.)
   this->Rules.StarShapedBySide = !topology.IsConsistentlyOriented(mesh);
   this->Tracker.Initialize(mesh.GetNumberOfPoints(), curvature);
-  this->State.Initialize(std::move(mesh), std::move(topology), options.BoundaryWeight);
+  // Boundary planes weigh BoundaryWeight per unit of boundary length and of diagonal: the same
+  // per unit length at every input resolution (see TriangleCollapseOptions::BoundaryWeight).
+  this->State.Initialize(std::move(mesh), std::move(topology), options.BoundaryWeight,
+    diagonal > 0.0 ? diagonal : 1.0);
   this->Rules.MinimumNormalCosine =
     std::cos(std::min(180.0, std::max(0.0, options.MaximumNormalDeviation)) * M_PI / 180.0);
   this->Rules.ForbidValenceThreeForEdges = options.Schedule == CollapseSchedule::IndependentSets;

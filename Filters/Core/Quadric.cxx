@@ -190,7 +190,8 @@ void BoundaryEdgeQuadric(const double a[3],
   const double b[3],
   const double faceNormal[3],
   double weight,
-  Quadric& q)
+  Quadric& q,
+  double lengthScale)
 {
   q.Clear();
   double m[3];
@@ -199,7 +200,8 @@ void BoundaryEdgeQuadric(const double a[3],
     return;
   }
   const double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-  q.AddPlane(m, a, weight * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]));
+  const double length = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+  q.AddPlane(m, a, weight * length * (lengthScale > 0.0 ? lengthScale : length));
 }
 
 } // namespace meshlod

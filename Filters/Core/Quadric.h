@@ -109,12 +109,15 @@ VTKFILTERSMESHLOD_EXPORT bool BoundaryEdgePlane(const double a[3],
   double unit[3]);
 
 /// Quadric of the plane through the boundary edge (a, b) perpendicular to its triangle (whose
-/// normal is `faceNormal`, any length), weighted by `weight` times the squared edge length.
+/// normal is `faceNormal`, any length), weighted by `weight` times the edge length l times
+/// `lengthScale`, or times l again when `lengthScale` is 0 (weight l^2: the edge's planes
+/// together weigh in proportion to the boundary's length times the input's edge length).
 VTKFILTERSMESHLOD_EXPORT void BoundaryEdgeQuadric(const double a[3],
   const double b[3],
   const double faceNormal[3],
   double weight,
-  Quadric& q);
+  Quadric& q,
+  double lengthScale = 0.0);
 
 } // namespace meshlod
 

@@ -75,8 +75,9 @@ struct TriangleCollapseOptions
   double ValenceWeight = 1.0 / 3.0;
   CurvatureCost CurvatureRanking = CurvatureCost::FitDeviation;
   /// Weight of the planes through boundary edges, relative to the area-weighted surface
-  /// planes (the plane of an edge of length l gets BoundaryWeight * l^2).
-  double BoundaryWeight = 10.0;
+  /// planes (the plane of an edge of length l gets BoundaryWeight * l * the bounding-box
+  /// diagonal).
+  double BoundaryWeight = 0.3;
   /// Largest angle (degrees) a triangle's normal may turn in one collapse (see CollapseMesh).
   double MaximumNormalDeviation = 90.0;
   /// Curvature method: at most this many ancestral points per triangle fit (a strided subset).

@@ -108,7 +108,7 @@ std::vector<CollapseCandidate> EvaluateCurvature(
   CollapseMesh state;
   LevelTracker tracker;
   tracker.Initialize(input.Mesh.GetNumberOfPoints(), true);
-  state.Initialize(std::move(input.Mesh), std::move(input.Topology), 1.0);
+  state.Initialize(std::move(input.Mesh), std::move(input.Topology), 1.0, 0.0);
   CollapseCostModel model(options, state, tracker, original);
   CostScratch scratch;
   std::vector<CollapseCandidate> candidates(triangles.size());

@@ -28,7 +28,7 @@ struct Fixture
   {
     vtkNew<vtkTriangleFilter> caller;
     ReadInputMesh(poly, caller, this->Input);
-    this->State.Initialize(TriangleMesh(this->Input.Mesh), TriangleTopology(this->Input.Topology), 1.0);
+    this->State.Initialize(TriangleMesh(this->Input.Mesh), TriangleTopology(this->Input.Topology), 1.0, 0.0);
   }
 
   Legality Check(std::vector<Id> members, const double x[3], bool withPlane = true)

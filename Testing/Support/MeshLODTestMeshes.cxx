@@ -335,6 +335,76 @@ vtkSmartPointer<vtkPolyData> MakeBowTie()
     { 0, 3, 2, 0, 2, 1, 0, 6, 5, 0, 5, 4 });
 }
 
+vtkSmartPointer<vtkPolyData> MakeBumpySphereWithHoles(int levels)
+{
+  vtkSmartPointer<vtkPolyData> sphere = MakeIcosphere(levels);
+  vtkPoints* points = sphere->GetPoints();
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    points->GetPoint(i, x);
+    const double r = 1.0 + 0.1 * std::sin(5 * x[0]) * std::sin(4 * x[1] + 1) * std::cos(6 * x[2]);
+    points->SetPoint(i, r * x[0], 0.8 * r * x[1], 0.6 * r * x[2]);
+  }
+  const double holes[6][4] = { { 1, 0, 0, 0.35 }, { -1, 0.3, 0, 0.2 }, { 0, 1, 0.2, 0.3 },
+    { 0.2, -1, 0.5, 0.15 }, { 0, 0, 1, 0.25 }, { 0.6, 0.6, -1, 0.3 } };
+  vtkNew<vtkCellArray> kept;
+  vtkCellArray* polys = sphere->GetPolys();
+  for (vtkIdType t = 0; t < polys->GetNumberOfCells(); ++t)
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    polys->GetCellAtId(t, n, ids);
+    double c[3] = { 0, 0, 0 };
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      double x[3];
+      points->GetPoint(ids[k], x);
+      vtkMath::Add(c, x, c);
+    }
+    vtkMath::Normalize(c);
+    bool inHole = false;
+    for (const auto& hole : holes)
+    {
+      double d[3] = { hole[0], hole[1], hole[2] };
+      vtkMath::Normalize(d);
+      inHole = inHole || std::acos(std::min(1.0, vtkMath::Dot(c, d))) < hole[3];
+    }
+    if (!inHole)
+    {
+      kept->InsertNextCell(n, ids);
+    }
+  }
+  sphere->SetPolys(kept);
+  vtkNew<vtkCleanPolyData> clean; // drops the points of the holes
+  clean->SetInputData(sphere);
+  clean->Update();
+  return clean->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> MakeTerrain(int n)
+{
+  // Sums of sines at doubling frequencies (a rough, deterministic landscape).
+  vtkSmartPointer<vtkPolyData> grid = MakeGrid(n, n);
+  vtkPoints* points = grid->GetPoints();
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    const double x = 2.0 * p[0] / n - 1.0, y = 2.0 * p[1] / n - 1.0;
+    double z = 0.0;
+    for (int k = 1; k <= 6; ++k)
+    {
+      const double f = std::pow(2.0, k);
+      z += 0.5 / f *
+        (std::sin(1.7 * f * x + k) * std::cos(1.3 * f * y + 2 * k) +
+          0.5 * std::sin(f * (x + y) + 3 * k));
+    }
+    points->SetPoint(i, x, y, 0.4 * z);
+  }
+  return grid;
+}
+
 vtkSmartPointer<vtkPolyData> MakeGridWithHole()
 {
   vtkSmartPointer<vtkPolyData> grid = MakeGrid(4, 4);

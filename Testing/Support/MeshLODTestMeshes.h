@@ -54,6 +54,12 @@ vtkSmartPointer<vtkPolyData> MakeTetrahedron();
 vtkSmartPointer<vtkPolyData> MakeNonManifoldEdge();
 /// Two triangle fans touching at a single vertex (a non-manifold "bow tie" vertex).
 vtkSmartPointer<vtkPolyData> MakeBowTie();
+/// A scan-like open surface: an icosphere subdivided `levels` times (20 * 4^levels triangles),
+/// its radii scaled by a smooth bump field and squashed to an ellipsoid (1, 0.8, 0.6), less the
+/// triangles within given angles of six directions (six holes of different sizes), cleaned.
+vtkSmartPointer<vtkPolyData> MakeBumpySphereWithHoles(int levels);
+/// A rough height field over [-1, 1]^2 (an n by n grid, open, heights within about +-0.3).
+vtkSmartPointer<vtkPolyData> MakeTerrain(int n);
 /// A 4x4 grid with the 2x2 middle squares removed (a hole: two boundary loops).
 vtkSmartPointer<vtkPolyData> MakeGridWithHole();
 /// A wavy disk of n triangles around one centre point (valence n): an open fan, as a
