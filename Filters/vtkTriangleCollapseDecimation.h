@@ -261,9 +261,14 @@ public:
   ///@{
   /**
    * TRIANGLES_AND_EDGES: how much more a triangle collapse may cost than the triangle's
-   * cheapest edge collapse and still be preferred, in [1, 1e6]. It removes twice the triangles,
-   * so 2 (the default) compares the two per removed triangle; larger values make more
-   * triangle collapses at some cost in accuracy.
+   * cheapest edge collapse and still be preferred, in [1, 1e6], default 1.5. It removes twice
+   * the triangles, so 2 would compare the two per removed triangle, but forcing three vertices
+   * to one point costs more than its quadric says where the surface bends: on 14 isosurfaces
+   * of 150k-2.3M triangles (metaballs, gyroids, wavelet sheets) at 1%, the Hausdorff distance
+   * was 1.06x vtkQuadricDecimation's (geometric mean) at 2 and 1.00x at 1.5, RMS 1.00x
+   * at both, the 10% levels the same, the time the same. At 1 a triangle collapses only when it
+   * costs no more than an edge (flat regions, where all costs are 0); 1 and 1.5 gave the same
+   * figures. Larger values make more triangle collapses at some cost in accuracy.
    */
   vtkSetClampMacro(TriangleCostFactor, double, 1.0, 1.0e6);
   vtkGetMacro(TriangleCostFactor, double);
@@ -436,7 +441,7 @@ protected:
   int Schedule = GREEDY;
   int Operator = TRIANGLES_AND_EDGES;
   bool PartitionedGreedy = true;
-  double TriangleCostFactor = 2.0;
+  double TriangleCostFactor = 1.5;
   double TargetReduction = 0.99;
   int NumberOfLevels = 8;
   std::vector<double> LevelReductions;

@@ -18,8 +18,7 @@ constexpr double RebuildAfterDying = 0.5;
 constexpr std::size_t RecentEdgeSlots = 64;
 
 // Moves the points so that their bounding box is centred on the origin; centre gets the shift.
-// Returns the bounding box's diagonal.
-double TranslateToCentre(TriangleMesh& mesh, double centre[3])
+void TranslateToCentre(TriangleMesh& mesh, double centre[3])
 {
   double lo[3], hi[3];
   mesh.GetBounds(lo, hi);
@@ -31,8 +30,6 @@ double TranslateToCentre(TriangleMesh& mesh, double centre[3])
   {
     mesh.Points[i] -= centre[i % 3];
   }
-  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-    (hi[2] - lo[2]) * (hi[2] - lo[2]));
 }
 } // namespace
 
@@ -46,7 +43,8 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   // The engine works about the centre of the bounding box: a quadric's constant term grows
   // with the square of the distance to the origin, and far from it (a mesh in world or map
   // coordinates) its evaluation cancels away the error it measures. Levels are moved back.
-  const double diagonal = TranslateToCentre(mesh, this->Centre);
+  const double diagonal = mesh.BoundingDiagonal();
+  TranslateToCentre(mesh, this->Centre);
   const bool curvature = options.Method == CollapseMethod::Curvature;
   if (curvature)
   {

@@ -62,7 +62,7 @@ struct TriangleCollapseOptions
   bool PartitionedGreedy = true;
   /// TrianglesAndEdges: a triangle collapses whole when that costs at most this many times its
   /// cheapest edge collapse (>= 1).
-  double TriangleCostFactor = 2.0;
+  double TriangleCostFactor = 1.5;
   /// Triangle counts of the output levels after level 0, strictly decreasing.
   std::vector<std::int64_t> LevelTargets;
   /// Stop when the next collapse's estimated error (RMS distance to its merged planes) exceeds
