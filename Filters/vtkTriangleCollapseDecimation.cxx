@@ -149,8 +149,8 @@ int vtkTriangleCollapseDecimation::RequestData(
     empty.Finish(output);
     return 1;
   }
-  if (!meshlod::CheckInputDiagonal(
-        mesh.Mesh.BoundingDiagonal(), this, "the collapse costs (squared areas)"))
+  const double diagonal = mesh.Mesh.BoundingDiagonal();
+  if (!meshlod::CheckInputDiagonal(diagonal, this, "the collapse costs (squared areas)"))
   {
     return 0;
   }
@@ -196,7 +196,6 @@ int vtkTriangleCollapseDecimation::RequestData(
   // only costly choices left: a broken input (a locked seam, non-manifold parts) forced by the
   // count. Reported, not prevented: nothing tells such a level from a healthy coarse one before
   // it is made.
-  const double diagonal = mesh.Mesh.BoundingDiagonal();
   double previousError = 0.0;
   std::int64_t previousTriangles = mesh.Mesh.GetNumberOfTriangles();
   int levelIndex = 0, jumpLevel = -1;

@@ -18,7 +18,8 @@ constexpr double RebuildAfterDying = 0.5;
 constexpr std::size_t RecentEdgeSlots = 64;
 
 // Moves the points so that their bounding box is centred on the origin; centre gets the shift.
-void TranslateToCentre(TriangleMesh& mesh, double centre[3])
+// Returns the bounding box's diagonal (TriangleMesh::BoundingDiagonal, from the same bounds).
+double TranslateToCentre(TriangleMesh& mesh, double centre[3])
 {
   double lo[3], hi[3];
   mesh.GetBounds(lo, hi);
@@ -30,6 +31,7 @@ void TranslateToCentre(TriangleMesh& mesh, double centre[3])
   {
     mesh.Points[i] -= centre[i % 3];
   }
+  return BoxDiagonal(lo, hi);
 }
 } // namespace
 
@@ -43,8 +45,7 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   // The engine works about the centre of the bounding box: a quadric's constant term grows
   // with the square of the distance to the origin, and far from it (a mesh in world or map
   // coordinates) its evaluation cancels away the error it measures. Levels are moved back.
-  const double diagonal = mesh.BoundingDiagonal();
-  TranslateToCentre(mesh, this->Centre);
+  const double diagonal = TranslateToCentre(mesh, this->Centre);
   const bool curvature = options.Method == CollapseMethod::Curvature;
   if (curvature)
   {

@@ -234,6 +234,12 @@ double TriangleMesh::BoundingDiagonal() const
 {
   double lo[3], hi[3];
   this->GetBounds(lo, hi);
+  return BoxDiagonal(lo, hi);
+}
+
+//------------------------------------------------------------------------------
+double BoxDiagonal(const double lo[3], const double hi[3])
+{
   // hypot: no overflow or underflow of the squares (a box of 1e-200 is not one of size 0).
   return std::hypot(hi[0] - lo[0], std::hypot(hi[1] - lo[1], hi[2] - lo[2]));
 }

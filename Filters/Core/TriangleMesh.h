@@ -44,6 +44,9 @@ struct VTKFILTERSMESHLOD_EXPORT TriangleMesh
   double BoundingDiagonal() const;
 };
 
+/// Length of the diagonal of the box [lo, hi] (TriangleMesh::GetBounds' box).
+double BoxDiagonal(const double lo[3], const double hi[3]);
+
 /// Root of v in a union-find forest stored as parent links (a root is its own parent), halving
 /// the path on the way.
 inline Id FindRoot(std::vector<Id>& parent, Id v)
