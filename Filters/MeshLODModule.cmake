@@ -29,6 +29,7 @@ set(meshlod_private_headers
   Filters/Core/OctreeClusteringInternals.h
   Filters/Core/ParallelCompact.h
   Filters/Core/Quadric.h
+  Filters/Core/RankSelection.h
   Filters/Core/TextureAtlas.h
   Filters/Core/TriangleCollapse.h
   Filters/Core/TriangleMesh.h

@@ -324,11 +324,17 @@ double Collapser::LevelError() const
 {
   // The largest RMS distance of a live vertex to the original planes merged into it (a
   // largest value: the same whichever thread finds it).
+  // (Over the listed live vertices when a partitioned run keeps such a list: on a coarse level
+  // a small part of the mesh.)
   vtkSMPThreadLocal<double> largest(0.0);
-  vtkSMPTools::For(0, this->State.Mesh.GetNumberOfPoints(), [&](Id begin, Id end) {
+  const std::vector<Id>& listed = this->LiveVertices;
+  const Id n =
+    listed.empty() ? this->State.Mesh.GetNumberOfPoints() : static_cast<Id>(listed.size());
+  vtkSMPTools::For(0, n, [&](Id begin, Id end) {
     double& error = largest.Local();
-    for (Id v = begin; v < end; ++v)
+    for (Id i = begin; i < end; ++i)
     {
+      const Id v = listed.empty() ? i : listed[i];
       if (this->State.Survivor[v] == v)
       {
         error = std::max(error, this->State.Quadrics[v].RmsDistance(this->State.Mesh.Point(v)));

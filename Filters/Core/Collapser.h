@@ -300,6 +300,7 @@ private:
   std::vector<std::uint32_t> CandidateCell; // per live triangle: its cell, when a candidate
   std::vector<Id> Candidates;               // candidates, cell by cell
   std::vector<Id> CellFirst;                // cell -> its first candidate
+  std::vector<Id> CellSliceSlots;           // ListCandidates' scratch
   std::vector<Id> HeapPositions;            // shared by the cells' heaps
   std::vector<double> CostSample;           // CostQuantile's scratch
 };

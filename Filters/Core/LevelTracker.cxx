@@ -4,14 +4,24 @@
 #include "CollapseMesh.h"
 #include "ParallelCompact.h"
 
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <utility>
 
 namespace meshlod
 {
+namespace
+{
+// Snapshot ranks collapses by a counting sort when their numbers span at most this many times
+// their count, plus this many.
+constexpr std::int64_t CountingSortSpan = 4;
+constexpr std::int64_t CountingSortSlack = 4096;
+}
+
 void LevelTracker::Initialize(Id numberOfPoints, bool trackAncestors)
 {
   this->GroupNext.assign(numberOfPoints, InvalidId);
@@ -22,6 +32,7 @@ void LevelTracker::Initialize(Id numberOfPoints, bool trackAncestors)
   this->PreviousIndex.resize(numberOfPoints);
   std::iota(this->PreviousIndex.begin(), this->PreviousIndex.end(), 0);
   this->PreviousVertices = this->PreviousIndex;
+  this->PreviousTriangles.clear();
   this->AncestorNext.clear();
   this->AncestorTail.clear();
   this->AncestorTotal.clear();
@@ -64,26 +75,29 @@ void LevelTracker::Merge(const Id* members, const double* weights, int count, st
 void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, LevelData& level)
 {
   // Every pass is data-parallel, with the same result for any number of threads (compactions
-  // by fixed blocks, a sort of distinct keys): with two threads the serial passes here had
-  // been a tenth of the whole hierarchy's time.
+  // by fixed blocks, a counting sort or a sort of distinct keys): with two threads the serial
+  // passes here had been a tenth of the whole hierarchy's time.
   const TriangleMesh& mesh = state.Mesh;
   const Id nv = mesh.GetNumberOfPoints();
   const Id nt = mesh.GetNumberOfTriangles();
 
   // Live vertices (a live vertex has live triangles) and triangles, numbered in increasing id
-  // order.
-  const auto liveVertex = [&](Id v) {
+  // order. Only the last level's are looked at (nothing comes alive again): at the coarse
+  // levels that is a small part of the mesh.
+  const std::vector<Id>& candidates = this->PreviousVertices;
+  const auto liveVertex = [&](Id i) {
+    const Id v = candidates[i];
     return state.Survivor[v] == v && state.TriangleCount(v) > 0;
   };
-  const ParallelCompaction liveVertices(nv, liveVertex);
+  const ParallelCompaction liveVertices(static_cast<Id>(candidates.size()), liveVertex);
   const Id count = liveVertices.Count();
   std::vector<Id>& newIndex = this->NewIndex; // kept between snapshots: no fresh pages each time
   newIndex.resize(nv);
   vtkSMPTools::Fill(newIndex.begin(), newIndex.end(), InvalidId);
   std::vector<Id> vertices(count);
-  liveVertices.Write(liveVertex, [&](Id v, Id slot) {
-    newIndex[v] = slot;
-    vertices[slot] = v;
+  liveVertices.Write(liveVertex, [&](Id i, Id slot) {
+    newIndex[candidates[i]] = slot;
+    vertices[slot] = candidates[i];
   });
 
   level = LevelData();
@@ -95,11 +109,16 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
       std::copy_n(mesh.Point(vertices[i]), 3, level.Mesh.Point(i));
     }
   });
-  const auto liveTriangle = [&](Id t) { return state.IsAlive(t); };
-  const ParallelCompaction liveTriangles(nt, liveTriangle);
+  // (Before the first level, every triangle.)
+  const std::vector<Id>& previous = this->PreviousTriangles;
+  const bool all = previous.empty();
+  const auto triangleAt = [&](Id i) { return all ? i : previous[i]; };
+  const auto liveTriangle = [&](Id i) { return state.IsAlive(triangleAt(i)); };
+  const ParallelCompaction liveTriangles(all ? nt : static_cast<Id>(previous.size()), liveTriangle);
   level.Mesh.Triangles.resize(3 * static_cast<std::size_t>(liveTriangles.Count()));
   level.LevelZeroTriangle.resize(liveTriangles.Count());
-  liveTriangles.Write(liveTriangle, [&](Id t, Id slot) {
+  liveTriangles.Write(liveTriangle, [&](Id i, Id slot) {
+    const Id t = triangleAt(i);
     const Id* tri = mesh.Triangle(t);
     Id* out = level.Mesh.Triangle(slot);
     out[0] = newIndex[tri[0]];
@@ -107,6 +126,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
     out[2] = newIndex[tri[2]];
     level.LevelZeroTriangle[slot] = t;
   });
+  this->PreviousTriangles = level.LevelZeroTriangle;
 
   // Point sources: the previous level's points of each group, with their weights.
   PointSources& sources = level.Sources;
@@ -147,18 +167,56 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   // rank of the group it ends in.
   const auto collapsed = [&](Id i) { return this->GroupSequence[vertices[i]] >= 0; };
   const ParallelCompaction collapsedGroups(count, collapsed);
-  std::vector<std::pair<std::int64_t, Id>> order(collapsedGroups.Count()); // (collapse, point)
-  collapsedGroups.Write(collapsed, [&](Id i, Id slot) {
-    order[slot] = { this->GroupSequence[vertices[i]], i };
-  });
-  vtkSMPTools::Sort(order.begin(), order.end());
   std::vector<Id> rankOf(count, InvalidId);
-  vtkSMPTools::For(0, static_cast<Id>(order.size()), [&](Id begin, Id end) {
-    for (Id r = begin; r < end; ++r)
+  // The range of the level's collapse numbers.
+  using Range = std::pair<std::int64_t, std::int64_t>;
+  vtkSMPThreadLocal<Range> ranges(Range(std::numeric_limits<std::int64_t>::max(), -1));
+  vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+    Range& range = ranges.Local();
+    for (Id i = begin; i < end; ++i)
     {
-      rankOf[order[r].second] = r;
+      const std::int64_t number = this->GroupSequence[vertices[i]];
+      if (number >= 0)
+      {
+        range.first = std::min(range.first, number);
+        range.second = std::max(range.second, number);
+      }
     }
   });
+  Range range(std::numeric_limits<std::int64_t>::max(), -1);
+  for (const Range& r : ranges)
+  {
+    range = Range(std::min(range.first, r.first), std::max(range.second, r.second));
+  }
+  const std::int64_t span = range.second - range.first + 1;
+  if (span > 0 && span <= CountingSortSpan * collapsedGroups.Count() + CountingSortSlack)
+  {
+    // The numbers fill most of a short range (parallel rounds leave gaps): a counting sort.
+    std::vector<Id>& byCollapse = this->ByCollapse; // collapse number - first -> point
+    byCollapse.resize(static_cast<std::size_t>(span));
+    vtkSMPTools::Fill(byCollapse.begin(), byCollapse.end(), InvalidId);
+    const std::int64_t first = range.first;
+    collapsedGroups.Write(collapsed, [&](Id i, Id) {
+      byCollapse[static_cast<std::size_t>(this->GroupSequence[vertices[i]] - first)] = i;
+    });
+    const auto used = [&](Id k) { return byCollapse[k] != InvalidId; };
+    ParallelCompact(static_cast<Id>(span), used,
+      [&](Id k, Id rank) { rankOf[byCollapse[k]] = rank; });
+  }
+  else
+  {
+    std::vector<std::pair<std::int64_t, Id>> order(collapsedGroups.Count()); // (collapse, point)
+    collapsedGroups.Write(collapsed, [&](Id i, Id slot) {
+      order[slot] = { this->GroupSequence[vertices[i]], i };
+    });
+    vtkSMPTools::Sort(order.begin(), order.end());
+    vtkSMPTools::For(0, static_cast<Id>(order.size()), [&](Id begin, Id end) {
+      for (Id r = begin; r < end; ++r)
+      {
+        rankOf[order[r].second] = r;
+      }
+    });
+  }
   const Id previousCount = static_cast<Id>(this->PreviousVertices.size());
   level.Target.resize(previousCount);
   level.Rank.resize(previousCount);

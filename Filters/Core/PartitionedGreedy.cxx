@@ -20,6 +20,7 @@
 // holding everything, its budget exactly what is left), which lands the level on its count;
 // when thresholds find nothing more, the plain greedy loop (GreedySteps) finishes the level.
 #include "Collapser.h"
+#include "RankSelection.h"
 
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
@@ -54,6 +55,9 @@ constexpr Id CostSamples = 1 << 16;
 // A serial round's threshold holds this many candidates per triangle of its budget: it must
 // reach the budget although collapses kill some of its candidates.
 constexpr double SerialCandidateFactor = 2.0;
+// ListCandidates sorts the candidates by cell in this many slices of the listed triangles
+// (when there are fewer cells than a slice holds triangles).
+constexpr Id SortSlices = 8;
 
 constexpr std::uint32_t NoCell = 0xffffffffu;
 
@@ -205,7 +209,9 @@ double Collapser::CostQuantile(double count)
   std::vector<double>& sample = this->CostSample;
   sample.resize((live + stride - 1) / stride);
   const Id samples = static_cast<Id>(sample.size());
+  vtkSMPThreadLocal<Id> counted(0);
   vtkSMPTools::For(0, samples, [&](Id begin, Id end) {
+    Id& mine = counted.Local();
     for (Id i = begin; i < end; ++i)
     {
       if (i + Ahead < end)
@@ -216,22 +222,24 @@ double Collapser::CostQuantile(double count)
         this->Lot.Hint(ahead);
       }
       const Id t = this->LiveTriangles[i * stride];
-      sample[i] = this->State.IsAlive(t) && this->Costs[t] < InfiniteCost && !this->Lot.IsParked(t)
-        ? this->Costs[t]
-        : std::numeric_limits<double>::quiet_NaN();
+      const bool wanted =
+        this->State.IsAlive(t) && this->Costs[t] < InfiniteCost && !this->Lot.IsParked(t);
+      sample[i] = wanted ? this->Costs[t] : std::numeric_limits<double>::quiet_NaN();
+      mine += wanted ? 1 : 0;
     }
   });
-  sample.erase(std::remove_if(sample.begin(), sample.end(), [](double c) { return std::isnan(c); }),
-    sample.end());
-  if (sample.empty())
+  Id valid = 0;
+  for (const Id c : counted)
+  {
+    valid += c;
+  }
+  if (valid == 0)
   {
     return -InfiniteCost;
   }
-  const double share = count / (static_cast<double>(sample.size()) * stride);
-  const std::size_t k =
-    std::min(sample.size() - 1, static_cast<std::size_t>(std::max(0.0, share) * sample.size()));
-  std::nth_element(sample.begin(), sample.begin() + k, sample.end());
-  return sample[k];
+  const double share = count / (static_cast<double>(valid) * stride);
+  const Id k = std::min(valid - 1, static_cast<Id>(std::max(0.0, share) * valid));
+  return SelectRank(sample, valid, k);
 }
 
 //------------------------------------------------------------------------------
@@ -268,30 +276,55 @@ std::uint32_t Collapser::ListCandidates(double threshold, const CellGrid* grid)
     }
   });
   // Counting sort by cell: the candidates of cell c are Candidates[CellFirst[c] ..
-  // CellFirst[c + 1]), in increasing id order.
+  // CellFirst[c + 1]), in increasing id order. The listed triangles are cut into a fixed
+  // number of slices (whatever the thread count) that are counted and scattered in parallel,
+  // each slice's candidates of a cell after those of the slices before it.
   const std::uint32_t cells = grid ? static_cast<std::uint32_t>(grid->Cells()) : 1;
-  this->CellFirst.assign(cells + 1, 0);
-  for (const std::uint32_t cell : this->CandidateCell)
-  {
-    if (cell != NoCell)
+  const Id slices = static_cast<std::int64_t>(cells) * SortSlices <= live ? SortSlices : 1;
+  const Id sliceSize = (live + slices - 1) / slices;
+  // Per (cell, slice), cell-major: the slice's candidates in the cell, then where they start.
+  std::vector<Id>& slots = this->CellSliceSlots;
+  slots.assign(static_cast<std::size_t>(cells) * slices, 0);
+  vtkSMPTools::For(0, slices, 1, [&](Id begin, Id end) {
+    for (Id s = begin; s < end; ++s)
     {
-      ++this->CellFirst[cell + 1];
+      for (Id i = s * sliceSize; i < std::min(live, (s + 1) * sliceSize); ++i)
+      {
+        const std::uint32_t cell = this->CandidateCell[i];
+        if (cell != NoCell)
+        {
+          ++slots[cell * slices + s];
+        }
+      }
     }
-  }
+  });
+  this->CellFirst.resize(cells + 1);
+  Id total = 0;
   for (std::uint32_t c = 0; c < cells; ++c)
   {
-    this->CellFirst[c + 1] += this->CellFirst[c];
-  }
-  this->Candidates.resize(this->CellFirst[cells]);
-  std::vector<Id> next(this->CellFirst.begin(), this->CellFirst.end() - 1);
-  for (Id i = 0; i < live; ++i)
-  {
-    const std::uint32_t cell = this->CandidateCell[i];
-    if (cell != NoCell)
+    this->CellFirst[c] = total;
+    for (Id s = 0; s < slices; ++s)
     {
-      this->Candidates[next[cell]++] = this->LiveTriangles[i];
+      const Id n = slots[c * slices + s];
+      slots[c * slices + s] = total;
+      total += n;
     }
   }
+  this->CellFirst[cells] = total;
+  this->Candidates.resize(total);
+  vtkSMPTools::For(0, slices, 1, [&](Id begin, Id end) {
+    for (Id s = begin; s < end; ++s)
+    {
+      for (Id i = s * sliceSize; i < std::min(live, (s + 1) * sliceSize); ++i)
+      {
+        const std::uint32_t cell = this->CandidateCell[i];
+        if (cell != NoCell)
+        {
+          this->Candidates[slots[cell * slices + s]++] = this->LiveTriangles[i];
+        }
+      }
+    }
+  });
   return cells;
 }
 
@@ -304,12 +337,14 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
   const Id alive = this->State.AliveTriangles;
   if (this->LiveTriangles.empty() || this->LiveTriangles.size() > 1.25 * alive)
   {
+    
     this->ListLive();
   }
 
   // 1. The threshold: the cost quantile holding about `budget` candidates (twice that for a
   // serial round, which must reach its budget).
   const bool parallel = round >= 0;
+  
   const double threshold =
     this->CostQuantile(static_cast<double>(budget) * (parallel ? 1.0 : SerialCandidateFactor));
   if (!(threshold > -InfiniteCost))
@@ -319,6 +354,8 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
 
   // 2. The candidates, cell by cell: for a parallel round, the cells of a grid sized from the
   // surface area, shifted every other round.
+  
+  
   CellGrid grid;
   if (parallel)
   {
@@ -344,6 +381,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
   // proportion to its candidates), and up to 3 triangles more with its last collapse (in the
   // serial round, which lands on a level, 1 unless no edge of that last triangle may collapse:
   // LandOnTarget).
+  
   this->HeapPositions.resize(this->State.Mesh.GetNumberOfTriangles(), InvalidId);
   const Id cellsBusy = static_cast<Id>(busy.size());
   std::vector<CellOutcome> outcomes(cellsBusy);
