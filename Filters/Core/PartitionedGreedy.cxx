@@ -337,14 +337,12 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
   const Id alive = this->State.AliveTriangles;
   if (this->LiveTriangles.empty() || this->LiveTriangles.size() > 1.25 * alive)
   {
-    
     this->ListLive();
   }
 
   // 1. The threshold: the cost quantile holding about `budget` candidates (twice that for a
   // serial round, which must reach its budget).
   const bool parallel = round >= 0;
-  
   const double threshold =
     this->CostQuantile(static_cast<double>(budget) * (parallel ? 1.0 : SerialCandidateFactor));
   if (!(threshold > -InfiniteCost))
@@ -354,8 +352,6 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
 
   // 2. The candidates, cell by cell: for a parallel round, the cells of a grid sized from the
   // surface area, shifted every other round.
-  
-  
   CellGrid grid;
   if (parallel)
   {
@@ -381,7 +377,6 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
   // proportion to its candidates), and up to 3 triangles more with its last collapse (in the
   // serial round, which lands on a level, 1 unless no edge of that last triangle may collapse:
   // LandOnTarget).
-  
   this->HeapPositions.resize(this->State.Mesh.GetNumberOfTriangles(), InvalidId);
   const Id cellsBusy = static_cast<Id>(busy.size());
   std::vector<CellOutcome> outcomes(cellsBusy);
