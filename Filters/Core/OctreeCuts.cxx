@@ -56,7 +56,8 @@ void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cu
   cut.resize(static_cast<size_t>(nv) + ni);
   const Id count = ParallelCompact(nv + ni, isCluster, [&](Id node, Id slot) { cut[slot] = node; });
   cut.resize(count);
-  std::sort(cut.begin(),
+  // (Distinct positions: the parallel sort gives the same order for any thread count.)
+  vtkSMPTools::Sort(cut.begin(),
     cut.end(),
     [&](Id a, Id b) { return this->Tree.Position(a) < this->Tree.Position(b); });
 }
@@ -175,7 +176,7 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
     }
   }
   cut.swap(kept);
-  std::sort(cut.begin(),
+  vtkSMPTools::Sort(cut.begin(),
     cut.end(),
     [&](Id a, Id b) { return this->Tree.Position(a) < this->Tree.Position(b); });
 }
@@ -193,20 +194,40 @@ double OctreeClustering::Internals::EpsilonForCount(Id target) const
   {
     return 0.0;
   }
-  double lo = std::numeric_limits<double>::max(), hi = 0.0;
-  std::int64_t total = 0;
-  for (Id i = 0; i < ni; ++i)
+  // Three parallel passes over the nodes that can collapse (sums, minima and maxima: the same
+  // for any thread count).
+  const auto counts = [&](Id i)
+  { return this->Tree.Nodes[i].Dies > 0 && this->Activation[i] < Infinite; };
+  struct Span
   {
-    const float a = this->Activation[i];
-    if (this->Tree.Nodes[i].Dies > 0 && a < Infinite)
+    double Low = std::numeric_limits<double>::max();
+    double High = 0.0;
+    std::int64_t Total = 0;
+  };
+  vtkSMPThreadLocal<Span> spans;
+  vtkSMPTools::For(0, ni, [&](Id begin, Id end) {
+    Span& span = spans.Local();
+    for (Id i = begin; i < end; ++i)
     {
-      total += this->Tree.Nodes[i].Dies;
-      if (a > 0.0f)
+      const float a = this->Activation[i];
+      if (counts(i))
       {
-        lo = std::min(lo, double(a));
-        hi = std::max(hi, double(a));
+        span.Total += this->Tree.Nodes[i].Dies;
+        if (a > 0.0f)
+        {
+          span.Low = std::min(span.Low, double(a));
+          span.High = std::max(span.High, double(a));
+        }
       }
     }
+  });
+  double lo = std::numeric_limits<double>::max(), hi = 0.0;
+  std::int64_t total = 0;
+  for (const Span& span : spans)
+  {
+    lo = std::min(lo, span.Low);
+    hi = std::max(hi, span.High);
+    total += span.Total;
   }
   if (total < need)
   {
@@ -233,13 +254,24 @@ double OctreeClustering::Internals::EpsilonForCount(Id target) const
   }
   auto bin = [&](float a)
   { return a <= static_cast<float>(lo) ? 0 : 1 + static_cast<int>((bits(a) - base) >> shift); };
-  std::vector<std::int64_t> histogram(bins, 0);
-  for (Id i = 0; i < ni; ++i)
-  {
-    const float a = this->Activation[i];
-    if (this->Tree.Nodes[i].Dies > 0 && a < Infinite)
+  vtkSMPThreadLocal<std::vector<std::int64_t>> histograms;
+  vtkSMPTools::For(0, ni, [&](Id begin, Id end) {
+    std::vector<std::int64_t>& local = histograms.Local();
+    local.resize(bins, 0);
+    for (Id i = begin; i < end; ++i)
     {
-      histogram[bin(a)] += this->Tree.Nodes[i].Dies;
+      if (counts(i))
+      {
+        local[bin(this->Activation[i])] += this->Tree.Nodes[i].Dies;
+      }
+    }
+  });
+  std::vector<std::int64_t> histogram(bins, 0);
+  for (const std::vector<std::int64_t>& local : histograms)
+  {
+    for (std::size_t k = 0; k < local.size(); ++k)
+    {
+      histogram[k] += local[k];
     }
   }
   std::int64_t before = 0;
@@ -248,14 +280,23 @@ double OctreeClustering::Internals::EpsilonForCount(Id target) const
   {
     before += histogram[b];
   }
-  std::vector<std::pair<float, Id>> inBin;
-  for (Id i = 0; i < ni; ++i)
-  {
-    const float a = this->Activation[i];
-    if (this->Tree.Nodes[i].Dies > 0 && a < Infinite && bin(a) == b)
+  // The nodes of that bin, sorted by (activation, triangles): the same whatever order the
+  // threads gathered them in.
+  vtkSMPThreadLocal<std::vector<std::pair<float, Id>>> gathered;
+  vtkSMPTools::For(0, ni, [&](Id begin, Id end) {
+    std::vector<std::pair<float, Id>>& local = gathered.Local();
+    for (Id i = begin; i < end; ++i)
     {
-      inBin.emplace_back(a, this->Tree.Nodes[i].Dies);
+      if (counts(i) && bin(this->Activation[i]) == b)
+      {
+        local.emplace_back(this->Activation[i], this->Tree.Nodes[i].Dies);
+      }
     }
+  });
+  std::vector<std::pair<float, Id>> inBin;
+  for (const std::vector<std::pair<float, Id>>& local : gathered)
+  {
+    inBin.insert(inBin.end(), local.begin(), local.end());
   }
   std::sort(inBin.begin(), inBin.end());
   for (const auto& entry : inBin)
@@ -273,10 +314,18 @@ double OctreeClustering::Internals::EpsilonForCount(Id target) const
 // NT minus the triangles that degenerate at `epsilon`. Needs ComputeActivation().
 std::int64_t OctreeClustering::Internals::EstimateAt(double epsilon) const
 {
+  vtkSMPThreadLocal<std::int64_t> vanishing(0);
+  vtkSMPTools::For(0, this->Tree.NumberOfInternalNodes(), [&](Id begin, Id end) {
+    std::int64_t& local = vanishing.Local();
+    for (Id i = begin; i < end; ++i)
+    {
+      local += this->Activation[i] <= epsilon ? this->Tree.Nodes[i].Dies : 0;
+    }
+  });
   std::int64_t vanished = 0;
-  for (Id i = 0; i < this->Tree.NumberOfInternalNodes(); ++i)
+  for (const std::int64_t v : vanishing)
   {
-    vanished += this->Activation[i] <= epsilon ? this->Tree.Nodes[i].Dies : 0;
+    vanished += v;
   }
   return this->NT - vanished;
 }
