@@ -33,6 +33,7 @@ void LevelTracker::Initialize(Id numberOfPoints, bool trackAncestors)
   std::iota(this->PreviousIndex.begin(), this->PreviousIndex.end(), 0);
   this->PreviousVertices = this->PreviousIndex;
   this->PreviousTriangles.clear();
+  this->PreviousTrianglesListed = false;
   this->AncestorNext.clear();
   this->AncestorTail.clear();
   this->AncestorTotal.clear();
@@ -111,7 +112,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   });
   // (Before the first level, every triangle.)
   const std::vector<Id>& previous = this->PreviousTriangles;
-  const bool all = previous.empty();
+  const bool all = !this->PreviousTrianglesListed;
   const auto triangleAt = [&](Id i) { return all ? i : previous[i]; };
   const auto liveTriangle = [&](Id i) { return state.IsAlive(triangleAt(i)); };
   const ParallelCompaction liveTriangles(all ? nt : static_cast<Id>(previous.size()), liveTriangle);
@@ -127,6 +128,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
     level.LevelZeroTriangle[slot] = t;
   });
   this->PreviousTriangles = level.LevelZeroTriangle;
+  this->PreviousTrianglesListed = true;
 
   // Point sources: the previous level's points of each group, with their weights.
   PointSources& sources = level.Sources;
@@ -191,7 +193,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   const std::int64_t span = range.second - range.first + 1;
   if (span > 0 && span <= CountingSortSpan * collapsedGroups.Count() + CountingSortSlack)
   {
-    // The numbers fill most of a short range (parallel rounds leave gaps): a counting sort.
+    // The numbers lie in a short range (parallel rounds leave gaps in it): a counting sort.
     std::vector<Id>& byCollapse = this->ByCollapse; // collapse number - first -> point
     byCollapse.resize(static_cast<std::size_t>(span));
     vtkSMPTools::Fill(byCollapse.begin(), byCollapse.end(), InvalidId);

@@ -54,7 +54,8 @@ private:
   std::vector<std::int64_t> GroupSequence; // last collapse that touched the group, -1: none
   std::vector<Id> PreviousIndex;           // vertex -> its index in the last level
   std::vector<Id> PreviousVertices;        // index in the last level -> vertex
-  std::vector<Id> PreviousTriangles;       // the last level's triangles; empty: all
+  std::vector<Id> PreviousTriangles;       // the last level's triangles ...
+  bool PreviousTrianglesListed = false;    // ... when there was one (else every triangle)
   std::vector<Id> AncestorNext;
   std::vector<Id> AncestorTail;
   std::vector<Id> AncestorTotal;

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 namespace meshlod
@@ -39,7 +40,7 @@ inline double SelectRank(const std::vector<double>& values, Id count, Id rank)
     return serial();
   }
   std::vector<double> splitters;
-  splitters.reserve(Splitters + 1);
+  splitters.reserve(2 * Splitters);
   const Id step = std::max<Id>(1, n / Splitters);
   for (Id i = 0; i < n; i += step)
   {
