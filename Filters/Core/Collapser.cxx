@@ -352,7 +352,9 @@ double Collapser::LevelError() const
 void Collapser::EmitLevel()
 {
   LevelData level;
-  this->Tracker.Snapshot(this->State, this->LevelError(), level);
+  // (The partitioned run's list of live triangles, when it keeps one, spares a pass over all.)
+  this->Tracker.Snapshot(this->State, this->LevelError(), level,
+    this->LiveTriangles.empty() ? nullptr : &this->LiveTriangles);
   const std::size_t coordinates = level.Mesh.Points.size();
   for (std::size_t i = 0; i < coordinates; ++i)
   {

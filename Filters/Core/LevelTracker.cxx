@@ -32,8 +32,6 @@ void LevelTracker::Initialize(Id numberOfPoints, bool trackAncestors)
   this->PreviousIndex.resize(numberOfPoints);
   std::iota(this->PreviousIndex.begin(), this->PreviousIndex.end(), 0);
   this->PreviousVertices = this->PreviousIndex;
-  this->PreviousTriangles.clear();
-  this->PreviousTrianglesListed = false;
   this->AncestorNext.clear();
   this->AncestorTail.clear();
   this->AncestorTotal.clear();
@@ -73,7 +71,8 @@ void LevelTracker::Merge(const Id* members, const double* weights, int count, st
 }
 
 //------------------------------------------------------------------------------
-void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, LevelData& level)
+void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, LevelData& level,
+  const std::vector<Id>* triangles)
 {
   // Every pass is data-parallel, with the same result for any number of threads (compactions
   // by fixed blocks, a counting sort or a sort of distinct keys): with two threads the serial
@@ -83,8 +82,8 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   const Id nt = mesh.GetNumberOfTriangles();
 
   // Live vertices (a live vertex has live triangles) and triangles, numbered in increasing id
-  // order. Only the last level's are looked at (nothing comes alive again): at the coarse
-  // levels that is a small part of the mesh.
+  // order. Only the last level's vertices are looked at (nothing comes alive again), and the
+  // listed triangles: at the coarse levels a small part of the mesh.
   const std::vector<Id>& candidates = this->PreviousVertices;
   const auto liveVertex = [&](Id i) {
     const Id v = candidates[i];
@@ -110,12 +109,11 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
       std::copy_n(mesh.Point(vertices[i]), 3, level.Mesh.Point(i));
     }
   });
-  // (Before the first level, every triangle.)
-  const std::vector<Id>& previous = this->PreviousTriangles;
-  const bool all = !this->PreviousTrianglesListed;
-  const auto triangleAt = [&](Id i) { return all ? i : previous[i]; };
+  const bool all = triangles == nullptr;
+  const auto triangleAt = [&](Id i) { return all ? i : (*triangles)[i]; };
   const auto liveTriangle = [&](Id i) { return state.IsAlive(triangleAt(i)); };
-  const ParallelCompaction liveTriangles(all ? nt : static_cast<Id>(previous.size()), liveTriangle);
+  const ParallelCompaction liveTriangles(
+    all ? nt : static_cast<Id>(triangles->size()), liveTriangle);
   level.Mesh.Triangles.resize(3 * static_cast<std::size_t>(liveTriangles.Count()));
   level.LevelZeroTriangle.resize(liveTriangles.Count());
   liveTriangles.Write(liveTriangle, [&](Id i, Id slot) {
@@ -127,8 +125,6 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
     out[2] = newIndex[tri[2]];
     level.LevelZeroTriangle[slot] = t;
   });
-  this->PreviousTriangles = level.LevelZeroTriangle;
-  this->PreviousTrianglesListed = true;
 
   // Point sources: the previous level's points of each group, with their weights.
   PointSources& sources = level.Sources;

@@ -33,8 +33,11 @@ public:
   /// recorded concurrently.
   void Merge(const Id* members, const double* weights, int count, std::int64_t sequence);
 
-  /// Build the next level from the live part of the mesh, and start new groups.
-  void Snapshot(const CollapseMesh& mesh, double estimatedError, LevelData& level);
+  /// Build the next level from the live part of the mesh, and start new groups. `triangles`,
+  /// when given, lists every live triangle (and possibly dead ones) in increasing id order:
+  /// only those are looked at; null: every triangle.
+  void Snapshot(const CollapseMesh& mesh, double estimatedError, LevelData& level,
+    const std::vector<Id>* triangles = nullptr);
 
   /// Ancestral points of v (original vertex ids, v first).
   template <typename F>
@@ -54,8 +57,6 @@ private:
   std::vector<std::int64_t> GroupSequence; // last collapse that touched the group, -1: none
   std::vector<Id> PreviousIndex;           // vertex -> its index in the last level
   std::vector<Id> PreviousVertices;        // index in the last level -> vertex
-  std::vector<Id> PreviousTriangles;       // the last level's triangles ...
-  bool PreviousTrianglesListed = false;    // ... when there was one (else every triangle)
   std::vector<Id> AncestorNext;
   std::vector<Id> AncestorTail;
   std::vector<Id> AncestorTotal;
