@@ -280,24 +280,12 @@ double OctreeClustering::Internals::EpsilonForCount(Id target) const
   {
     before += histogram[b];
   }
-  // The nodes of that bin, sorted by (activation, triangles): the same whatever order the
-  // threads gathered them in.
-  vtkSMPThreadLocal<std::vector<std::pair<float, Id>>> gathered;
-  vtkSMPTools::For(0, ni, [&](Id begin, Id end) {
-    std::vector<std::pair<float, Id>>& local = gathered.Local();
-    for (Id i = begin; i < end; ++i)
-    {
-      if (counts(i) && bin(this->Activation[i]) == b)
-      {
-        local.emplace_back(this->Activation[i], this->Tree.Nodes[i].Dies);
-      }
-    }
-  });
-  std::vector<std::pair<float, Id>> inBin;
-  for (const std::vector<std::pair<float, Id>>& local : gathered)
-  {
-    inBin.insert(inBin.end(), local.begin(), local.end());
-  }
+  // The nodes of that bin, sorted by (activation, triangles).
+  const auto inThatBin = [&](Id i) { return counts(i) && bin(this->Activation[i]) == b; };
+  const ParallelCompaction binNodes(ni, inThatBin);
+  std::vector<std::pair<float, Id>> inBin(binNodes.Count());
+  binNodes.Write(inThatBin,
+    [&](Id i, Id slot) { inBin[slot] = { this->Activation[i], this->Tree.Nodes[i].Dies }; });
   std::sort(inBin.begin(), inBin.end());
   for (const auto& entry : inBin)
   {

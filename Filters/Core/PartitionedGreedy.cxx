@@ -285,19 +285,23 @@ std::uint32_t Collapser::ListCandidates(double threshold, const CellGrid* grid)
   // Per (cell, slice), cell-major: the slice's candidates in the cell, then where they start.
   std::vector<Id>& slots = this->CellSliceSlots;
   slots.assign(static_cast<std::size_t>(cells) * slices, 0);
-  vtkSMPTools::For(0, slices, 1, [&](Id begin, Id end) {
-    for (Id s = begin; s < end; ++s)
-    {
-      for (Id i = s * sliceSize; i < std::min(live, (s + 1) * sliceSize); ++i)
+  // Calls f(i, slot of its cell and slice) for every listed candidate i, slices in parallel.
+  const auto forEachCandidate = [&](auto&& f) {
+    vtkSMPTools::For(0, slices, 1, [&](Id begin, Id end) {
+      for (Id s = begin; s < end; ++s)
       {
-        const std::uint32_t cell = this->CandidateCell[i];
-        if (cell != NoCell)
+        for (Id i = s * sliceSize; i < std::min(live, (s + 1) * sliceSize); ++i)
         {
-          ++slots[cell * slices + s];
+          const std::uint32_t cell = this->CandidateCell[i];
+          if (cell != NoCell)
+          {
+            f(i, slots[cell * slices + s]);
+          }
         }
       }
-    }
-  });
+    });
+  };
+  forEachCandidate([](Id, Id& slot) { ++slot; });
   this->CellFirst.resize(cells + 1);
   Id total = 0;
   for (std::uint32_t c = 0; c < cells; ++c)
@@ -312,19 +316,7 @@ std::uint32_t Collapser::ListCandidates(double threshold, const CellGrid* grid)
   }
   this->CellFirst[cells] = total;
   this->Candidates.resize(total);
-  vtkSMPTools::For(0, slices, 1, [&](Id begin, Id end) {
-    for (Id s = begin; s < end; ++s)
-    {
-      for (Id i = s * sliceSize; i < std::min(live, (s + 1) * sliceSize); ++i)
-      {
-        const std::uint32_t cell = this->CandidateCell[i];
-        if (cell != NoCell)
-        {
-          this->Candidates[slots[cell * slices + s]++] = this->LiveTriangles[i];
-        }
-      }
-    }
-  });
+  forEachCandidate([&](Id i, Id& slot) { this->Candidates[slot++] = this->LiveTriangles[i]; });
   return cells;
 }
 
