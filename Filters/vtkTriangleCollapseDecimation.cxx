@@ -6,16 +6,23 @@
 #include "MeshLODInputMesh.h"
 #include "MeshLODSettings.h"
 
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkObjectFactory.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 #include <utility>
+
+static_assert(std::is_same<vtkIdType, long long>::value,
+  "TriangleCollapseOptions::InputPointIds reads vtkIdType as long long");
 
 vtkStandardNewMacro(vtkTriangleCollapseDecimation);
 
@@ -177,6 +184,21 @@ int vtkTriangleCollapseDecimation::RequestData(
   options.BoundaryWeight = this->BoundaryWeight;
   options.MaximumNormalDeviation = this->MaximumNormalDeviation;
   options.MaximumFitPoints = this->MaximumFitPoints;
+  if (options.Method == meshlod::CollapseMethod::Curvature && mesh.Source->GetPoints())
+  {
+    // The fits read the original points from the input itself (alive until the run ends)
+    // instead of a copy of them.
+    vtkDataArray* coordinates = mesh.Source->GetPoints()->GetData();
+    if (auto* floats = vtkFloatArray::FastDownCast(coordinates))
+    {
+      options.InputPointsFloat = floats->GetPointer(0);
+    }
+    else if (auto* doubles = vtkDoubleArray::FastDownCast(coordinates))
+    {
+      options.InputPointsDouble = doubles->GetPointer(0);
+    }
+    options.InputPointIds = mesh.SourcePointIds.data();
+  }
   const std::int64_t inputTriangles = mesh.Mesh.GetNumberOfTriangles();
   this->NumberOfSwaps = 0;
   for (const double r : reductions)

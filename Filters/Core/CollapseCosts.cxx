@@ -83,7 +83,7 @@ void CollapseWeights(const double* const* points, int count, const double x[3], 
 
 //------------------------------------------------------------------------------
 CollapseCostModel::CollapseCostModel(const TriangleCollapseOptions& options,
-  const CollapseMesh& state, const LevelTracker& tracker, const std::vector<double>& originalPoints)
+  const CollapseMesh& state, const LevelTracker& tracker, const OriginalPointReader& originalPoints)
   : Options(options)
   , State(state)
   , Tracker(tracker)
@@ -503,7 +503,8 @@ void CollapseCostModel::FitSurface(
     this->Tracker.ForEachAncestor(tri[k], [&](Id u) {
       if (index++ % stride == 0)
       {
-        const double* x = this->OriginalPoints.data() + 3 * static_cast<std::size_t>(u);
+        double x[3];
+        this->OriginalPoints.Get(u, x);
         points.push_back(x[0]);
         points.push_back(x[1]);
         points.push_back(x[2]);

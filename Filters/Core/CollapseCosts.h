@@ -73,11 +73,42 @@ struct CostScratch
   std::vector<RecentEdge> RecentEdges; // a power of two entries, or none
 };
 
+/// The input's original points, which the curvature method's fits read (the ancestral points of
+/// paper 000), relative to the engine's centre. Read from the caller's own coordinates where
+/// TriangleCollapseOptions gives them, so that the engine keeps no copy; else from a copy.
+struct OriginalPointReader
+{
+  const float* Float = nullptr;
+  const double* Double = nullptr;
+  const long long* Ids = nullptr; // engine vertex -> point of the arrays above; null: the same
+  std::vector<double> Copy;       // x, y, z per vertex, relative to the centre; or empty
+  double Centre[3] = { 0.0, 0.0, 0.0 };
+
+  void Get(Id v, double x[3]) const
+  {
+    if (!this->Copy.empty())
+    {
+      const double* c = this->Copy.data() + 3 * static_cast<std::size_t>(v);
+      x[0] = c[0];
+      x[1] = c[1];
+      x[2] = c[2];
+      return;
+    }
+    // The same subtraction as the engine's move to the centre: the same numbers as a copy.
+    const std::size_t i = 3 * static_cast<std::size_t>(this->Ids ? this->Ids[v] : v);
+    for (int k = 0; k < 3; ++k)
+    {
+      x[k] = (this->Float ? static_cast<double>(this->Float[i + k]) : this->Double[i + k]) -
+        this->Centre[k];
+    }
+  }
+};
+
 class CollapseCostModel
 {
 public:
   CollapseCostModel(const TriangleCollapseOptions& options, const CollapseMesh& state,
-    const LevelTracker& tracker, const std::vector<double>& originalPoints);
+    const LevelTracker& tracker, const OriginalPointReader& originalPoints);
 
   /// Evaluate collapsing live triangle t (with the TrianglesAndEdges operator, possibly its
   /// cheapest edge instead); false when it cannot collapse (a locked vertex).
@@ -135,7 +166,7 @@ private:
   const TriangleCollapseOptions& Options;
   const CollapseMesh& State;
   const LevelTracker& Tracker;
-  const std::vector<double>& OriginalPoints; // x, y, z of the input vertices
+  const OriginalPointReader& OriginalPoints;
   double CurvatureNormalization = 1.0;
 };
 

@@ -47,9 +47,17 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   // coordinates) its evaluation cancels away the error it measures. Levels are moved back.
   const double diagonal = TranslateToCentre(mesh, this->Centre);
   const bool curvature = options.Method == CollapseMethod::Curvature;
-  if (curvature)
+  if (curvature) // the fits use the ancestral (original) points
   {
-    this->OriginalPoints = mesh.Points; // the fits use the ancestral (original) points
+    OriginalPointReader& original = this->OriginalPoints;
+    std::copy_n(this->Centre, 3, original.Centre);
+    original.Float = options.InputPointsFloat;
+    original.Double = options.InputPointsFloat ? nullptr : options.InputPointsDouble;
+    original.Ids = options.InputPointIds;
+    if (!original.Float && !original.Double)
+    {
+      original.Copy = mesh.Points;
+    }
   }
   this->InitialTriangles = mesh.GetNumberOfTriangles();
   // (The input's parts were oriented consistently where they can be: see ReadInputMesh.)

@@ -266,7 +266,7 @@ private:
 
   const TriangleCollapseOptions& Options;
   const TriangleCollapseCallbacks& Callbacks;
-  std::vector<double> OriginalPoints; // curvature method only
+  OriginalPointReader OriginalPoints; // curvature method only
   double Centre[3] = { 0.0, 0.0, 0.0 };   // the engine's points are relative to it
   CollapseMesh State;
   LevelTracker Tracker;

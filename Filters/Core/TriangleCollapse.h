@@ -82,6 +82,14 @@ struct TriangleCollapseOptions
   double MaximumNormalDeviation = 90.0;
   /// Curvature method: at most this many ancestral points per triangle fit (a strided subset).
   int MaximumFitPoints = 48;
+  /// Curvature method: the input's own point coordinates, which the fits read instead of a
+  /// copy of the mesh's points (3 * 8 bytes per point saved): x, y, z of input point
+  /// InputPointIds[v] (of v when InputPointIds is null) for the engine's vertex v, exactly the
+  /// coordinates of the mesh passed in. At most one of the two arrays; neither: the engine
+  /// copies the points it is given.
+  const float* InputPointsFloat = nullptr;
+  const double* InputPointsDouble = nullptr;
+  const long long* InputPointIds = nullptr;
 };
 
 struct TriangleCollapseCallbacks

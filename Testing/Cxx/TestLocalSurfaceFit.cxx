@@ -13,6 +13,7 @@
 #include "vtkPolyData.h"
 #include "vtkTriangleFilter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -104,7 +105,8 @@ std::vector<CollapseCandidate> EvaluateCurvature(
   TriangleCollapseOptions options;
   options.Method = CollapseMethod::Curvature;
   options.CurvatureRanking = ranking;
-  const std::vector<double> original = input.Mesh.Points;
+  OriginalPointReader original;
+  original.Copy = input.Mesh.Points;
   CollapseMesh state;
   LevelTracker tracker;
   tracker.Initialize(input.Mesh.GetNumberOfPoints(), true);
@@ -167,6 +169,50 @@ void TestFitDeviation()
     MESHLOD_CHECK_NEAR(FitDeviationCost(doubled, t) / cost, 16.0, 1e-6);
   }
 }
+
+// The original points come back relative to the engine's centre, the same numbers whether read
+// from a copy made after the move to the centre or from the input's float or double array
+// through the map from engine vertex to input point.
+void TestOriginalPointReader()
+{
+  const float floats[9] = { 1.5f, -2.25f, 3.1f, 0.1f, 0.2f, 0.3f, 7.0f, 8.5f, -9.75f };
+  double doubles[9];
+  std::copy_n(floats, 9, doubles);
+  const long long ids[2] = { 2, 0 }; // engine vertex 0 is input point 2, vertex 1 is point 0
+  OriginalPointReader copy, fromFloats, fromDoubles;
+  for (OriginalPointReader* r : { &copy, &fromFloats, &fromDoubles })
+  {
+    r->Centre[0] = 0.3;
+    r->Centre[1] = -1.7;
+    r->Centre[2] = 2.9;
+  }
+  for (const long long p : ids)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      copy.Copy.push_back(doubles[3 * p + k] - copy.Centre[k]);
+    }
+  }
+  fromFloats.Float = floats;
+  fromFloats.Ids = ids;
+  fromDoubles.Double = doubles;
+  fromDoubles.Ids = ids;
+  for (Id v = 0; v < 2; ++v)
+  {
+    double a[3], b[3], c[3];
+    copy.Get(v, a);
+    fromFloats.Get(v, b);
+    fromDoubles.Get(v, c);
+    for (int k = 0; k < 3; ++k)
+    {
+      MESHLOD_CHECK_EQ(a[k], b[k]);
+      MESHLOD_CHECK_EQ(a[k], c[k]);
+    }
+  }
+  double x[3];
+  fromFloats.Get(0, x);
+  MESHLOD_CHECK_EQ(x[0], static_cast<double>(7.0f) - 0.3);
+}
 } // namespace
 
 int TestLocalSurfaceFit(int, char*[])
@@ -174,5 +220,6 @@ int TestLocalSurfaceFit(int, char*[])
   TestExactQuadratic();
   TestCollapsePointOnSphere();
   TestFitDeviation();
+  TestOriginalPointReader();
   return meshlod::testing::Result();
 }

@@ -1313,6 +1313,60 @@ void TestFarFromOrigin()
   MESHLOD_CHECK_LE(hausdorff[1], 1.3 * hausdorff[0]);
 }
 
+// The curvature method's fits read the input's own points, through the map from the engine's
+// vertices to the input's points, instead of a copy: an input with an unused point in front
+// (every engine vertex then reads the input point after its own id) must give exactly the
+// levels of the same input without it, with float points and with double points.
+std::vector<double> CoarsestCurvatureLevel(vtkPolyData* input)
+{
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  filter->SetInputData(input);
+  filter->SetMethodToCurvature();
+  filter->SetNumberOfLevels(2);
+  filter->SetTargetReduction(0.9);
+  filter->Update();
+  std::vector<double> points;
+  vtkPolyData* coarse = Level(filter->GetHierarchy(), 2);
+  for (vtkIdType p = 0; coarse && p < coarse->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    coarse->GetPoint(p, x);
+    points.insert(points.end(), x, x + 3);
+  }
+  return points;
+}
+
+void TestCurvatureReadsInputPoints()
+{
+  vtkSmartPointer<vtkPolyData> surface = testing::MakeBumpySphereWithHoles(4);
+  vtkNew<vtkCellArray> shiftedPolys;
+  for (const testing::TriangleIds& t : testing::Triangles(surface))
+  {
+    const vtkIdType ids[3] = { t[0] + 1, t[1] + 1, t[2] + 1 };
+    shiftedPolys->InsertNextCell(3, ids);
+  }
+  for (const int type : { VTK_FLOAT, VTK_DOUBLE })
+  {
+    vtkNew<vtkPoints> points, padded;
+    points->SetDataType(type);
+    padded->SetDataType(type);
+    padded->InsertNextPoint(5.0, 5.0, 5.0); // used by no triangle
+    for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p)
+    {
+      points->InsertNextPoint(surface->GetPoint(p));
+      padded->InsertNextPoint(surface->GetPoint(p));
+    }
+    vtkNew<vtkPolyData> plain, shifted;
+    plain->SetPoints(points);
+    plain->SetPolys(surface->GetPolys());
+    shifted->SetPoints(padded);
+    shifted->SetPolys(shiftedPolys);
+    const std::vector<double> expected = CoarsestCurvatureLevel(plain);
+    MESHLOD_CHECK_GT(expected.size(), 300u);
+    MESHLOD_CHECK(CoarsestCurvatureLevel(shifted) == expected);
+  }
+}
+
 int TestTriangleCollapseDecimation(int, char*[])
 {
   TestSingleCollapse();
@@ -1329,6 +1383,7 @@ int TestTriangleCollapseDecimation(int, char*[])
   TestNoisySurface();
   TestSurfaceWithHoles();
   TestNoisySurfaceCurvature(vtkTriangleCollapseDecimation::WEIGHT, 4.0, 4.0);
+  TestCurvatureReadsInputPoints();
   TestNoisySurfaceCurvature(vtkTriangleCollapseDecimation::FIT_DEVIATION, 5.0, 6.0);
   TestSmoothSphereCurvature();
   TestNonOrientable();
