@@ -104,6 +104,7 @@ void InterpolatePointData(vtkPointData* from, const PointSources& sources, vtkId
     out->SetName(in->GetName());
     out->SetNumberOfComponents(in->GetNumberOfComponents());
     out->SetNumberOfTuples(count);
+    PrepareForWriting(out);
     if (!IsCategorical(in))
     {
       InterpolateWorker worker{ &sources };
@@ -160,6 +161,7 @@ vtkSmartPointer<vtkPoints> MakePoints(const TriangleMesh& mesh, int dataType)
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataType(dataType);
   points->SetNumberOfPoints(mesh.GetNumberOfPoints());
+  PrepareForWriting(points->GetData());
   vtkDataArray* data = points->GetData();
   vtkSMPTools::For(0, mesh.GetNumberOfPoints(), [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType p = begin; p < end; ++p)
@@ -370,6 +372,9 @@ void HierarchyBuilder::AppendLevel(LevelData&& level)
   target->SetName(names::MorphTarget);
   target->SetNumberOfComponents(3);
   target->SetNumberOfTuples(previousPoints);
+  PrepareForWriting(targetId);
+  PrepareForWriting(rank);
+  PrepareForWriting(target);
   vtkDataArray* newPoints = poly->GetPoints()->GetData();
   vtkSMPTools::For(0, previousPoints, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType p = begin; p < end; ++p)

@@ -1,5 +1,6 @@
 #include "MeshLODInputMesh.h"
 
+#include "Core/FreshMemory.h"
 #include "MeshLODInputArrays.h"
 
 #include "vtkAOSDataArrayTemplate.h"
@@ -91,6 +92,7 @@ void CopyTriangles(ArrayT* connectivity, std::vector<Id>& triangles)
 {
   const auto* src = connectivity->GetPointer(0);
   const vtkIdType n = connectivity->GetNumberOfValues();
+  ReserveFresh(triangles, n);
   triangles.resize(n);
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
@@ -419,12 +421,25 @@ vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
 }
 
 //------------------------------------------------------------------------------
+void PrepareForWriting(vtkAbstractArray* array)
+{
+  auto* data = vtkDataArray::SafeDownCast(array);
+  if (data && data->HasStandardMemoryLayout() && data->GetNumberOfValues() > 0)
+  {
+    PrepareForWriting(
+      data->GetVoidPointer(0), static_cast<std::size_t>(data->GetDataSize()) * data->GetDataTypeSize());
+  }
+}
+
+//------------------------------------------------------------------------------
 vtkSmartPointer<vtkCellArray> MakeTriangleCells(const Id* triangles, Id numberOfTriangles)
 {
   vtkNew<vtkTypeInt32Array> offsets;
   vtkNew<vtkTypeInt32Array> connectivity;
   offsets->SetNumberOfValues(static_cast<vtkIdType>(numberOfTriangles) + 1);
   connectivity->SetNumberOfValues(3 * static_cast<vtkIdType>(numberOfTriangles));
+  PrepareForWriting(offsets);
+  PrepareForWriting(connectivity);
   std::int32_t* off = offsets->GetPointer(0);
   std::int32_t* conn = connectivity->GetPointer(0);
   vtkSMPTools::For(0, static_cast<vtkIdType>(numberOfTriangles) + 1, [&](vtkIdType b, vtkIdType e) {
@@ -531,6 +546,7 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   // Points as doubles, then the finiteness check.
   const vtkIdType numberOfPoints = result.Source->GetNumberOfPoints();
   TriangleMesh& mesh = result.Mesh;
+  ReserveFresh(mesh.Points, 3 * static_cast<size_t>(numberOfPoints));
   mesh.Points.resize(3 * static_cast<size_t>(numberOfPoints));
   CopyPoints(result.Source->GetPoints()->GetData(), mesh.Points);
   const vtkIdType bad = FirstNonFinitePoint(mesh.Points);
@@ -552,6 +568,7 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   {
     CopyTriangles(polys->GetConnectivityArray32(), mesh.Triangles);
   }
+  ReserveFresh(result.SourceCellIds, numberOfTriangles);
   result.SourceCellIds.resize(numberOfTriangles);
   std::iota(result.SourceCellIds.begin(), result.SourceCellIds.end(), firstPolyCellId);
 
@@ -603,6 +620,7 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
     result.Topology.CountVertices(VertexKind::Unused) == 0)
   {
     result.UnusedPoints = 0;
+    ReserveFresh(result.SourcePointIds, numberOfPoints);
     result.SourcePointIds.resize(numberOfPoints);
     std::iota(result.SourcePointIds.begin(), result.SourcePointIds.end(), 0);
     result.SameAsInput = !changed && result.DegenerateTriangles == 0;

@@ -39,6 +39,7 @@
 
 #include <vector>
 
+class vtkAbstractArray;
 class vtkAlgorithm;
 class vtkCellArray;
 class vtkPolyData;
@@ -96,6 +97,10 @@ constexpr double MaximumInputDiagonal = 1e30;
 /// naming the range and what does not hold outside it (`what`).
 VTKFILTERSMESHLOD_EXPORT bool CheckInputDiagonal(
   double diagonal, vtkAlgorithm* caller, const char* what);
+
+/// Prepare the memory of a freshly sized array (standard memory layout) that the caller is about
+/// to write in full, as Core/FreshMemory.h describes; other arrays are left alone.
+VTKFILTERSMESHLOD_EXPORT void PrepareForWriting(vtkAbstractArray* array);
 
 /// Triangles as a vtkCellArray built in one go (32-bit storage, which halves its memory).
 VTKFILTERSMESHLOD_EXPORT vtkSmartPointer<vtkCellArray> MakeTriangleCells(

@@ -21,6 +21,7 @@ set(meshlod_private_headers
   Filters/Core/CollapseSchedule.h
   Filters/Core/Collapser.h
   Filters/Core/EdgeMerge.h
+  Filters/Core/FreshMemory.h
   Filters/Core/IndexedHeap.h
   Filters/Core/LevelData.h
   Filters/Core/LevelTracker.h
@@ -51,6 +52,7 @@ set(meshlod_sources
   Filters/Core/CollapseSchedule.cxx
   Filters/Core/Collapser.cxx
   Filters/Core/EdgeMerge.cxx
+  Filters/Core/FreshMemory.cxx
   Filters/Core/GreedySchedule.cxx
   Filters/Core/IndependentSetSchedule.cxx
   Filters/Core/LevelTracker.cxx

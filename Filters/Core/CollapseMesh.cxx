@@ -1,4 +1,6 @@
 #include "CollapseMesh.h"
+
+#include "FreshMemory.h"
 #include "Vector3.h"
 
 #include "vtkSMPTools.h"
@@ -59,9 +61,13 @@ void CollapseMesh::Initialize(
   const TriangleMesh& mesh = this->Mesh;
   const Id nv = mesh.GetNumberOfPoints();
   const Id nt = mesh.GetNumberOfTriangles();
+  ReserveFresh(this->Flags, nv);
   this->Flags.assign(nv, 0);
+  ReserveFresh(this->Quadrics, nv);
   this->Quadrics.assign(nv, Quadric());
+  ReserveFresh(this->Facing, 3 * static_cast<std::size_t>(nv));
   this->Facing.assign(3 * static_cast<std::size_t>(nv), 0.0f);
+  ReserveFresh(this->Survivor, nv);
   this->Survivor.resize(nv);
   std::iota(this->Survivor.begin(), this->Survivor.end(), 0);
   this->AliveTriangles = nt;
@@ -125,6 +131,7 @@ void CollapseMesh::Initialize(
     }
   });
 
+  ReserveFresh(this->TriangleCounts, nv);
   this->TriangleCounts.resize(nv);
   for (Id v = 0; v < nv; ++v)
   {
@@ -135,7 +142,9 @@ void CollapseMesh::Initialize(
   this->Rows.Offsets.swap(topology.VertexTriangles.Offsets);
   this->Rows.Triangles.swap(topology.VertexTriangles.Triangles);
   topology = TriangleTopology();
+  ReserveFresh(this->ChainNext, nv);
   this->ChainNext.assign(nv, InvalidId);
+  ReserveFresh(this->ChainTail, nv);
   this->ChainTail.resize(nv);
   std::iota(this->ChainTail.begin(), this->ChainTail.end(), 0);
 }
@@ -145,7 +154,9 @@ void CollapseMesh::RebuildRows()
 {
   this->Rows.Build(this->Mesh); // reuses the rows' memory
   const Id nv = this->Mesh.GetNumberOfPoints();
+  ReserveFresh(this->ChainNext, nv);
   this->ChainNext.assign(nv, InvalidId);
+  ReserveFresh(this->ChainTail, nv);
   this->ChainTail.resize(nv);
   std::iota(this->ChainTail.begin(), this->ChainTail.end(), 0);
   this->AliveAtLastRebuild = this->AliveTriangles;

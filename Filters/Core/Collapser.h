@@ -8,6 +8,7 @@
 
 #include "CollapseCosts.h"
 #include "CollapseMesh.h"
+#include "FreshMemory.h"
 #include "IndexedHeap.h"
 #include "LevelTracker.h"
 #include "TriangleCollapse.h"
@@ -35,7 +36,9 @@ class ParkingLot
 public:
   void Reset(Id triangles, Id vertices)
   {
+    ReserveFresh(this->ParkedAt, triangles);
     this->ParkedAt.assign(triangles, -1);
+    ReserveFresh(this->ChangedAt, vertices);
     this->ChangedAt.assign(vertices, 0);
     this->Waiting.clear();
   }

@@ -1,7 +1,8 @@
 #include "LevelTracker.h"
 
-#include "LevelData.h"
 #include "CollapseMesh.h"
+#include "FreshMemory.h"
+#include "LevelData.h"
 #include "ParallelCompact.h"
 
 #include "vtkSMPThreadLocal.h"
@@ -24,21 +25,30 @@ constexpr std::int64_t CountingSortSlack = 4096;
 
 void LevelTracker::Initialize(Id numberOfPoints, bool trackAncestors)
 {
+  ReserveFresh(this->GroupNext, numberOfPoints);
   this->GroupNext.assign(numberOfPoints, InvalidId);
+  ReserveFresh(this->GroupTail, numberOfPoints);
   this->GroupTail.resize(numberOfPoints);
   std::iota(this->GroupTail.begin(), this->GroupTail.end(), 0);
+  ReserveFresh(this->GroupWeight, numberOfPoints);
   this->GroupWeight.assign(numberOfPoints, 1.0f);
+  ReserveFresh(this->GroupSequence, numberOfPoints);
   this->GroupSequence.assign(numberOfPoints, -1);
+  ReserveFresh(this->PreviousIndex, numberOfPoints);
   this->PreviousIndex.resize(numberOfPoints);
   std::iota(this->PreviousIndex.begin(), this->PreviousIndex.end(), 0);
+  ReserveFresh(this->PreviousVertices, numberOfPoints);
   this->PreviousVertices = this->PreviousIndex;
   this->AncestorNext.clear();
   this->AncestorTail.clear();
   this->AncestorTotal.clear();
   if (trackAncestors)
   {
+    ReserveFresh(this->AncestorNext, numberOfPoints);
     this->AncestorNext.assign(numberOfPoints, InvalidId);
+    ReserveFresh(this->AncestorTail, numberOfPoints);
     this->AncestorTail = this->GroupTail;
+    ReserveFresh(this->AncestorTotal, numberOfPoints);
     this->AncestorTotal.assign(numberOfPoints, 1);
   }
 }
@@ -92,6 +102,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   const ParallelCompaction liveVertices(static_cast<Id>(candidates.size()), liveVertex);
   const Id count = liveVertices.Count();
   std::vector<Id>& newIndex = this->NewIndex; // kept between snapshots: no fresh pages each time
+  ReserveFresh(newIndex, nv);
   newIndex.resize(nv);
   vtkSMPTools::Fill(newIndex.begin(), newIndex.end(), InvalidId);
   std::vector<Id> vertices(count);
@@ -102,6 +113,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
 
   level = LevelData();
   level.EstimatedError = estimatedError;
+  ReserveFresh(level.Mesh.Points, 3 * static_cast<std::size_t>(count));
   level.Mesh.Points.resize(3 * static_cast<std::size_t>(count));
   vtkSMPTools::For(0, count, [&](Id begin, Id end) {
     for (Id i = begin; i < end; ++i)
@@ -114,7 +126,9 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   const auto liveTriangle = [&](Id i) { return state.IsAlive(triangleAt(i)); };
   const ParallelCompaction liveTriangles(
     all ? nt : static_cast<Id>(triangles->size()), liveTriangle);
+  ReserveFresh(level.Mesh.Triangles, 3 * static_cast<std::size_t>(liveTriangles.Count()));
   level.Mesh.Triangles.resize(3 * static_cast<std::size_t>(liveTriangles.Count()));
+  ReserveFresh(level.LevelZeroTriangle, liveTriangles.Count());
   level.LevelZeroTriangle.resize(liveTriangles.Count());
   liveTriangles.Write(liveTriangle, [&](Id i, Id slot) {
     const Id t = triangleAt(i);
@@ -128,6 +142,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
 
   // Point sources: the previous level's points of each group, with their weights.
   PointSources& sources = level.Sources;
+  ReserveFresh(sources.Offsets, static_cast<std::size_t>(count) + 1);
   sources.Offsets.resize(static_cast<std::size_t>(count) + 1);
   sources.Offsets[0] = 0;
   vtkSMPTools::For(0, count, [&](Id begin, Id end) {
@@ -145,7 +160,9 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   {
     sources.Offsets[i + 1] += sources.Offsets[i];
   }
+  ReserveFresh(sources.Parents, sources.Offsets[count]);
   sources.Parents.resize(sources.Offsets[count]);
+  ReserveFresh(sources.Weights, sources.Offsets[count]);
   sources.Weights.resize(sources.Offsets[count]);
   vtkSMPTools::For(0, count, [&](Id begin, Id end) {
     for (Id i = begin; i < end; ++i)
@@ -191,6 +208,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   {
     // The numbers lie in a short range (parallel rounds leave gaps in it): a counting sort.
     std::vector<Id>& byCollapse = this->ByCollapse; // collapse number - first -> point
+    ReserveFresh(byCollapse, static_cast<std::size_t>(span));
     byCollapse.resize(static_cast<std::size_t>(span));
     vtkSMPTools::Fill(byCollapse.begin(), byCollapse.end(), InvalidId);
     const std::int64_t first = range.first;
@@ -216,7 +234,9 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
     });
   }
   const Id previousCount = static_cast<Id>(this->PreviousVertices.size());
+  ReserveFresh(level.Target, previousCount);
   level.Target.resize(previousCount);
+  ReserveFresh(level.Rank, previousCount);
   level.Rank.resize(previousCount);
   vtkSMPTools::For(0, previousCount, [&](Id begin, Id end) {
     for (Id k = begin; k < end; ++k)

@@ -1,4 +1,5 @@
 // Core topology on tiny hand-made meshes with exact expected results.
+#include "Core/FreshMemory.h"
 #include "Core/TriangleMesh.h"
 #include "MeshLODInputMesh.h"
 #include "MeshLODTestCheck.h"
@@ -9,6 +10,8 @@
 #include "vtkPolyData.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <numeric>
 #include <vector>
 
 namespace
@@ -216,6 +219,38 @@ void TestCompaction()
   MESHLOD_CHECK_EQ(compact.Triangle(0)[1], 2);
   MESHLOD_CHECK_EQ(compact.Triangle(0)[2], 1);
 }
+
+// The memory hints change neither contents nor sizes: ReserveFresh keeps what a vector holds and
+// gives room for n elements; PrepareForWriting on memory already written leaves it as it was
+// (a hint that discarded pages, such as MADV_DONTNEED, would zero them).
+void TestFreshMemory()
+{
+  std::vector<std::int32_t> values(1000);
+  std::iota(values.begin(), values.end(), 7);
+  const std::size_t n = 3 << 20; // 12 MB of int32: room for huge pages inside
+  meshlod::ReserveFresh(values, n);
+  MESHLOD_CHECK_GE(values.capacity(), n);
+  MESHLOD_CHECK_EQ(values.size(), 1000u);
+  MESHLOD_CHECK_EQ(values[0], 7);
+  MESHLOD_CHECK_EQ(values[999], 1006);
+  values.resize(n);
+  std::iota(values.begin(), values.end(), -5);
+  meshlod::PrepareForWriting(values.data(), n * sizeof(std::int32_t));
+  bool intact = true;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    intact = intact && values[i] == static_cast<std::int32_t>(i) - 5;
+  }
+  MESHLOD_CHECK(intact);
+  // Small requests and capacity already there: nothing moves.
+  const std::int32_t* before = values.data();
+  meshlod::ReserveFresh(values, n / 2);
+  MESHLOD_CHECK(values.data() == before);
+  std::vector<double> small(10, 1.5);
+  meshlod::ReserveFresh(small, 100);
+  MESHLOD_CHECK_EQ(small.size(), 10u);
+  MESHLOD_CHECK_EQ(small[9], 1.5);
+}
 } // namespace
 
 int TestTriangleMesh(int, char*[])
@@ -226,5 +261,6 @@ int TestTriangleMesh(int, char*[])
   TestNonManifold();
   TestHole();
   TestCompaction();
+  TestFreshMemory();
   return meshlod::testing::Result();
 }

@@ -1,0 +1,43 @@
+#include "FreshMemory.h"
+
+#include <cstdint>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#ifndef MADV_POPULATE_WRITE
+#define MADV_POPULATE_WRITE 23 // Linux 5.14; older kernels answer EINVAL, which is ignored
+#endif
+#endif
+
+namespace meshlod
+{
+//------------------------------------------------------------------------------
+void PrepareForWriting(void* data, std::size_t bytes)
+{
+#if defined(__linux__)
+  if (bytes < FreshMemoryMinimumBytes)
+  {
+    return;
+  }
+  // The whole pages inside the range (a partial page at either end is shared with other data).
+  const long page = sysconf(_SC_PAGESIZE);
+  if (page <= 0)
+  {
+    return;
+  }
+  const std::uintptr_t mask = static_cast<std::uintptr_t>(page) - 1;
+  const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t first = (begin + mask) & ~mask;
+  const std::uintptr_t last = (begin + bytes) & ~mask;
+  if (last > first)
+  {
+    // Maps the pages that are not mapped yet and leaves the others, and their contents, alone.
+    madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+  }
+#else
+  (void)data;
+  (void)bytes;
+#endif
+}
+} // namespace meshlod
