@@ -13,6 +13,7 @@
 #ifndef meshlod_FreshMemory_h
 #define meshlod_FreshMemory_h
 
+#include <algorithm>
 #include <cstddef>
 #include <iterator>
 #include <vector>
@@ -27,7 +28,8 @@ constexpr std::size_t FreshMemoryMinimumBytes = 256 * 1024;
 void PrepareForWriting(void* data, std::size_t bytes);
 
 /// Make room in v for n elements, on prepared memory when the room is new and large; the
-/// elements v holds are kept. Call before the assign() or resize() that fills all n.
+/// elements v holds are kept. Call before the assign() or resize() that fills all n. A vector
+/// that grows again gets twice its room, as std::vector would (only n elements are prepared).
 template <typename T>
 void ReserveFresh(std::vector<T>& v, std::size_t n)
 {
@@ -36,7 +38,7 @@ void ReserveFresh(std::vector<T>& v, std::size_t n)
     return;
   }
   std::vector<T> fresh;
-  fresh.reserve(n);
+  fresh.reserve(v.capacity() > 0 ? std::max(n, 2 * v.capacity()) : n);
   PrepareForWriting(fresh.data(), n * sizeof(T));
   fresh.insert(fresh.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
   v.swap(fresh);

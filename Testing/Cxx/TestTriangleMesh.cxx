@@ -246,6 +246,13 @@ void TestFreshMemory()
   const std::int32_t* before = values.data();
   meshlod::ReserveFresh(values, n / 2);
   MESHLOD_CHECK(values.data() == before);
+  // A vector that grows again gets twice its room, as std::vector's own growth gives: growing
+  // one element at a time must not copy everything each time.
+  const std::size_t room = values.capacity();
+  meshlod::ReserveFresh(values, room + 1);
+  MESHLOD_CHECK_GE(values.capacity(), 2 * room);
+  MESHLOD_CHECK_EQ(values.size(), n);
+  MESHLOD_CHECK_EQ(values[n - 1], static_cast<std::int32_t>(n) - 6);
   std::vector<double> small(10, 1.5);
   meshlod::ReserveFresh(small, 100);
   MESHLOD_CHECK_EQ(small.size(), 10u);
