@@ -96,9 +96,9 @@
  *   for the next round, whose grid is shifted by half a cell. The curvature method's greedy
  *   order is serial (its fits reach beyond a collapse's cells); it re-fits the triangles one
  *   ring out from a collapse lazily, when they come to the top of the queue (exactly the same
- *   order wherever no cost falls below half its old value), and takes 2-3.5x the time
+ *   order wherever no cost falls below half its old value), and takes 2-3x the time
  *   vtkQuadricDecimation needs for one 10% target, for its whole hierarchy (the quadric
- *   method's parallel rounds: 0.25-0.5x on one thread, Benchmarks/RESULTS.md).
+ *   method's parallel rounds: 0.25-0.4x on one thread, Benchmarks/RESULTS.md).
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
