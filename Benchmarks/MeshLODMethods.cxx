@@ -120,8 +120,9 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     }));
   Method curvature = TriangleCollapse("vtkTriangleCollapseDecimation curvature",
     "curvature method with its defaults: CurvatureCost FIT_DEVIATION (the new triangles' "
-    "squared deviation from the fitted surface, or the merged planes' where larger), greedy "
-    "schedule (serial for this method), 8 levels; one-thread row only",
+    "squared deviation from the fitted surface, or the merged planes' where larger), operator "
+    "TRIANGLES_AND_EDGES (an edge instead of a triangle only at a crease), greedy schedule "
+    "(serial for this method), 8 levels; one-thread row only",
     [](vtkTriangleCollapseDecimation* d) { d->SetMethodToCurvature(); });
   curvature.Parallel = false;
   methods.push_back(curvature);

@@ -57,7 +57,8 @@
  *   triangles), so that the sheets, the curve and every other edge's triangle count stay; its
  *   position minimises the merged planes of all its sheets, which hold it to the curve. Other
  *   non-manifold vertices (where curves meet or end, bow ties) are locked; the curvature
- *   method, which collapses triangles, leaves every curve as it is;
+ *   method with the TRIANGLES operator, which collapses triangles only, leaves every curve as
+ *   it is;
  * - the merged vertex's neighbourhood is one disk or half-disk (no pinch, no non-manifold
  *   edge, no duplicate triangle, same genus), tested without regard to winding, so that
  *   non-orientable surfaces such as a Moebius strip or Boy's surface simplify like any other;
@@ -248,8 +249,16 @@ public:
    * collapses (an edge collapse is half a triangle collapse: two vertices merge, two triangles
    * disappear). Forcing three vertices to one point costs accuracy (on the benchmark meshes
    * TRIANGLES has about 1.2-1.3 times the RMS error of vtkQuadricDecimation at equal triangle
-   * counts; TRIANGLES_AND_EDGES matches it), which the default avoids. The curvature method
-   * always collapses triangles.
+   * counts; TRIANGLES_AND_EDGES matches it), which the default avoids. Curvature method, ranked
+   * by FIT_DEVIATION: TRIANGLES collapses triangles only (paper 000); TRIANGLES_AND_EDGES
+   * (default) collapses a triangle's cheapest edge instead only where the triangle collapse
+   * would cost more than a million times that edge's merged planes (a crease, such as the rim
+   * of a faceted solid, where the edge runs along the rim and the triangle would cut across it,
+   * or a flat face) or cannot collapse (a corner on a curve where sheets meet). On the
+   * isosurfaces and the other smooth or noisy meshes of the benchmark the levels are those of
+   * triangle collapses (within the benchmark's noise); a faceted cylinder at 1% keeps its shape
+   * exactly instead of losing its rims (11% of the diagonal with TRIANGLES), and the surfaces
+   * of a segmented volume reach 1% instead of stopping at 3.3%. With WEIGHT, triangles only.
    */
   vtkSetClampMacro(Operator, int, TRIANGLES, TRIANGLES_AND_EDGES);
   vtkGetMacro(Operator, int);
@@ -354,13 +363,11 @@ public:
    * and 2.6-3.4x for WEIGHT (Benchmarks/RESULTS.md): the paper's weight is dominated by the
    * area, so it evens out the triangles' sizes instead of keeping small ones where the surface
    * bends. On the other meshes of the benchmark (a torus, noisy spheres, Boy's surface, a
-   * superquadric) FIT_DEVIATION is at 1.0-1.8x and 1.0-1.3x. Where it falls short: a faceted
-   * solid (flat faces, sharp rims) is exact only down to about 18% of its triangles, and
-   * below that whole-triangle collapses cannot keep its long thin facets (11% of the diagonal
-   * at 1%; the quadric method stays exact); a very rough input with high-valence poles (a UV
-   * sphere with radial noise of an edge) gets long triangles across it at coarse levels (at
-   * 1% 4x vtkQuadricDecimation's Hausdorff distance, WEIGHT 2x); and where sheets meet the
-   * curves are kept, so such a mesh stops short of a low count.
+   * superquadric, a faceted cylinder and the surfaces of a segmented volume, with the default
+   * operator: see SetOperator) FIT_DEVIATION is at 1.0-1.8x and 1.0-1.4x. Where it falls
+   * short: a very rough input with high-valence poles (a UV sphere with radial noise of an
+   * edge) gets long triangles across it at coarse levels (at 1% 4x vtkQuadricDecimation's
+   * Hausdorff distance, WEIGHT 2x).
    */
   vtkSetClampMacro(CurvatureCost, int, WEIGHT, FIT_DEVIATION);
   vtkGetMacro(CurvatureCost, int);

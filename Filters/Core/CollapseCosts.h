@@ -142,6 +142,9 @@ private:
   // TrianglesAndEdges: fill the candidate with the triangle collapse or, when that costs more
   // than TriangleCostFactor times the cheapest edge collapse, with that edge.
   bool EvaluateTriangleOrEdge(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const;
+  // Curvature method (FitDeviation), TrianglesAndEdges: the triangle collapse, or its cheapest
+  // edge where the triangle costs CreaseEdgeFactor times more (a crease) or cannot collapse.
+  bool EvaluateTriangleOrCreaseEdge(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const;
   // The cheapest edge of the triangle into c; returns its cost and the dearest edge's in worst.
   double BestEdge(const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const;
   // The collapse of edge (a, b), from the scratch's spokes when it is one of them.
