@@ -97,9 +97,9 @@
  *   for the next round, whose grid is shifted by half a cell. The curvature method's greedy
  *   order is serial (its fits reach beyond a collapse's cells); it re-fits the triangles one
  *   ring out from a collapse lazily, when they come to the top of the queue (exactly the same
- *   order wherever no cost falls below half its old value), and takes 2-3x the time
+ *   order wherever no cost falls below half its old value), and takes 2-3.5x the time
  *   vtkQuadricDecimation needs for one 10% target, for its whole hierarchy (the quadric
- *   method's parallel rounds: 0.25-0.4x on one thread, Benchmarks/RESULTS.md).
+ *   method's parallel rounds: 0.25-0.45x on one thread, Benchmarks/RESULTS.md).
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
@@ -359,7 +359,7 @@ public:
    * WEIGHT is paper 000's weight W = A (wk kappa + wa alpha + wv V) from the three weights
    * above, at the collapse point described in the class docs. The fit and the legality rules
    * are the same for both. On the benchmark isosurfaces FIT_DEVIATION's Hausdorff distance
-   * is 0.86-1.30x and its RMS distance 1.07-1.20x vtkQuadricDecimation's, against 4.7-8.9x
+   * is 0.97-1.37x and its RMS distance 1.13-1.22x vtkQuadricDecimation's, against 4.7-8.9x
    * and 2.6-3.4x for WEIGHT (Benchmarks/RESULTS.md): the paper's weight is dominated by the
    * area, so it evens out the triangles' sizes instead of keeping small ones where the surface
    * bends. On the other meshes of the benchmark (a torus, noisy spheres, Boy's surface, a
