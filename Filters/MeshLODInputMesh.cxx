@@ -423,8 +423,10 @@ vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
 //------------------------------------------------------------------------------
 void PrepareForWriting(vtkAbstractArray* array)
 {
+  // Arrays of values stored one after the other (not bits, strings, or one array per component).
   auto* data = vtkDataArray::SafeDownCast(array);
-  if (data && data->HasStandardMemoryLayout() && data->GetNumberOfValues() > 0)
+  if (data && data->GetArrayType() == vtkAbstractArray::AoSDataArrayTemplate &&
+    data->GetNumberOfValues() > 0)
   {
     PrepareForWriting(
       data->GetVoidPointer(0), static_cast<std::size_t>(data->GetDataSize()) * data->GetDataTypeSize());

@@ -21,9 +21,6 @@
 #include <type_traits>
 #include <utility>
 
-static_assert(std::is_same<vtkIdType, long long>::value,
-  "TriangleCollapseOptions::InputPointIds reads vtkIdType as long long");
-
 vtkStandardNewMacro(vtkTriangleCollapseDecimation);
 
 namespace
@@ -184,20 +181,27 @@ int vtkTriangleCollapseDecimation::RequestData(
   options.BoundaryWeight = this->BoundaryWeight;
   options.MaximumNormalDeviation = this->MaximumNormalDeviation;
   options.MaximumFitPoints = this->MaximumFitPoints;
-  if (options.Method == meshlod::CollapseMethod::Curvature && mesh.Source->GetPoints())
+  // The curvature method's fits read the original points from the input itself (alive until
+  // the run ends) instead of a copy of them; the engine copies them when they are stored
+  // otherwise, or when point ids are not 64-bit (the engine reads the map as long long).
+  vtkPoints* inputPoints = mesh.Source->GetPoints();
+  vtkDataArray* coordinates = inputPoints ? inputPoints->GetData() : nullptr;
+  if constexpr (std::is_same<vtkIdType, long long>::value)
   {
-    // The fits read the original points from the input itself (alive until the run ends)
-    // instead of a copy of them.
-    vtkDataArray* coordinates = mesh.Source->GetPoints()->GetData();
-    if (auto* floats = vtkFloatArray::FastDownCast(coordinates))
+    if (options.Method == meshlod::CollapseMethod::Curvature && coordinates &&
+      coordinates->GetNumberOfComponents() == 3)
     {
-      options.InputPointsFloat = floats->GetPointer(0);
+      if (auto* floats = vtkFloatArray::FastDownCast(coordinates))
+      {
+        options.InputPointsFloat = floats->GetPointer(0);
+      }
+      else if (auto* doubles = vtkDoubleArray::FastDownCast(coordinates))
+      {
+        options.InputPointsDouble = doubles->GetPointer(0);
+      }
+      // (The same type here: the cast only lets the discarded branch compile.)
+      options.InputPointIds = reinterpret_cast<const long long*>(mesh.SourcePointIds.data());
     }
-    else if (auto* doubles = vtkDoubleArray::FastDownCast(coordinates))
-    {
-      options.InputPointsDouble = doubles->GetPointer(0);
-    }
-    options.InputPointIds = mesh.SourcePointIds.data();
   }
   const std::int64_t inputTriangles = mesh.Mesh.GetNumberOfTriangles();
   this->NumberOfSwaps = 0;

@@ -57,8 +57,8 @@
  *   triangles), so that the sheets, the curve and every other edge's triangle count stay; its
  *   position minimises the merged planes of all its sheets, which hold it to the curve. Other
  *   non-manifold vertices (where curves meet or end, bow ties) are locked; the curvature
- *   method with the TRIANGLES operator, which collapses triangles only, leaves every curve as
- *   it is;
+ *   method leaves every curve as it is unless it may collapse edges (FIT_DEVIATION with
+ *   TRIANGLES_AND_EDGES, see SetOperator);
  * - the merged vertex's neighbourhood is one disk or half-disk (no pinch, no non-manifold
  *   edge, no duplicate triangle, same genus), tested without regard to winding, so that
  *   non-orientable surfaces such as a Moebius strip or Boy's surface simplify like any other;

@@ -33,6 +33,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSOADataArrayTemplate.h"
 #include "vtkQuadricDecimation.h"
 #include "vtkSMPTools.h"
 #include "vtkSphereSource.h"
@@ -842,16 +843,20 @@ void TestFacetedCylinder()
   // triangle collapses only (paper 000's operator) cannot.
   SurfaceDistanceOptions options;
   options.SamplesPerSurface = 20000;
+  // (The quadric method lands within one triangle of its target; the curvature method does not
+  // trade its last collapse for an edge and may end up to 3 below. The last run's lower bound
+  // records what the operator changes: lower it if triangle collapses alone ever keep the rims.)
   const struct
   {
     int Method, Operator;
+    int Landing;
     double MaximumHausdorff, MinimumHausdorff; // fractions of the diagonal
   } runs[] = {
     { vtkTriangleCollapseDecimation::QUADRIC, vtkTriangleCollapseDecimation::TRIANGLES_AND_EDGES,
-      2e-7, 0.0 },
+      1, 2e-7, 0.0 },
     { vtkTriangleCollapseDecimation::CURVATURE,
-      vtkTriangleCollapseDecimation::TRIANGLES_AND_EDGES, 2e-7, 0.0 },
-    { vtkTriangleCollapseDecimation::CURVATURE, vtkTriangleCollapseDecimation::TRIANGLES, 1.0,
+      vtkTriangleCollapseDecimation::TRIANGLES_AND_EDGES, 3, 2e-7, 0.0 },
+    { vtkTriangleCollapseDecimation::CURVATURE, vtkTriangleCollapseDecimation::TRIANGLES, 3, 1.0,
       0.01 },
   };
   for (const auto& run : runs)
@@ -870,7 +875,7 @@ void TestFacetedCylinder()
       return;
     }
     MESHLOD_CHECK_LE(coarse->GetNumberOfPolys(), 160);
-    MESHLOD_CHECK_LE(160 - coarse->GetNumberOfPolys(), 3);
+    MESHLOD_CHECK_LE(160 - coarse->GetNumberOfPolys(), run.Landing);
     const SurfaceDistance distance = MeasureSurfaceDistance(input, coarse, options);
     std::cerr << "  faceted cylinder, " << filter->GetMethodAsString() << ", "
               << filter->GetOperatorAsString() << ", at " << coarse->GetNumberOfPolys()
@@ -1336,9 +1341,11 @@ void TestFarFromOrigin()
 }
 
 // The curvature method's fits read the input's own points, through the map from the engine's
-// vertices to the input's points, instead of a copy: an input with an unused point in front
-// (every engine vertex then reads the input point after its own id) must give exactly the
-// levels of the same input without it, with float points and with double points.
+// vertices to the input's points and less the engine's centre, instead of a copy: far from the
+// origin, an input with an unused point in front (every engine vertex then reads the input point
+// after its own id) must give exactly the levels of the same input without it, with float points
+// and with double points, and double points stored one array per component (which the engine
+// copies instead) the same levels again.
 std::vector<double> CoarsestCurvatureLevel(vtkPolyData* input)
 {
   vtkNew<vtkTriangleCollapseDecimation> filter;
@@ -1361,12 +1368,20 @@ std::vector<double> CoarsestCurvatureLevel(vtkPolyData* input)
 void TestCurvatureReadsInputPoints()
 {
   vtkSmartPointer<vtkPolyData> surface = testing::MakeBumpySphereWithHoles(4);
+  const double offset[3] = { 1.0e5, -3.0e4, 512.0 };
   vtkNew<vtkCellArray> shiftedPolys;
   for (const testing::TriangleIds& t : testing::Triangles(surface))
   {
     const vtkIdType ids[3] = { t[0] + 1, t[1] + 1, t[2] + 1 };
     shiftedPolys->InsertNextCell(3, ids);
   }
+  const auto point = [&](vtkIdType p, double x[3]) {
+    surface->GetPoint(p, x);
+    for (int k = 0; k < 3; ++k)
+    {
+      x[k] += offset[k];
+    }
+  };
   for (const int type : { VTK_FLOAT, VTK_DOUBLE })
   {
     vtkNew<vtkPoints> points, padded;
@@ -1375,8 +1390,10 @@ void TestCurvatureReadsInputPoints()
     padded->InsertNextPoint(5.0, 5.0, 5.0); // used by no triangle
     for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p)
     {
-      points->InsertNextPoint(surface->GetPoint(p));
-      padded->InsertNextPoint(surface->GetPoint(p));
+      double x[3];
+      point(p, x);
+      points->InsertNextPoint(x);
+      padded->InsertNextPoint(x);
     }
     vtkNew<vtkPolyData> plain, shifted;
     plain->SetPoints(points);
@@ -1386,6 +1403,24 @@ void TestCurvatureReadsInputPoints()
     const std::vector<double> expected = CoarsestCurvatureLevel(plain);
     MESHLOD_CHECK_GT(expected.size(), 300u);
     MESHLOD_CHECK(CoarsestCurvatureLevel(shifted) == expected);
+    if (type == VTK_DOUBLE)
+    {
+      vtkNew<vtkSOADataArrayTemplate<double>> components;
+      components->SetNumberOfComponents(3);
+      components->SetNumberOfTuples(surface->GetNumberOfPoints());
+      for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p)
+      {
+        double x[3];
+        point(p, x);
+        components->SetTuple(p, x);
+      }
+      vtkNew<vtkPoints> copied;
+      copied->SetData(components);
+      vtkNew<vtkPolyData> separate;
+      separate->SetPoints(copied);
+      separate->SetPolys(surface->GetPolys());
+      MESHLOD_CHECK(CoarsestCurvatureLevel(separate) == expected);
+    }
   }
 }
 
