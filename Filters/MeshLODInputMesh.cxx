@@ -92,8 +92,7 @@ void CopyTriangles(ArrayT* connectivity, std::vector<Id>& triangles)
 {
   const auto* src = connectivity->GetPointer(0);
   const vtkIdType n = connectivity->GetNumberOfValues();
-  ReserveFresh(triangles, n);
-  triangles.resize(n);
+  ResizeFresh(triangles, n);
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
     {
@@ -428,8 +427,9 @@ void PrepareForWriting(vtkAbstractArray* array)
   if (data && data->GetArrayType() == vtkAbstractArray::AoSDataArrayTemplate &&
     data->GetNumberOfValues() > 0)
   {
-    PrepareForWriting(
-      data->GetVoidPointer(0), static_cast<std::size_t>(data->GetDataSize()) * data->GetDataTypeSize());
+    const std::size_t bytes =
+      static_cast<std::size_t>(data->GetDataSize()) * data->GetDataTypeSize();
+    PrepareForWriting(data->GetVoidPointer(0), bytes);
   }
 }
 
@@ -548,8 +548,7 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   // Points as doubles, then the finiteness check.
   const vtkIdType numberOfPoints = result.Source->GetNumberOfPoints();
   TriangleMesh& mesh = result.Mesh;
-  ReserveFresh(mesh.Points, 3 * static_cast<size_t>(numberOfPoints));
-  mesh.Points.resize(3 * static_cast<size_t>(numberOfPoints));
+  ResizeFresh(mesh.Points, 3 * static_cast<size_t>(numberOfPoints));
   CopyPoints(result.Source->GetPoints()->GetData(), mesh.Points);
   const vtkIdType bad = FirstNonFinitePoint(mesh.Points);
   if (bad >= 0)
@@ -570,8 +569,7 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   {
     CopyTriangles(polys->GetConnectivityArray32(), mesh.Triangles);
   }
-  ReserveFresh(result.SourceCellIds, numberOfTriangles);
-  result.SourceCellIds.resize(numberOfTriangles);
+  ResizeFresh(result.SourceCellIds, numberOfTriangles);
   std::iota(result.SourceCellIds.begin(), result.SourceCellIds.end(), firstPolyCellId);
 
   bool changed = result.Source != original;
@@ -622,8 +620,7 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
     result.Topology.CountVertices(VertexKind::Unused) == 0)
   {
     result.UnusedPoints = 0;
-    ReserveFresh(result.SourcePointIds, numberOfPoints);
-    result.SourcePointIds.resize(numberOfPoints);
+    ResizeFresh(result.SourcePointIds, numberOfPoints);
     std::iota(result.SourcePointIds.begin(), result.SourcePointIds.end(), 0);
     result.SameAsInput = !changed && result.DegenerateTriangles == 0;
     return mesh.GetNumberOfTriangles() > 0 ? InputStatus::Valid : InputStatus::Empty;

@@ -61,14 +61,10 @@ void CollapseMesh::Initialize(
   const TriangleMesh& mesh = this->Mesh;
   const Id nv = mesh.GetNumberOfPoints();
   const Id nt = mesh.GetNumberOfTriangles();
-  ReserveFresh(this->Flags, nv);
-  this->Flags.assign(nv, 0);
-  ReserveFresh(this->Quadrics, nv);
-  this->Quadrics.assign(nv, Quadric());
-  ReserveFresh(this->Facing, 3 * static_cast<std::size_t>(nv));
-  this->Facing.assign(3 * static_cast<std::size_t>(nv), 0.0f);
-  ReserveFresh(this->Survivor, nv);
-  this->Survivor.resize(nv);
+  AssignFresh(this->Flags, nv, 0);
+  AssignFresh(this->Quadrics, nv, Quadric());
+  AssignFresh(this->Facing, 3 * static_cast<std::size_t>(nv), 0.0f);
+  ResizeFresh(this->Survivor, nv);
   std::iota(this->Survivor.begin(), this->Survivor.end(), 0);
   this->AliveTriangles = nt;
   this->AliveAtLastRebuild = nt;
@@ -131,8 +127,7 @@ void CollapseMesh::Initialize(
     }
   });
 
-  ReserveFresh(this->TriangleCounts, nv);
-  this->TriangleCounts.resize(nv);
+  ResizeFresh(this->TriangleCounts, nv);
   for (Id v = 0; v < nv; ++v)
   {
     this->TriangleCounts[v] = adj.Count(v);
@@ -142,10 +137,15 @@ void CollapseMesh::Initialize(
   this->Rows.Offsets.swap(topology.VertexTriangles.Offsets);
   this->Rows.Triangles.swap(topology.VertexTriangles.Triangles);
   topology = TriangleTopology();
-  ReserveFresh(this->ChainNext, nv);
-  this->ChainNext.assign(nv, InvalidId);
-  ReserveFresh(this->ChainTail, nv);
-  this->ChainTail.resize(nv);
+  this->ResetChains();
+}
+
+//------------------------------------------------------------------------------
+void CollapseMesh::ResetChains()
+{
+  const Id nv = this->Mesh.GetNumberOfPoints();
+  AssignFresh(this->ChainNext, nv, InvalidId);
+  ResizeFresh(this->ChainTail, nv);
   std::iota(this->ChainTail.begin(), this->ChainTail.end(), 0);
 }
 
@@ -153,12 +153,7 @@ void CollapseMesh::Initialize(
 void CollapseMesh::RebuildRows()
 {
   this->Rows.Build(this->Mesh); // reuses the rows' memory
-  const Id nv = this->Mesh.GetNumberOfPoints();
-  ReserveFresh(this->ChainNext, nv);
-  this->ChainNext.assign(nv, InvalidId);
-  ReserveFresh(this->ChainTail, nv);
-  this->ChainTail.resize(nv);
-  std::iota(this->ChainTail.begin(), this->ChainTail.end(), 0);
+  this->ResetChains();
   this->AliveAtLastRebuild = this->AliveTriangles;
 }
 

@@ -224,6 +224,8 @@ private:
   /// to them become keeps a triangle, and no two ring triangles become one; with `alongCurve`,
   /// no apex is joined to both members by edges of more than two triangles.
   bool MergeKeepsLinks(const Star& star, bool alongCurve) const;
+  /// Every vertex's chain back to its own row alone.
+  void ResetChains();
 
   VertexTriangleAdjacency Rows; // as of the last rebuild
   std::vector<Id> TriangleCounts; // per vertex, live triangles around it

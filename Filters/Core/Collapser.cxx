@@ -72,12 +72,9 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   this->Rules.ForbidValenceThreeForEdges = options.Schedule == CollapseSchedule::IndependentSets;
   this->Targets = options.LevelTargets;
   this->LastEmitted = this->InitialTriangles;
-  ReserveFresh(this->Costs, this->InitialTriangles);
-  this->Costs.assign(this->InitialTriangles, InfiniteCost);
-  ReserveFresh(this->Spreads, this->InitialTriangles);
-  this->Spreads.assign(this->InitialTriangles, 0.0f);
-  ReserveFresh(this->Choices, this->InitialTriangles);
-  this->Choices.assign(this->InitialTriangles, TriangleChoice);
+  AssignFresh(this->Costs, this->InitialTriangles, InfiniteCost);
+  AssignFresh(this->Spreads, this->InitialTriangles, 0.0f);
+  AssignFresh(this->Choices, this->InitialTriangles, TriangleChoice);
   this->Lot.Reset(this->InitialTriangles, this->State.Mesh.GetNumberOfPoints());
 }
 

@@ -36,10 +36,8 @@ class ParkingLot
 public:
   void Reset(Id triangles, Id vertices)
   {
-    ReserveFresh(this->ParkedAt, triangles);
-    this->ParkedAt.assign(triangles, -1);
-    ReserveFresh(this->ChangedAt, vertices);
-    this->ChangedAt.assign(vertices, 0);
+    AssignFresh(this->ParkedAt, triangles, -1);
+    AssignFresh(this->ChangedAt, vertices, 0);
     this->Waiting.clear();
   }
 

@@ -43,6 +43,23 @@ void ReserveFresh(std::vector<T>& v, std::size_t n)
   fresh.insert(fresh.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
   v.swap(fresh);
 }
+
+/// v.resize(n) or v.resize(n, value), on prepared memory when the room is new and large.
+template <typename T, typename... Value>
+void ResizeFresh(std::vector<T>& v, std::size_t n, const Value&... value)
+{
+  ReserveFresh(v, n);
+  v.resize(n, value...);
+}
+
+/// v.assign(n, value), on prepared memory when the room is new and large.
+template <typename T>
+void AssignFresh(
+  std::vector<T>& v, std::size_t n, const typename std::vector<T>::value_type& value)
+{
+  ReserveFresh(v, n);
+  v.assign(n, value);
+}
 } // namespace meshlod
 
 #endif

@@ -25,17 +25,12 @@ constexpr std::int64_t CountingSortSlack = 4096;
 
 void LevelTracker::Initialize(Id numberOfPoints, bool trackAncestors)
 {
-  ReserveFresh(this->GroupNext, numberOfPoints);
-  this->GroupNext.assign(numberOfPoints, InvalidId);
-  ReserveFresh(this->GroupTail, numberOfPoints);
-  this->GroupTail.resize(numberOfPoints);
+  AssignFresh(this->GroupNext, numberOfPoints, InvalidId);
+  ResizeFresh(this->GroupTail, numberOfPoints);
   std::iota(this->GroupTail.begin(), this->GroupTail.end(), 0);
-  ReserveFresh(this->GroupWeight, numberOfPoints);
-  this->GroupWeight.assign(numberOfPoints, 1.0f);
-  ReserveFresh(this->GroupSequence, numberOfPoints);
-  this->GroupSequence.assign(numberOfPoints, -1);
-  ReserveFresh(this->PreviousIndex, numberOfPoints);
-  this->PreviousIndex.resize(numberOfPoints);
+  AssignFresh(this->GroupWeight, numberOfPoints, 1.0f);
+  AssignFresh(this->GroupSequence, numberOfPoints, -1);
+  ResizeFresh(this->PreviousIndex, numberOfPoints);
   std::iota(this->PreviousIndex.begin(), this->PreviousIndex.end(), 0);
   ReserveFresh(this->PreviousVertices, numberOfPoints);
   this->PreviousVertices = this->PreviousIndex;
@@ -44,12 +39,10 @@ void LevelTracker::Initialize(Id numberOfPoints, bool trackAncestors)
   this->AncestorTotal.clear();
   if (trackAncestors)
   {
-    ReserveFresh(this->AncestorNext, numberOfPoints);
-    this->AncestorNext.assign(numberOfPoints, InvalidId);
+    AssignFresh(this->AncestorNext, numberOfPoints, InvalidId);
     ReserveFresh(this->AncestorTail, numberOfPoints);
     this->AncestorTail = this->GroupTail;
-    ReserveFresh(this->AncestorTotal, numberOfPoints);
-    this->AncestorTotal.assign(numberOfPoints, 1);
+    AssignFresh(this->AncestorTotal, numberOfPoints, 1);
   }
 }
 
@@ -102,8 +95,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   const ParallelCompaction liveVertices(static_cast<Id>(candidates.size()), liveVertex);
   const Id count = liveVertices.Count();
   std::vector<Id>& newIndex = this->NewIndex; // kept between snapshots: no fresh pages each time
-  ReserveFresh(newIndex, nv);
-  newIndex.resize(nv);
+  ResizeFresh(newIndex, nv);
   vtkSMPTools::Fill(newIndex.begin(), newIndex.end(), InvalidId);
   std::vector<Id> vertices(count);
   liveVertices.Write(liveVertex, [&](Id i, Id slot) {
@@ -113,8 +105,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
 
   level = LevelData();
   level.EstimatedError = estimatedError;
-  ReserveFresh(level.Mesh.Points, 3 * static_cast<std::size_t>(count));
-  level.Mesh.Points.resize(3 * static_cast<std::size_t>(count));
+  ResizeFresh(level.Mesh.Points, 3 * static_cast<std::size_t>(count));
   vtkSMPTools::For(0, count, [&](Id begin, Id end) {
     for (Id i = begin; i < end; ++i)
     {
@@ -126,10 +117,8 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   const auto liveTriangle = [&](Id i) { return state.IsAlive(triangleAt(i)); };
   const ParallelCompaction liveTriangles(
     all ? nt : static_cast<Id>(triangles->size()), liveTriangle);
-  ReserveFresh(level.Mesh.Triangles, 3 * static_cast<std::size_t>(liveTriangles.Count()));
-  level.Mesh.Triangles.resize(3 * static_cast<std::size_t>(liveTriangles.Count()));
-  ReserveFresh(level.LevelZeroTriangle, liveTriangles.Count());
-  level.LevelZeroTriangle.resize(liveTriangles.Count());
+  ResizeFresh(level.Mesh.Triangles, 3 * static_cast<std::size_t>(liveTriangles.Count()));
+  ResizeFresh(level.LevelZeroTriangle, liveTriangles.Count());
   liveTriangles.Write(liveTriangle, [&](Id i, Id slot) {
     const Id t = triangleAt(i);
     const Id* tri = mesh.Triangle(t);
@@ -142,8 +131,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
 
   // Point sources: the previous level's points of each group, with their weights.
   PointSources& sources = level.Sources;
-  ReserveFresh(sources.Offsets, static_cast<std::size_t>(count) + 1);
-  sources.Offsets.resize(static_cast<std::size_t>(count) + 1);
+  ResizeFresh(sources.Offsets, static_cast<std::size_t>(count) + 1);
   sources.Offsets[0] = 0;
   vtkSMPTools::For(0, count, [&](Id begin, Id end) {
     for (Id i = begin; i < end; ++i)
@@ -160,10 +148,8 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   {
     sources.Offsets[i + 1] += sources.Offsets[i];
   }
-  ReserveFresh(sources.Parents, sources.Offsets[count]);
-  sources.Parents.resize(sources.Offsets[count]);
-  ReserveFresh(sources.Weights, sources.Offsets[count]);
-  sources.Weights.resize(sources.Offsets[count]);
+  ResizeFresh(sources.Parents, sources.Offsets[count]);
+  ResizeFresh(sources.Weights, sources.Offsets[count]);
   vtkSMPTools::For(0, count, [&](Id begin, Id end) {
     for (Id i = begin; i < end; ++i)
     {
@@ -208,8 +194,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   {
     // The numbers lie in a short range (parallel rounds leave gaps in it): a counting sort.
     std::vector<Id>& byCollapse = this->ByCollapse; // collapse number - first -> point
-    ReserveFresh(byCollapse, static_cast<std::size_t>(span));
-    byCollapse.resize(static_cast<std::size_t>(span));
+    ResizeFresh(byCollapse, static_cast<std::size_t>(span));
     vtkSMPTools::Fill(byCollapse.begin(), byCollapse.end(), InvalidId);
     const std::int64_t first = range.first;
     collapsedGroups.Write(collapsed, [&](Id i, Id) {
@@ -234,10 +219,8 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
     });
   }
   const Id previousCount = static_cast<Id>(this->PreviousVertices.size());
-  ReserveFresh(level.Target, previousCount);
-  level.Target.resize(previousCount);
-  ReserveFresh(level.Rank, previousCount);
-  level.Rank.resize(previousCount);
+  ResizeFresh(level.Target, previousCount);
+  ResizeFresh(level.Rank, previousCount);
   vtkSMPTools::For(0, previousCount, [&](Id begin, Id end) {
     for (Id k = begin; k < end; ++k)
     {

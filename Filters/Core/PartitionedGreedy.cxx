@@ -207,8 +207,7 @@ double Collapser::CostQuantile(double count)
   // quantile does not depend on the samples' order.)
   constexpr Id Ahead = 8;
   std::vector<double>& sample = this->CostSample;
-  ReserveFresh(sample, (live + stride - 1) / stride);
-  sample.resize((live + stride - 1) / stride);
+  ResizeFresh(sample, (live + stride - 1) / stride);
   const Id samples = static_cast<Id>(sample.size());
   vtkSMPThreadLocal<Id> counted(0);
   vtkSMPTools::For(0, samples, [&](Id begin, Id end) {
@@ -250,8 +249,7 @@ std::uint32_t Collapser::ListCandidates(double threshold, const CellGrid* grid)
   const Id live = static_cast<Id>(this->LiveTriangles.size());
   if (grid != nullptr)
   {
-    ReserveFresh(this->Owner, mesh.GetNumberOfPoints());
-    this->Owner.resize(mesh.GetNumberOfPoints(), NoCell);
+    ResizeFresh(this->Owner, mesh.GetNumberOfPoints(), NoCell);
     const Id liveVertices = static_cast<Id>(this->LiveVertices.size());
     vtkSMPTools::For(0, liveVertices, [&](Id begin, Id end) {
       for (Id i = begin; i < end; ++i)
@@ -262,8 +260,7 @@ std::uint32_t Collapser::ListCandidates(double threshold, const CellGrid* grid)
     });
   }
   // Every candidate's cell (0 without a grid), NoCell for the others.
-  ReserveFresh(this->CandidateCell, live);
-  this->CandidateCell.resize(live);
+  ResizeFresh(this->CandidateCell, live);
   vtkSMPTools::For(0, live, [&](Id begin, Id end) {
     for (Id i = begin; i < end; ++i)
     {
@@ -318,8 +315,7 @@ std::uint32_t Collapser::ListCandidates(double threshold, const CellGrid* grid)
     }
   }
   this->CellFirst[cells] = total;
-  ReserveFresh(this->Candidates, total);
-  this->Candidates.resize(total);
+  ResizeFresh(this->Candidates, total);
   forEachCandidate([&](Id i, Id& slot) { this->Candidates[slot++] = this->LiveTriangles[i]; });
   return cells;
 }
@@ -373,8 +369,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
   // proportion to its candidates), and up to 3 triangles more with its last collapse (in the
   // serial round, which lands on a level, 1 unless no edge of that last triangle may collapse:
   // LandOnTarget).
-  ReserveFresh(this->HeapPositions, this->State.Mesh.GetNumberOfTriangles());
-  this->HeapPositions.resize(this->State.Mesh.GetNumberOfTriangles(), InvalidId);
+  ResizeFresh(this->HeapPositions, this->State.Mesh.GetNumberOfTriangles(), InvalidId);
   const Id cellsBusy = static_cast<Id>(busy.size());
   std::vector<CellOutcome> outcomes(cellsBusy);
   vtkSMPThreadLocal<CellScratch> scratch;
@@ -478,11 +473,9 @@ void Collapser::ListLive()
   const auto merged = [&](Id v) { return this->State.Survivor[v] != v; };
   if (this->LiveTriangles.empty())
   {
-    ReserveFresh(this->LiveTriangles, this->State.Mesh.GetNumberOfTriangles());
-    this->LiveTriangles.resize(this->State.Mesh.GetNumberOfTriangles());
+    ResizeFresh(this->LiveTriangles, this->State.Mesh.GetNumberOfTriangles());
     std::iota(this->LiveTriangles.begin(), this->LiveTriangles.end(), 0);
-    ReserveFresh(this->LiveVertices, this->State.Mesh.GetNumberOfPoints());
-    this->LiveVertices.resize(this->State.Mesh.GetNumberOfPoints());
+    ResizeFresh(this->LiveVertices, this->State.Mesh.GetNumberOfPoints());
     std::iota(this->LiveVertices.begin(), this->LiveVertices.end(), 0);
     this->PrepareGrid();
   }

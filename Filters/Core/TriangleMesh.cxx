@@ -32,8 +32,7 @@ void VertexTriangleAdjacency::Build(const Id* triangles, Id numberOfTriangles, I
   // The offsets double as the fill cursors (row v is filled from Offsets[v] on, which ends at
   // the old Offsets[v + 1]), and are shifted back afterwards: no other array is needed, and
   // rebuilding reuses the rows' memory.
-  ReserveFresh(this->Offsets, static_cast<size_t>(numberOfPoints) + 1);
-  this->Offsets.assign(static_cast<size_t>(numberOfPoints) + 1, 0);
+  AssignFresh(this->Offsets, static_cast<size_t>(numberOfPoints) + 1, 0);
   for (Id t = 0; t < numberOfTriangles; ++t)
   {
     const Id* tri = triangles + 3 * static_cast<size_t>(t);
@@ -49,8 +48,7 @@ void VertexTriangleAdjacency::Build(const Id* triangles, Id numberOfTriangles, I
   {
     this->Offsets[v + 1] += this->Offsets[v];
   }
-  ReserveFresh(this->Triangles, this->Offsets[numberOfPoints]);
-  this->Triangles.resize(this->Offsets[numberOfPoints]);
+  ResizeFresh(this->Triangles, this->Offsets[numberOfPoints]);
   for (Id t = 0; t < numberOfTriangles; ++t)
   {
     const Id* tri = triangles + 3 * static_cast<size_t>(t);
@@ -133,8 +131,7 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
   const Id nt = mesh.GetNumberOfTriangles();
   const Id nv = mesh.GetNumberOfPoints();
   this->VertexTriangles.Build(mesh);
-  ReserveFresh(this->EdgeNeighbors, 3 * static_cast<size_t>(nt));
-  this->EdgeNeighbors.assign(3 * static_cast<size_t>(nt), BoundaryEdge);
+  AssignFresh(this->EdgeNeighbors, 3 * static_cast<size_t>(nt), BoundaryEdge);
   std::vector<std::uint8_t>().swap(this->BoundaryFlags);
 
   // Edge neighbours: for edge (a, b) of t, the other triangles in a's row that contain b.
@@ -173,8 +170,7 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
 
   // Vertex kinds: walk the fan of the first incident triangle; any triangle not reached means
   // several fans meet at the vertex.
-  ReserveFresh(this->VertexKinds, nv);
-  this->VertexKinds.assign(nv, VertexKind::Unused);
+  AssignFresh(this->VertexKinds, nv, VertexKind::Unused);
   vtkSMPTools::For(0, nv, [&](Id begin, Id end) {
     for (Id v = begin; v < end; ++v)
     {
@@ -254,8 +250,7 @@ double BoxDiagonal(const double lo[3], const double hi[3])
 void TriangleTopology::KeepBoundaryFlagsOnly()
 {
   const Id nt = static_cast<Id>(this->EdgeNeighbors.size() / 3);
-  ReserveFresh(this->BoundaryFlags, nt);
-  this->BoundaryFlags.assign(nt, 0);
+  AssignFresh(this->BoundaryFlags, nt, 0);
   for (Id t = 0; t < nt; ++t)
   {
     for (int k = 0; k < 3; ++k)
@@ -404,10 +399,8 @@ void CompactMesh(const TriangleMesh& in, TriangleMesh& out, CompactionMaps& maps
 {
   const Id nt = in.GetNumberOfTriangles();
   const Id nv = in.GetNumberOfPoints();
-  ReserveFresh(maps.PointMap, nv);
-  maps.PointMap.assign(nv, InvalidId);
-  ReserveFresh(maps.TriangleMap, nt);
-  maps.TriangleMap.assign(nt, InvalidId);
+  AssignFresh(maps.PointMap, nv, InvalidId);
+  AssignFresh(maps.TriangleMap, nt, InvalidId);
   maps.KeptTriangles.clear();
   maps.KeptPoints.clear();
 
@@ -434,10 +427,8 @@ void CompactMesh(const TriangleMesh& in, TriangleMesh& out, CompactionMaps& maps
 
   const Id keptTriangles = static_cast<Id>(maps.KeptTriangles.size());
   const Id keptPoints = static_cast<Id>(maps.KeptPoints.size());
-  ReserveFresh(out.Points, 3 * static_cast<size_t>(keptPoints));
-  out.Points.resize(3 * static_cast<size_t>(keptPoints));
-  ReserveFresh(out.Triangles, 3 * static_cast<size_t>(keptTriangles));
-  out.Triangles.resize(3 * static_cast<size_t>(keptTriangles));
+  ResizeFresh(out.Points, 3 * static_cast<size_t>(keptPoints));
+  ResizeFresh(out.Triangles, 3 * static_cast<size_t>(keptTriangles));
   vtkSMPTools::For(0, keptPoints, [&](Id begin, Id end) {
     for (Id v = begin; v < end; ++v)
     {
