@@ -486,34 +486,47 @@ void CollapseCostModel::FitSurface(
   }
 
   // The stencil: every vertex of the triangles around the three corners (current positions):
-  // each corner and, from every triangle of its fan, the two other vertices. (Not the corner
-  // three times per triangle: fewer duplicates to sort, and this sort was a tenth of the run.
-  // Only the vertices that follow the corner would do around a consistently oriented closed
-  // fan, but not across the seam of a non-orientable surface.)
+  // the corners and, from every triangle of their fans, the other vertices. (Only the vertices
+  // that follow the corner would do around a consistently oriented closed fan, but not across
+  // the seam of a non-orientable surface.)
   std::vector<Id>& stencil = scratch.Vertices;
   std::vector<Id>& rimEdges = scratch.RimEdges;
   stencil.clear();
   rimEdges.clear();
   const auto member = [&](Id x) { return x == tri[0] || x == tri[1] || x == tri[2]; };
+  // Duplicates are dropped as they come (a dozen or so distinct vertices, most seen two to four
+  // times): sorting the list with its duplicates had been a tenth of the curvature method's
+  // time. The sort that follows puts the distinct ones in the order the fit sums them in.
+  const auto add = [&](Id x) {
+    if (std::find(stencil.begin(), stencil.end(), x) == stencil.end())
+    {
+      stencil.push_back(x);
+    }
+  };
+  stencil.push_back(tri[0]);
+  stencil.push_back(tri[1]);
+  stencil.push_back(tri[2]);
   for (int k = 0; k < 3; ++k)
   {
     const Id corner = tri[k];
-    stencil.push_back(corner);
     this->State.ForEachTriangle(corner, [&](Id s) {
       const Id* st = this->State.Mesh.Triangle(s);
       const int c = CornerOf(st, corner);
       const Id next = st[(c + 1) % 3], previous = st[(c + 2) % 3];
-      stencil.push_back(next);
-      stencil.push_back(previous);
       if (!member(next) && !member(previous))
       {
+        add(next);
+        add(previous);
         rimEdges.push_back(next); // a ring triangle: its far edge bounds a new triangle
         rimEdges.push_back(previous);
+      }
+      else
+      {
+        add(member(next) ? previous : next);
       }
     });
   }
   std::sort(stencil.begin(), stencil.end());
-  stencil.erase(std::unique(stencil.begin(), stencil.end()), stencil.end());
 
   std::vector<double>& points = scratch.Points;
   points.resize(3 * stencil.size());
@@ -533,15 +546,12 @@ void CollapseCostModel::FitSurface(
   Id index = 0;
   for (int k = 0; k < 3; ++k)
   {
-    this->Tracker.ForEachAncestor(tri[k], [&](Id u) {
-      if (index++ % stride == 0)
-      {
-        double x[3];
-        this->OriginalPoints.Get(u, x);
-        points.push_back(x[0]);
-        points.push_back(x[1]);
-        points.push_back(x[2]);
-      }
+    this->Tracker.ForEachAncestor(tri[k], stride, index, [&](Id u) {
+      double x[3];
+      this->OriginalPoints.Get(u, x);
+      points.push_back(x[0]);
+      points.push_back(x[1]);
+      points.push_back(x[2]);
     });
   }
 

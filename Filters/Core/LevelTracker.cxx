@@ -34,14 +34,15 @@ void LevelTracker::Initialize(Id numberOfPoints, bool trackAncestors)
   std::iota(this->PreviousIndex.begin(), this->PreviousIndex.end(), 0);
   ReserveFresh(this->PreviousVertices, numberOfPoints);
   this->PreviousVertices = this->PreviousIndex;
-  this->AncestorNext.clear();
-  this->AncestorTail.clear();
+  this->Ancestors.clear();
+  this->AncestorStart.clear();
   this->AncestorTotal.clear();
   if (trackAncestors)
   {
-    AssignFresh(this->AncestorNext, numberOfPoints, InvalidId);
-    ReserveFresh(this->AncestorTail, numberOfPoints);
-    this->AncestorTail = this->GroupTail;
+    ReserveFresh(this->Ancestors, numberOfPoints);
+    this->Ancestors = this->PreviousIndex;
+    ResizeFresh(this->AncestorStart, static_cast<std::size_t>(numberOfPoints) + 1);
+    std::iota(this->AncestorStart.begin(), this->AncestorStart.end(), 0);
     AssignFresh(this->AncestorTotal, numberOfPoints, 1);
   }
 }
@@ -63,10 +64,8 @@ void LevelTracker::Merge(const Id* members, const double* weights, int count, st
     const Id v = members[m];
     this->GroupNext[this->GroupTail[survivor]] = v;
     this->GroupTail[survivor] = this->GroupTail[v];
-    if (!this->AncestorNext.empty())
+    if (!this->AncestorTotal.empty())
     {
-      this->AncestorNext[this->AncestorTail[survivor]] = v;
-      this->AncestorTail[survivor] = this->AncestorTail[v];
       this->AncestorTotal[survivor] += this->AncestorTotal[v];
     }
   }
@@ -234,6 +233,11 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
     }
   });
 
+  if (!this->AncestorTotal.empty())
+  {
+    this->LayOutAncestors(vertices);
+  }
+
   // New groups for the next level.
   vtkSMPTools::For(0, count, [&](Id begin, Id end) {
     for (Id i = begin; i < end; ++i)
@@ -247,6 +251,35 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
     }
   });
   this->PreviousVertices.swap(vertices);
+}
+
+//------------------------------------------------------------------------------
+// One run per vertex of the new level: the runs of its group's vertices, in group order. Needs
+// the last level's groups and numbering (before they are reset).
+void LevelTracker::LayOutAncestors(const std::vector<Id>& vertices)
+{
+  const Id count = static_cast<Id>(vertices.size());
+  std::vector<Id> start(static_cast<std::size_t>(count) + 1);
+  start[0] = 0;
+  for (Id i = 0; i < count; ++i)
+  {
+    start[i + 1] = start[i] + this->AncestorTotal[vertices[i]];
+  }
+  ResizeFresh(this->NewAncestors, start[count]);
+  vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
+    {
+      Id* out = this->NewAncestors.data() + start[i];
+      for (Id u = vertices[i]; u != InvalidId; u = this->GroupNext[u])
+      {
+        const Id run = this->PreviousIndex[u];
+        out = std::copy(this->Ancestors.begin() + this->AncestorStart[run],
+          this->Ancestors.begin() + this->AncestorStart[run + 1], out);
+      }
+    }
+  });
+  this->Ancestors.swap(this->NewAncestors);
+  this->AncestorStart.swap(start);
 }
 
 } // namespace meshlod

@@ -7,8 +7,12 @@
 // snapshot the groups give the new level's point sources, the correspondence (MorphTargetId)
 // and the collapse order (CollapseRank) of the previous level's points.
 //
-// It also keeps, for the whole run, the chain of original vertices merged into each vertex
-// (its ancestral points, paper 000 section 7).
+// It also keeps, for the whole run, the original vertices merged into each vertex (its
+// ancestral points, paper 000 section 7): at each snapshot they are laid out one contiguous run
+// per vertex of the new level, and a vertex's ancestral points are the runs of the vertices in
+// its group, in the order the merges joined them. A fit that takes every k-th of them steps
+// from run to run instead of walking a chain of every one (which had been a tenth of the
+// curvature method's time at the coarse levels, with a few hundred ancestral points per fit).
 #ifndef meshlod_LevelTracker_h
 #define meshlod_LevelTracker_h
 
@@ -39,27 +43,39 @@ public:
   void Snapshot(const CollapseMesh& mesh, double estimatedError, LevelData& level,
     const std::vector<Id>* triangles = nullptr);
 
-  /// Ancestral points of v (original vertex ids, v first).
+  /// Every `stride`-th ancestral point of v (original vertex ids, v first): those whose
+  /// position in a sequence that reaches v's first point at `index` is a multiple of `stride`;
+  /// `index` is advanced past v's points (so that consecutive calls stride over several
+  /// vertices' points as one sequence).
   template <typename F>
-  void ForEachAncestor(Id v, F&& f) const
+  void ForEachAncestor(Id v, Id stride, Id& index, F&& f) const
   {
-    for (Id u = v; u != InvalidId; u = this->AncestorNext[u])
+    for (Id u = v; u != InvalidId; u = this->GroupNext[u])
     {
-      f(u);
+      const Id run = this->PreviousIndex[u];
+      const Id begin = this->AncestorStart[run], end = this->AncestorStart[run + 1];
+      for (Id k = begin + (stride - index % stride) % stride; k < end; k += stride)
+      {
+        f(this->Ancestors[k]);
+      }
+      index += end - begin;
     }
   }
   Id AncestorCount(Id v) const { return this->AncestorTotal[v]; }
 
 private:
+  void LayOutAncestors(const std::vector<Id>& vertices);
+
   std::vector<Id> GroupNext;
   std::vector<Id> GroupTail;
   std::vector<float> GroupWeight;
   std::vector<std::int64_t> GroupSequence; // last collapse that touched the group, -1: none
   std::vector<Id> PreviousIndex;           // vertex -> its index in the last level
   std::vector<Id> PreviousVertices;        // index in the last level -> vertex
-  std::vector<Id> AncestorNext;
-  std::vector<Id> AncestorTail;
-  std::vector<Id> AncestorTotal;
+  std::vector<Id> Ancestors;      // the runs of the last level's vertices, in its order
+  std::vector<Id> AncestorStart;  // index in the last level -> its run; one more at the end
+  std::vector<Id> AncestorTotal;  // vertex -> number of its ancestral points
+  std::vector<Id> NewAncestors;   // Snapshot's scratch
   std::vector<Id> NewIndex;   // Snapshot's scratch
   std::vector<Id> ByCollapse; // Snapshot's scratch
 };

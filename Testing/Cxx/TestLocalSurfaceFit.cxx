@@ -2,6 +2,7 @@
 // expectations on analytic surfaces.
 #include "Core/CollapseCosts.h"
 #include "Core/CollapseMesh.h"
+#include "Core/LevelData.h"
 #include "Core/LevelTracker.h"
 #include "Core/LocalSurfaceFit.h"
 #include "MeshLODInputMesh.h"
@@ -213,6 +214,111 @@ void TestOriginalPointReader()
   fromFloats.Get(0, x);
   MESHLOD_CHECK_EQ(x[0], static_cast<double>(7.0f) - 0.3);
 }
+
+// The ancestral points the fits read (every k-th of the original vertices merged into a vertex,
+// in the order the merges joined them) against a plain list per vertex, through collapses and
+// level snapshots (which lay them out anew): triangle collapses on an icosphere, the first legal
+// one each time, a snapshot after every 12.
+void TestAncestralPoints()
+{
+  vtkNew<vtkTriangleFilter> caller;
+  InputMesh input;
+  ReadInputMesh(testing::MakeIcosphere(2), caller, input);
+  const Id nv = input.Mesh.GetNumberOfPoints();
+  CollapseMesh state;
+  LevelTracker tracker;
+  tracker.Initialize(nv, true);
+  state.Initialize(std::move(input.Mesh), std::move(input.Topology), 1.0, 0.0);
+  std::vector<std::vector<Id>> expected(nv);
+  for (Id v = 0; v < nv; ++v)
+  {
+    expected[v].push_back(v);
+  }
+  CollapseRules rules;
+  Star star;
+  int collapses = 0, snapshots = 0;
+  bool matches = true;
+  for (std::int64_t sequence = 0; sequence < 60; ++sequence)
+  {
+    bool collapsed = false;
+    for (Id t = 0; t < state.Mesh.GetNumberOfTriangles() && !collapsed; ++t)
+    {
+      if (!state.IsAlive(t) || !state.GatherStar(state.Mesh.Triangle(t), 3, star))
+      {
+        continue;
+      }
+      double x[3] = { 0, 0, 0 }, normal[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          x[c] += state.Mesh.Point(star.Members[k])[c] / 3.0;
+        }
+      }
+      TriangleNormal(state.Mesh.Point(star.Members[0]), state.Mesh.Point(star.Members[1]),
+        state.Mesh.Point(star.Members[2]), normal);
+      if (state.IsLegal(star, x, normal, rules) != Legality::Legal)
+      {
+        continue;
+      }
+      const Id members[3] = { star.Members[0], star.Members[1], star.Members[2] };
+      const double weights[3] = { 1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0 };
+      MESHLOD_CHECK_EQ(state.Apply(star, x), members[0]);
+      tracker.Merge(members, weights, 3, sequence);
+      for (int k = 1; k < 3; ++k)
+      {
+        expected[members[0]].insert(
+          expected[members[0]].end(), expected[members[k]].begin(), expected[members[k]].end());
+      }
+      state.AliveTriangles -= static_cast<Id>(star.Dying.size());
+      collapsed = true;
+      ++collapses;
+    }
+    if (sequence % 12 == 11)
+    {
+      LevelData level;
+      tracker.Snapshot(state, 0.0, level);
+      ++snapshots;
+    }
+    // Every live vertex, several strides and starting positions.
+    for (Id v = 0; v < nv; ++v)
+    {
+      if (state.Survivor[v] != v || state.TriangleCount(v) == 0)
+      {
+        continue;
+      }
+      matches = matches && tracker.AncestorCount(v) == static_cast<Id>(expected[v].size());
+      for (const Id stride : { 1, 2, 3, 7 })
+      {
+        for (const Id start : { 0, 1, 5 })
+        {
+          std::vector<Id> got, want;
+          Id index = start;
+          tracker.ForEachAncestor(v, stride, index, [&](Id u) { got.push_back(u); });
+          for (std::size_t p = 0; p < expected[v].size(); ++p)
+          {
+            if ((start + static_cast<Id>(p)) % stride == 0)
+            {
+              want.push_back(expected[v][p]);
+            }
+          }
+          matches = matches && got == want &&
+            index == start + static_cast<Id>(expected[v].size());
+        }
+      }
+    }
+  }
+  MESHLOD_CHECK_EQ(collapses, 60);
+  MESHLOD_CHECK_EQ(snapshots, 5);
+  MESHLOD_CHECK(matches);
+  // Sixty triangle collapses merged 120 vertices into others: someone holds several.
+  std::size_t most = 0;
+  for (const std::vector<Id>& list : expected)
+  {
+    most = std::max(most, list.size());
+  }
+  MESHLOD_CHECK_GE(most, 5u);
+}
 } // namespace
 
 int TestLocalSurfaceFit(int, char*[])
@@ -221,5 +327,6 @@ int TestLocalSurfaceFit(int, char*[])
   TestCollapsePointOnSphere();
   TestFitDeviation();
   TestOriginalPointReader();
+  TestAncestralPoints();
   return meshlod::testing::Result();
 }
