@@ -118,14 +118,20 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
       d->SetScheduleToIndependentSets();
       d->SetOperatorToTriangles();
     }));
-  Method curvature = TriangleCollapse("vtkTriangleCollapseDecimation curvature",
+  methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation curvature",
     "curvature method with its defaults: CurvatureCost FIT_DEVIATION (the new triangles' "
     "squared deviation from the fitted surface, or the merged planes' where larger), operator "
-    "TRIANGLES_AND_EDGES (an edge instead of a triangle only at a crease), greedy schedule "
-    "(serial for this method), 8 levels; one-thread row only",
-    [](vtkTriangleCollapseDecimation* d) { d->SetMethodToCurvature(); });
-  curvature.Parallel = false;
-  methods.push_back(curvature);
+    "TRIANGLES_AND_EDGES (an edge instead of a triangle only at a crease), greedy schedule in "
+    "parallel rounds (PartitionedGreedy), 8 levels",
+    [](vtkTriangleCollapseDecimation* d) { d->SetMethodToCurvature(); }));
+  Method strictCurvature = TriangleCollapse("vtkTriangleCollapseDecimation curvature strict greedy",
+    "as vtkTriangleCollapseDecimation curvature, with PartitionedGreedy off; one-thread row only",
+    [](vtkTriangleCollapseDecimation* d) {
+      d->SetMethodToCurvature();
+      d->PartitionedGreedyOff();
+    });
+  strictCurvature.Parallel = false;
+  methods.push_back(strictCurvature);
   Method paper = TriangleCollapse("vtkTriangleCollapseDecimation curvature paper weight",
     "curvature method as in paper 000: CurvatureCost WEIGHT (weights 1/3 each), "
     "IndependentSets schedule, 8 levels",

@@ -90,16 +90,18 @@
  *
  * Two schedules order the collapses (SetSchedule):
  * - Greedy (the default): one collapse at a time from a priority queue, cheapest first, with the
- *   costs around each collapse updated (paper 002, section 2.4). With the quadric method and
- *   PartitionedGreedy on (the default) the greedy order runs in parallel rounds: each round
- *   cuts space into the cells of a grid and runs the greedy loop in every cell at once, up to a
- *   cost threshold shared by all cells; a collapse that would reach into another cell waits
- *   for the next round, whose grid is shifted by half a cell. The curvature method's greedy
- *   order is serial (its fits reach beyond a collapse's cells); it re-fits the triangles one
- *   ring out from a collapse lazily, when they come to the top of the queue (exactly the same
- *   order wherever no cost falls below half its old value), and takes 2-3.5x the time
- *   vtkQuadricDecimation needs for one 10% target, for its whole hierarchy (the quadric
- *   method's parallel rounds: 0.25-0.45x on one thread, Benchmarks/RESULTS.md).
+ *   costs around each collapse updated (paper 002, section 2.4). With PartitionedGreedy on (the
+ *   default) the greedy order runs in parallel rounds: each round cuts space into the cells of
+ *   a grid and runs the greedy loop in every cell at once, up to a cost threshold shared by all
+ *   cells; a collapse that would reach into another cell waits for the next round, whose grid
+ *   is shifted by half a cell. The curvature method re-fits the triangles one ring out from a
+ *   collapse lazily, when they come to the top of the queue (exactly the same order wherever no
+ *   cost falls below half its old value); in the rounds, those with a corner in another cell
+ *   are marked for re-fitting at the end of the round, and a fit reads only its own cell's
+ *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
+ *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its
+ *   whole hierarchy the curvature method takes 2-3x the time vtkQuadricDecimation needs for
+ *   one 10% target on one thread (the quadric method: 0.25-0.45x, Benchmarks/RESULTS.md).
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
@@ -229,9 +231,10 @@ public:
 
   ///@{
   /**
-   * Greedy schedule, quadric method: make the greedy order's collapses in parallel, in rounds
-   * over the cells of a spatial grid (on, the default), or strictly one after the other
-   * (off: the order of paper 002, on one thread). Each round takes the cheapest collapses up to a
+   * Greedy schedule: make the greedy order's collapses in parallel, in rounds over the cells of
+   * a spatial grid (on, the default), or strictly one after the other (off: the order of paper
+   * 002, on one thread). The curvature method ranked by paper 000's weight (CurvatureCost
+   * WEIGHT) always takes the strict order. Each round takes the cheapest collapses up to a
    * cost threshold shared by all cells; the last collapses before each level are serial, so the
    * levels land on their triangle counts either way. The output does not depend on the number
    * of threads.

@@ -563,6 +563,10 @@ void CollapseCostModel::FitSurface(
     const std::size_t firstRing = stencil.size();
     for (std::size_t i = 0; i < firstRing; ++i)
     {
+      if (scratch.Owner != nullptr && scratch.Owner[stencil[i]] != scratch.Block)
+      {
+        continue;
+      }
       this->State.ForEachTriangle(stencil[i], [&](Id s) {
         const Id* st = this->State.Mesh.Triangle(s);
         for (int k = 0; k < 3; ++k)

@@ -7,6 +7,7 @@
 #include "TriangleMesh.h"
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace meshlod
@@ -71,6 +72,10 @@ struct CostScratch
     EdgeSolution Solution;
   };
   std::vector<RecentEdge> RecentEdges; // a power of two entries, or none
+  /// Collapses in parallel cells (PartitionedGreedy.cxx): a fit reads the triangles around a
+  /// vertex only where Owner[vertex] is Block (another cell may be changing the others).
+  const std::uint32_t* Owner = nullptr;
+  std::uint32_t Block = 0;
 };
 
 /// The input's original points, which the curvature method's fits read (the ancestral points of

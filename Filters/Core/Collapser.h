@@ -209,6 +209,34 @@ private:
   // List the live triangles and vertices again (the first time: all of them).
   void ListLive();
 
+  // The curvature method re-weights the triangles one ring out from a collapse lazily (see
+  // GreedySteps): MarkStale lowers the cost of triangle s once to StaleCostFactor times its
+  // old cost and marks it for re-weighting when it comes to the top of a queue; false, with
+  // nothing marked, when s has no finite cost to lower (re-weigh it now).
+  bool MarkStale(Id s);
+  // Calls f(s) for every triangle that shares a vertex with a triangle around `survivor` but
+  // does not have `survivor` as a corner, once per such shared vertex (`touched` is scratch).
+  template <typename F>
+  void ForEachTriangleOneRingOut(Id survivor, std::vector<Id>& touched, F&& f) const
+  {
+    touched.clear();
+    this->State.ForEachTriangle(survivor, [&](Id s) {
+      const Id* tri = this->State.Mesh.Triangle(s);
+      touched.insert(touched.end(), tri, tri + 3);
+    });
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (const Id u : touched)
+    {
+      this->State.ForEachTriangle(u, [&](Id s) {
+        if (CornerOf(this->State.Mesh.Triangle(s), survivor) < 0)
+        {
+          f(s);
+        }
+      });
+    }
+  }
+
   // Evaluate every live triangle (in parallel); for the curvature method, normalise kappa by
   // the largest curvature found.
   void EvaluateAll();

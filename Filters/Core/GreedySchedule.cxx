@@ -30,6 +30,22 @@ TriangleCollapseResult Collapser::RunGreedy()
 }
 
 //------------------------------------------------------------------------------
+bool Collapser::MarkStale(Id s)
+{
+  if (!(this->Costs[s] < InfiniteCost))
+  {
+    return false;
+  }
+  this->Lot.Unpark(s);
+  if (!this->Stale[s])
+  {
+    this->Costs[s] *= StaleCostFactor;
+    this->Stale[s] = 1;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
 {
   IndexedHeap heap;
@@ -71,18 +87,14 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
   // deviation, the 154k metaballs and a smooth sphere give the same levels), in about half the
   // time.
   auto defer = [&](Id s) {
-    if (!(this->Costs[s] < InfiniteCost))
+    if (this->MarkStale(s))
+    {
+      heap.Update(s);
+    }
+    else
     {
       reweigh(s);
-      return;
     }
-    this->Lot.Unpark(s);
-    if (!this->Stale[s])
-    {
-      this->Costs[s] *= StaleCostFactor;
-      this->Stale[s] = 1;
-    }
-    heap.Update(s);
   };
   if (widen)
   {
@@ -141,29 +153,16 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
     // New costs around the survivor; its neighbours' valences and its position changed, which
     // the parking lot takes note of. For the curvature method the triangles one ring further
     // out are re-weighted too: their stencils moved.
-    touched.clear();
     scratch.BeginSpokes(survivor);
     this->State.ForEachTriangle(survivor, [&](Id s) {
-      const Id* tri = this->State.Mesh.Triangle(s);
-      this->Lot.Touch(tri, this->Clock);
+      this->Lot.Touch(this->State.Mesh.Triangle(s), this->Clock);
       reweigh(s);
-      if (widen)
-      {
-        touched.insert(touched.end(), tri, tri + 3);
-      }
     });
     scratch.EndSpokes();
     upcoming.Prefetch(3);
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    for (const Id u : touched)
+    if (widen)
     {
-      this->State.ForEachTriangle(u, [&](Id s) {
-        if (CornerOf(this->State.Mesh.Triangle(s), survivor) < 0)
-        {
-          defer(s);
-        }
-      });
+      this->ForEachTriangleOneRingOut(survivor, touched, defer);
     }
     const bool levelReached =
       !this->Finished() && this->State.AliveTriangles <= this->CurrentTarget();
