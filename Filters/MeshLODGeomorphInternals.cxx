@@ -450,10 +450,12 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
   vtkDataArray* points = poly->GetPoints()->GetData();
   std::vector<std::int64_t> rank(n);
   std::vector<std::uint8_t> atTarget(n);
+  std::vector<double> from(3 * static_cast<size_t>(n)), to(3 * static_cast<size_t>(n));
   vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-    double x[3], y[3];
     for (vtkIdType p = b; p < e; ++p)
     {
+      double* x = from.data() + 3 * p;
+      double* y = to.data() + 3 * p;
       rank[p] = static_cast<std::int64_t>(rankArray->GetComponent(p, 0));
       points->GetTuple(p, x);
       target->GetTuple(p, y);
@@ -462,7 +464,8 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
   });
   cache.Schedule.reset(new meshlod::CollapseSchedule);
   cache.Schedule->Build(cache.Triangles.data(), static_cast<Id>(cache.Triangles.size() / 3),
-    static_cast<Id>(n), cache.TargetIds.data(), rank.data(), atTarget.data());
+    static_cast<Id>(n), cache.TargetIds.data(), rank.data(), atTarget.data(), from.data(),
+    to.data());
   return true;
 }
 

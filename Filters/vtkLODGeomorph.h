@@ -55,7 +55,13 @@
  * remove more at once), so a closed manifold only reaches counts of its levels' parity. The
  * points of a cluster join in an order that keeps every intermediate mesh manifold (each join
  * is checked; where k sheets meet along a curve, as on a segmented volume's surfaces, the
- * merged point must keep k fans, and a join along the curve removes k triangles). A cluster
+ * merged point must keep k fans, and a join along the curve removes k triangles) and, where it
+ * can, folds no triangle over: as the first points of a cluster settle while the others have
+ * not moved yet, a triangle between them can face against its orientation both before and
+ * after the transition, or lose its area. On a UV sphere's triangle-collapse hierarchy no count
+ * has such a triangle (37 of 951 did before this order); a vertex-clustering hierarchy's
+ * clusters of many points still pass through folds (on that sphere's octree levels, 44% of the
+ * counts, against 53% before). A cluster
  * whose merge is valid only after a neighbour's (a level composes many collapses per point)
  * waits for that neighbour; a join that no order can make valid is passed through and its
  * count is not reachable. When the count is not reachable, the output has the largest

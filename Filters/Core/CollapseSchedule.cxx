@@ -1,4 +1,5 @@
 #include "CollapseSchedule.h"
+#include "Vector3.h"
 
 #include "vtkSMPTools.h"
 
@@ -14,6 +15,9 @@ namespace
 constexpr Id Unassigned = -1;
 // A collapse of m points tries at most max(1, TestBudget / m) next points per step (see Build).
 constexpr size_t TestBudget = 16384;
+// A triangle faces a direction m when its normal n has n . m > FacingTolerance |m|^2 (both are
+// twice-area vectors): three corners on a line up to rounding do not.
+constexpr double FacingTolerance = 1e-12;
 
 // Points of each target, as compressed rows (counting sort, rows in increasing point id).
 void GroupByTarget(const Id* target, Id numberOfPoints, Id numberOfTargets,
@@ -311,7 +315,8 @@ std::vector<Id> SortMovingPoints(
 
 //------------------------------------------------------------------------------
 void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints,
-  const Id* target, const std::int64_t* rank, const std::uint8_t* atTarget)
+  const Id* target, const std::int64_t* rank, const std::uint8_t* atTarget,
+  const double* positions, const double* targetPositions)
 {
   this->Step.assign(numberOfPoints, Unassigned);
   this->Order.clear();
@@ -441,6 +446,53 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   std::vector<Id> broken;
   std::vector<std::uint8_t> valid(1, 1);
 
+  // Geometry, when given: a point is at its own position until it settles, then at its
+  // target's. The points of a collapse settling one at a time can fold the triangles around the
+  // first ones over (an exact-count sphere had triangles facing inwards) or lay three corners
+  // on a line (on a flat grid's border). A live triangle that faces neither the way it does in
+  // level i nor the way it does once every point has settled (or has no area) is folded; the
+  // join order takes points whose join folds nothing around them where it can. (Triangles
+  // without area in level i itself, kept from the input, are not judged. Refusing to stop at
+  // every step that leaves a fold anywhere made most counts of a collapse of many points
+  // unreachable.)
+  const bool geometry = positions != nullptr && targetPositions != nullptr;
+  // Whether triangle tri is live and folded with the settled points, and `extra`, settled.
+  auto isFolded = [&](Id tri, Id extra) {
+    const Id* v = triangles + 3 * static_cast<size_t>(tri);
+    const auto settledNow = [&](Id q) { return q == extra || this->Step[q] != Unassigned; };
+    for (int k = 0; k < 3; ++k)
+    {
+      const Id x = v[k], y = v[(k + 1) % 3];
+      if (target[x] == target[y] && settledNow(x) && settledNow(y))
+      {
+        return false; // gone
+      }
+    }
+    const auto at = [&](int k, bool settled) {
+      return (settled ? targetPositions : positions) + 3 * static_cast<size_t>(v[k]);
+    };
+    double now[3], before[3], after[3];
+    Normal(at(0, settledNow(v[0])), at(1, settledNow(v[1])), at(2, settledNow(v[2])), now);
+    Normal(at(0, false), at(1, false), at(2, false), before);
+    Normal(at(0, true), at(1, true), at(2, true), after);
+    const auto faces = [&](const double* m) {
+      const double mm = Dot(m, m);
+      return mm > 0.0 && Dot(now, m) > FacingTolerance * mm;
+    };
+    return Dot(before, before) > 0.0 && !faces(before) && !faces(after);
+  };
+  // Whether settling p now leaves a folded triangle around it.
+  auto foldsAround = [&](Id p) {
+    for (Id i = adjacency.Begin(p); geometry && i < adjacency.End(p); ++i)
+    {
+      if (isFolded(adjacency.Triangles[i], p))
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+
   // The collapses: moving[begin, end) share their rank and target.
   std::vector<std::pair<size_t, size_t>> collapses;
   for (size_t begin = 0; begin < moving.size();)
@@ -517,27 +569,38 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
           joined.push_back(q); // increasing id: a collapse's points are sorted by id
         }
       }
+      // The first point of a target may be any of the collapse's points.
+      if (joined.empty())
+      {
+        for (size_t i = begin; i < end; ++i)
+        {
+          if (this->Step[moving[i]] == Unassigned)
+          {
+            joined.push_back(moving[i]);
+          }
+        }
+      }
       // Each test reads the whole merged vertex, so trying every joined point of every step
       // cost a collapse of m points about m^3 (a sphere with points crowded at a pole had one
-      // of 6,971 points: 97 s). At most TestBudget / m joined points are tried per step.
+      // of 6,971 points: 97 s). At most TestBudget / m joined points are tried per step, first
+      // for a valid merge that folds nothing, then for a valid merge.
       Id p = Unassigned;
-      const size_t tries = std::max<size_t>(1, TestBudget / (end - begin));
-      for (size_t i = 0; i < std::min(tries, joined.size()); ++i)
+      const size_t tries = std::min(joined.size(), std::max<size_t>(1, TestBudget / (end - begin)));
+      for (int pass = geometry ? 0 : 1; pass < 2 && p == Unassigned; ++pass)
       {
-        if (validWith(joined[i]))
+        for (size_t i = 0; i < tries; ++i)
         {
-          p = joined[i];
-          break;
+          if ((pass == 1 || !foldsAround(joined[i])) && validWith(joined[i]))
+          {
+            p = joined[i];
+            break;
+          }
         }
       }
       bool ok = p != Unassigned;
       if (!ok)
       {
-        p = joined.empty() ? Unassigned : joined.front();
-        for (size_t i = begin; i < end && p == Unassigned; ++i)
-        {
-          p = this->Step[moving[i]] == Unassigned ? moving[i] : Unassigned;
-        }
+        p = joined.front();
         ok = validWith(p);
       }
       record(p, t, ok);

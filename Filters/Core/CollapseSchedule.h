@@ -53,9 +53,12 @@ struct VTKFILTERSMESHLOD_EXPORT CollapseSchedule
   std::vector<Id> Stops;       // the steps whose mesh is valid to stop at, increasing (0 first)
 
   /// `target` and `rank` hold one entry per point; `atTarget[p]` is non-zero when point p is
-  /// already at its target position.
+  /// already at its target position. With `positions` and `targetPositions` (x, y, z per point:
+  /// where it is, where it goes), a collapse's points join, where they can, in an order that
+  /// folds no triangle over (see Build).
   void Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints, const Id* target,
-    const std::int64_t* rank, const std::uint8_t* atTarget);
+    const std::int64_t* rank, const std::uint8_t* atTarget, const double* positions = nullptr,
+    const double* targetPositions = nullptr);
 
   Id NumberOfSteps() const { return static_cast<Id>(this->Order.size()); }
 

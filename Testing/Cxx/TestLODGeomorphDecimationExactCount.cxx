@@ -24,9 +24,11 @@
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
+#include "vtkPlaneSource.h"
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
 #include "vtkTestErrorObserver.h"
+#include "vtkTriangleFilter.h"
 
 #include <algorithm>
 #include <array>
@@ -172,6 +174,72 @@ void TestLevelsFarApart()
   MESHLOD_CHECK_EQ(far, 0);
   MESHLOD_CHECK_EQ(warned, 0);
 }
+
+// Triangles of `poly` whose twice-area normal n has n . direction(centroid) <= 0: facing the
+// wrong way, or without area.
+int WrongFacing(vtkPolyData* poly, bool outwardFromOrigin)
+{
+  int wrong = 0;
+  const vtkIdType* ids;
+  vtkIdType npts;
+  for (vtkIdType c = 0; c < poly->GetNumberOfCells(); ++c)
+  {
+    poly->GetCellPoints(c, npts, ids);
+    double p[3][3], u[3], v[3], n[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      poly->GetPoint(ids[k], p[k]);
+    }
+    vtkMath::Subtract(p[1], p[0], u);
+    vtkMath::Subtract(p[2], p[0], v);
+    vtkMath::Cross(u, v, n);
+    const double centroid[3] = { p[0][0] + p[1][0] + p[2][0], p[0][1] + p[1][1] + p[2][1],
+      p[0][2] + p[1][2] + p[2][2] };
+    const double up[3] = { 0.0, 0.0, 1.0 };
+    wrong += vtkMath::Dot(n, outwardFromOrigin ? centroid : up) > 0.0 ? 0 : 1;
+  }
+  return wrong;
+}
+
+// The points of one collapse settle one at a time, and the triangles between the settled ones
+// (at the collapse point) and the others can fold over, or lay three corners on a line, on the
+// way. The join order prefers points whose join folds nothing: on a sphere every even count
+// from 1% to the input has no triangle facing inwards (before: 37 of 951 counts had one), on a
+// flat grid no triangle faces down or lies flat (before: 9 of 199 counts).
+void TestNoFolds()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(32);
+  sphere->SetPhiResolution(32);
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetResolution(10, 10);
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(plane->GetOutputPort());
+  for (const bool closed : { true, false })
+  {
+    vtkNew<vtkTriangleCollapseDecimation> decimate;
+    decimate->SetInputConnection(
+      closed ? sphere->GetOutputPort() : triangles->GetOutputPort());
+    decimate->Update();
+    vtkMultiBlockDataSet* h = decimate->GetHierarchy();
+    vtkNew<vtkLODGeomorph> geomorph;
+    geomorph->SetInputData(h);
+    const vtkIdType coarsest = Level(h, h->GetNumberOfBlocks() - 1)->GetNumberOfPolys();
+    const vtkIdType finest = Level(h, 0)->GetNumberOfPolys();
+    int counts = 0, folded = 0;
+    for (vtkIdType count = coarsest; count <= finest; count += closed ? 2 : 1)
+    {
+      geomorph->SetTargetNumberOfTriangles(count);
+      geomorph->Update();
+      folded += WrongFacing(geomorph->GetOutput(), closed) > 0 ? 1 : 0;
+      ++counts;
+    }
+    std::cerr << (closed ? "sphere" : "flat grid") << ": " << counts << " counts, " << folded
+              << " with a folded or flat triangle\n";
+    MESHLOD_CHECK_GT(counts, 150);
+    MESHLOD_CHECK_EQ(folded, 0);
+  }
+}
 } // namespace
 
 int TestLODGeomorphDecimationExactCount(int, char*[])
@@ -192,5 +260,6 @@ int TestLODGeomorphDecimationExactCount(int, char*[])
   TestEveryCount(larger, vtkTriangleCollapseDecimation::GREEDY,
     vtkTriangleCollapseDecimation::TRIANGLES_AND_EDGES, "parallel greedy rounds", 11);
   TestLevelsFarApart();
+  TestNoFolds();
   return testing::Result();
 }
