@@ -277,8 +277,7 @@ int vtkTriangleCollapseDecimation::RequestData(
     }
     vtkWarningMacro(<< levels.str() << " has " << result.FinalTriangles
                     << " triangles, short of its target of " << coarsestTarget << " ("
-                    << (this->MaximumError > 0.0 ? "MaximumError reached"
-                                                 : "no legal collapse left")
+                    << (result.ErrorLimited ? "MaximumError reached" : "no legal collapse left")
                     << ").");
   }
   if (jumpLevel > 0)

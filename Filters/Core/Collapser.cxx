@@ -415,6 +415,7 @@ TriangleCollapseResult Collapser::FinishRun()
     this->EmitLevel();
   }
   this->Result.FinalTriangles = this->State.AliveTriangles;
+  this->Result.ErrorLimited = this->ErrorRefused.load();
   return this->Result;
 }
 

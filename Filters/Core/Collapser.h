@@ -14,6 +14,7 @@
 #include "TriangleCollapse.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -287,10 +288,18 @@ private:
   TriangleCollapseResult FinishRun();
   bool Finished() const { return this->NextTarget >= this->Targets.size(); }
   std::int64_t CurrentTarget() const { return this->Targets[this->NextTarget]; }
+  // Whether MaximumError allows a collapse of this error; a refusal is remembered (the run's
+  // result says whether the limit stopped anything). Safe in parallel.
   bool ErrorAllows(double error) const
   {
-    return this->Options.MaximumError <= 0.0 || error <= this->Options.MaximumError;
+    const bool allowed = this->Options.MaximumError <= 0.0 || error <= this->Options.MaximumError;
+    if (!allowed)
+    {
+      this->ErrorRefused.store(true, std::memory_order_relaxed);
+    }
+    return allowed;
   }
+  mutable std::atomic<bool> ErrorRefused{ false };
   double LevelError() const;
 
   const TriangleCollapseOptions& Options;

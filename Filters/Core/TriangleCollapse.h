@@ -110,6 +110,7 @@ struct TriangleCollapseResult
   std::int64_t Collapses = 0;
   std::int64_t Passes = 0;
   std::int64_t Swaps = 0; // collapses that followed an edge swap (paper 000, figure 3)
+  bool ErrorLimited = false; // MaximumError refused at least one collapse
 };
 
 /// Run on a validated mesh (see MeshLODInputMesh.h) with its topology; both are taken over

@@ -582,6 +582,22 @@ void TestMaximumError()
   vtkPolyData* last = Level(h, h->GetNumberOfBlocks() - 1);
   MESHLOD_CHECK_LE(Field(last, names::EstimatedError), bound);
   MESHLOD_CHECK_LT(filter->GetActualReduction(), 0.99);
+  MESHLOD_CHECK(observer->GetWarningMessage().find("(MaximumError reached)") != std::string::npos);
+
+  // A bound that stops nothing is not named as the reason: a 12 x 12 UV sphere runs out of
+  // legal collapses at 4 triangles, short of its 1% target, with or without the bound.
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(12);
+  sphere->SetPhiResolution(12);
+  filter->SetInputConnection(sphere->GetOutputPort());
+  for (const double limit : { 0.0, 1e9 })
+  {
+    observer->Clear();
+    filter->SetMaximumError(limit);
+    filter->Update();
+    MESHLOD_CHECK(
+      observer->GetWarningMessage().find("(no legal collapse left)") != std::string::npos);
+  }
 }
 
 // More level targets than a small mesh has collapses to spread them over: a collapse that passes
