@@ -172,6 +172,34 @@ vtkSmartPointer<vtkPoints> MakePoints(const TriangleMesh& mesh, int dataType)
   return points;
 }
 
+// A point that is its one parent alone (weight 1) did not move: it takes the parent's
+// coordinates exactly. (The engines work in their own frame, about the bounding box's centre,
+// and the way back can differ from the input in the last bit: points of CollapseRank -1 had a
+// MorphTarget 1e-16 away from themselves.) Only where the two agree to 1e-9 of the diagonal.
+void KeepUnmovedPoints(
+  const PointSources& sources, vtkDataArray* previous, double diagonal, vtkDataArray* points)
+{
+  const double tolerance2 = 1e-18 * diagonal * diagonal;
+  vtkSMPTools::For(0, points->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType p = begin; p < end; ++p)
+    {
+      const Id first = sources.Offsets[p];
+      if (sources.Offsets[p + 1] != first + 1 || sources.Weights[first] != 1.0f)
+      {
+        continue;
+      }
+      double x[3], y[3];
+      points->GetTuple(p, x);
+      previous->GetTuple(sources.Parents[first], y);
+      const double d[3] = { x[0] - y[0], x[1] - y[1], x[2] - y[2] };
+      if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= tolerance2)
+      {
+        points->SetTuple(p, y);
+      }
+    }
+  });
+}
+
 template <typename T>
 vtkSmartPointer<vtkIdList> ToIdList(const std::vector<T>& ids)
 {
@@ -344,6 +372,8 @@ void HierarchyBuilder::AppendLevel(LevelData&& level)
 
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(MakePoints(level.Mesh, level0->GetPoints()->GetDataType()));
+  KeepUnmovedPoints(level.Sources, previous->GetPoints()->GetData(), level0->GetLength(),
+    poly->GetPoints()->GetData());
   Release(level.Mesh.Points);
   poly->SetPolys(MakeTriangleCells(level.Mesh.Triangles.data(), level.Mesh.GetNumberOfTriangles()));
   Release(level.Mesh.Triangles);
