@@ -520,12 +520,45 @@ std::string CheckHierarchyLayout(vtkMultiBlockDataSet* hierarchy, bool requireMo
     for (vtkIdType p = 0; p < targetId->GetNumberOfTuples() && inRange; ++p)
     {
       const double id = targetId->GetTuple1(p);
-      inRange = id >= 0 && id < static_cast<double>(next->GetNumberOfPoints());
+      inRange = id >= 0 && id < static_cast<double>(next->GetNumberOfPoints()) &&
+        id == std::floor(id);
     }
     if (!inRange)
     {
       problem << "level " << i << " has " << names::MorphTargetId << " values outside [0, "
-              << next->GetNumberOfPoints() << ")";
+              << next->GetNumberOfPoints() << ") or not integers";
+      return problem.str();
+    }
+    bool ranked = true;
+    for (vtkIdType p = 0; p < rank->GetNumberOfTuples() && ranked; ++p)
+    {
+      const double r = rank->GetTuple1(p);
+      ranked = r >= -1.0 && r == std::floor(r);
+    }
+    if (!ranked)
+    {
+      problem << "level " << i << " has " << names::CollapseRank
+              << " values that are neither -1 nor a rank (an integer from 0)";
+      return problem.str();
+    }
+    // MorphTarget is where the point MorphTargetId names is (the blends end on the one, the
+    // exact counts and the correspondence use the other), up to 1e-6 of level i + 1's size.
+    // (NaN or infinite values are reported as such by the geomorph.)
+    const double tolerance = 1e-6 * next->GetLength();
+    vtkIdType far = -1;
+    for (vtkIdType p = 0; p < target->GetNumberOfTuples() && far < 0; ++p)
+    {
+      double x[3], y[3];
+      target->GetTuple(p, x);
+      next->GetPoint(static_cast<vtkIdType>(targetId->GetTuple1(p)), y);
+      const double d2 = vtkMath::Distance2BetweenPoints(x, y);
+      far = std::isfinite(d2) && d2 > tolerance * tolerance ? p : -1;
+    }
+    if (far >= 0)
+    {
+      problem << "level " << i << "'s " << names::MorphTarget << " of point " << far
+              << " is not where its " << names::MorphTargetId << " point of level " << i + 1
+              << " is";
       return problem.str();
     }
   }

@@ -30,6 +30,8 @@
 #include <functional>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -310,6 +312,27 @@ void TestErrors(vtkMultiBlockDataSet* h)
   broken->SetBlock(0, level0);
   broken->SetBlock(1, Level(h, 1));
   ExpectError(broken, "outside");
+  // ... or not where the point they name is, not integers, or ranks below -1 (each was
+  // blended or scheduled silently).
+  const std::vector<std::pair<std::function<void(vtkPointData*)>, std::string>> edits = {
+    { [](vtkPointData* pd) { pd->GetArray(names::MorphTarget)->SetTuple3(3, 5.0, 5.0, 5.0); },
+      "level 0's MorphTarget of point 3 is not where its MorphTargetId point of level 1 is" },
+    { [](vtkPointData* pd) {
+       vtkNew<vtkDoubleArray> ids;
+       ids->DeepCopy(pd->GetArray(names::MorphTargetId));
+       ids->SetTuple1(3, ids->GetTuple1(3) + 0.5);
+       pd->AddArray(ids);
+     },
+      "or not integers" },
+    { [](vtkPointData* pd) { pd->GetArray(names::CollapseRank)->SetTuple1(3, -7); },
+      "level 0 has CollapseRank values that are neither -1 nor a rank" },
+  };
+  for (const auto& edit : edits)
+  {
+    level0->DeepCopy(Level(h, 0));
+    edit.first(level0->GetPointData());
+    ExpectError(broken, edit.second);
+  }
 
   // Incomplete morph arrays (MorphTarget missing on level 1 of 3).
   vtkNew<vtkMultiBlockDataSet> incomplete;
