@@ -59,9 +59,8 @@
  * can, folds no triangle over: as the first points of a cluster settle while the others have
  * not moved yet, a triangle between them can face against its orientation both before and
  * after the transition, or lose its area. On a UV sphere's triangle-collapse hierarchy no count
- * has such a triangle (37 of 951 did before this order); a vertex-clustering hierarchy's
- * clusters of many points still pass through folds (on that sphere's octree levels, 44% of the
- * counts, against 53% before). A cluster
+ * has such a triangle; a vertex-clustering hierarchy's clusters of many points still pass
+ * through folds (on that sphere's octree levels, at 44% of the counts). A cluster
  * whose merge is valid only after a neighbour's (a level composes many collapses per point)
  * waits for that neighbour; a join that no order can make valid is passed through and its
  * count is not reachable. When the count is not reachable, the output has the largest

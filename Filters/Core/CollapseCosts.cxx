@@ -22,6 +22,8 @@ constexpr double Infinity = std::numeric_limits<double>::infinity();
 // more than an edge along it, and without the edges such a solid cannot go below about a fifth
 // of its triangles without losing its rims.
 constexpr double CreaseEdgeFactor = 1.0e6;
+// FitSurface drops duplicate stencil vertices by a linear search up to this many vertices.
+constexpr std::size_t LinearStencil = 32;
 
 double Distance(const double* a, const double* b)
 {
@@ -496,9 +498,12 @@ void CollapseCostModel::FitSurface(
   const auto member = [&](Id x) { return x == tri[0] || x == tri[1] || x == tri[2]; };
   // Duplicates are dropped as they come (a dozen or so distinct vertices, most seen two to four
   // times): sorting the list with its duplicates had been a tenth of the curvature method's
-  // time. The sort that follows puts the distinct ones in the order the fit sums them in.
+  // time. Around a vertex of high valence (a cone's tip, a UV sphere's pole) the search would
+  // grow with the square of the valence: past LinearStencil vertices duplicates are kept and
+  // dropped by the sort. The sort puts the distinct ones in the order the fit sums them in.
   const auto add = [&](Id x) {
-    if (std::find(stencil.begin(), stencil.end(), x) == stencil.end())
+    if (stencil.size() > LinearStencil ||
+      std::find(stencil.begin(), stencil.end(), x) == stencil.end())
     {
       stencil.push_back(x);
     }
@@ -527,6 +532,7 @@ void CollapseCostModel::FitSurface(
     });
   }
   std::sort(stencil.begin(), stencil.end());
+  stencil.erase(std::unique(stencil.begin(), stencil.end()), stencil.end());
 
   std::vector<double>& points = scratch.Points;
   points.resize(3 * stencil.size());

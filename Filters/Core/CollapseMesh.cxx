@@ -259,8 +259,7 @@ bool CollapseMesh::GatherStar(const Id* members, int count, Star& star) const
     this->ForEachTriangle(v, [&](Id t) {
       const Id* tri = this->Mesh.Triangle(t);
       if (star.Owner != nullptr &&
-        (star.Owner[tri[0]] != star.Block || star.Owner[tri[1]] != star.Block ||
-          star.Owner[tri[2]] != star.Block))
+        !CornersOwnedBy(star.Owner, tri, star.Block))
       {
         star.Foreign = true;
       }

@@ -233,6 +233,12 @@ private:
   std::vector<Id> ChainTail;
 };
 
+/// Whether all three corners of triangle `tri` belong to `block` (a cell of a parallel round).
+inline bool CornersOwnedBy(const std::uint32_t* owner, const Id* tri, std::uint32_t block)
+{
+  return owner[tri[0]] == block && owner[tri[1]] == block && owner[tri[2]] == block;
+}
+
 /// Unit normal (and twice the area) of the triangle (p0, p1, p2).
 double TriangleNormal(const double* p0, const double* p1, const double* p2, double normal[3]);
 

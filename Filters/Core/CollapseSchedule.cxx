@@ -530,23 +530,31 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     valid.push_back(ok && broken.empty() ? 1 : 0);
   };
 
-  // Settle a collapse's points one by one: the lowest-id point joined by an edge to the settled
-  // ones whose merge keeps a valid mesh; when none does, the lowest-id joined point anyway (the
-  // step is then passed through, not stopped at), or the lowest-id point left. `wholeValid`:
-  // the whole merge was found valid, so the last point needs no test.
+  // Settle a collapse's points one by one, each time among the points joined by an edge to the
+  // settled ones (all the collapse's points left, when none is), in increasing id: the first
+  // whose merge keeps a valid mesh and folds no triangle around it; else the first whose merge
+  // keeps a valid mesh; else the first anyway (the step is then passed through, not stopped
+  // at). `wholeValid`: the whole merge was found valid, so the last point needs no test.
   auto settle = [&](size_t c, bool wholeValid) {
     const size_t begin = collapses[c].first, end = collapses[c].second;
     const Id t = target[moving[begin]];
+    // The collapse's points not settled yet, in increasing id.
+    const auto listLeft = [&]() {
+      joined.clear();
+      for (size_t i = begin; i < end; ++i)
+      {
+        if (this->Step[moving[i]] == Unassigned)
+        {
+          joined.push_back(moving[i]);
+        }
+      }
+    };
     for (size_t settled = begin; settled < end; ++settled)
     {
       if (wholeValid && settled + 1 == end)
       {
-        Id last = Unassigned;
-        for (size_t i = begin; i < end && last == Unassigned; ++i)
-        {
-          last = this->Step[moving[i]] == Unassigned ? moving[i] : Unassigned;
-        }
-        record(last, t, true);
+        listLeft();
+        record(joined.front(), t, true);
         break;
       }
       joined.clear();
@@ -569,41 +577,29 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
           joined.push_back(q); // increasing id: a collapse's points are sorted by id
         }
       }
-      // The first point of a target may be any of the collapse's points.
+      // None joined to a settled one (the target's first point, among others): any may go.
       if (joined.empty())
       {
-        for (size_t i = begin; i < end; ++i)
-        {
-          if (this->Step[moving[i]] == Unassigned)
-          {
-            joined.push_back(moving[i]);
-          }
-        }
+        listLeft();
       }
       // Each test reads the whole merged vertex, so trying every joined point of every step
       // cost a collapse of m points about m^3 (a sphere with points crowded at a pole had one
-      // of 6,971 points: 97 s). At most TestBudget / m joined points are tried per step, first
-      // for a valid merge that folds nothing, then for a valid merge.
-      Id p = Unassigned;
+      // of 6,971 points: 97 s). At most TestBudget / m joined points are tried per step: the
+      // first valid merge that folds nothing, else the first valid merge, else the first point.
       const size_t tries = std::min(joined.size(), std::max<size_t>(1, TestBudget / (end - begin)));
-      for (int pass = geometry ? 0 : 1; pass < 2 && p == Unassigned; ++pass)
+      Id p = Unassigned, firstValid = Unassigned;
+      for (size_t i = 0; i < tries && p == Unassigned; ++i)
       {
-        for (size_t i = 0; i < tries; ++i)
+        const Id q = joined[i];
+        if (validWith(q))
         {
-          if ((pass == 1 || !foldsAround(joined[i])) && validWith(joined[i]))
-          {
-            p = joined[i];
-            break;
-          }
+          firstValid = firstValid == Unassigned ? q : firstValid;
+          p = foldsAround(q) ? Unassigned : q;
         }
       }
-      bool ok = p != Unassigned;
-      if (!ok)
-      {
-        p = joined.front();
-        ok = validWith(p);
-      }
-      record(p, t, ok);
+      p = p != Unassigned ? p : firstValid;
+      const bool ok = p != Unassigned;
+      record(ok ? p : joined.front(), t, ok);
     }
   };
 

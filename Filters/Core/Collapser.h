@@ -215,6 +215,10 @@ private:
   // old cost and marks it for re-weighting when it comes to the top of a queue; false, with
   // nothing marked, when s has no finite cost to lower (re-weigh it now).
   bool MarkStale(Id s);
+  // Whether this run re-weights the triangles one ring out lazily (the curvature method).
+  bool RefitsLazily() const { return this->Options.Method == CollapseMethod::Curvature; }
+  // A new cost for triangle s, now: it leaves the parking lot and is no longer stale.
+  void Reweigh(Id s, CostScratch& scratch);
   // Calls f(s) for every triangle that shares a vertex with a triangle around `survivor` but
   // does not have `survivor` as a corner, once per such shared vertex (`touched` is scratch).
   template <typename F>

@@ -45,6 +45,16 @@ bool Collapser::MarkStale(Id s)
   return true;
 }
 
+void Collapser::Reweigh(Id s, CostScratch& scratch)
+{
+  this->Lot.Unpark(s);
+  if (this->RefitsLazily())
+  {
+    this->Stale[s] = 0;
+  }
+  this->Costs[s] = this->EvaluateCost(s, scratch);
+}
+
 //------------------------------------------------------------------------------
 Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
 {
@@ -58,17 +68,12 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
   CostScratch scratch;
   CollapseCandidate c;
   const std::int64_t progressEvery = std::max<std::int64_t>(1000, this->InitialTriangles / 200);
-  const bool widen = this->Options.Method == CollapseMethod::Curvature;
+  const bool widen = this->RefitsLazily();
   std::vector<Id> touched;
   auto release = [&](Id s) { heap.Update(s); };
   // A new cost for triangle s; a triangle that cannot collapse any more leaves the heap.
   auto reweigh = [&](Id s) {
-    this->Lot.Unpark(s);
-    if (widen)
-    {
-      this->Stale[s] = 0;
-    }
-    this->Costs[s] = this->EvaluateCost(s, scratch);
+    this->Reweigh(s, scratch);
     if (this->Costs[s] < InfiniteCost)
     {
       heap.Update(s);

@@ -66,9 +66,9 @@ SurfaceFitResult FitQuadraticHeightField(
   // LDLT solves a singular system quietly (zero pivots give zero components), and its rcond()
   // estimate does not always see it: test the pivots themselves. Points on one line, or too
   // few distinct ones, leave some of them (nearly) zero. The estimate (several solves, a tenth
-  // of the curvature method's time when made for every fit) is asked only when the pivots
-  // span more than RcondPivotRatio: over the tests and benchmarks it refused one fit in
-  // millions, whose pivots spanned 2e9.
+  // of the curvature method's time when made for every fit) is asked only when the smallest
+  // pivot is below RcondPivotRatio times the largest: over the tests and benchmarks it refused
+  // one fit in millions, whose pivots spanned 2e9.
   constexpr double RcondPivotRatio = 1e-6;
   const Eigen::Matrix<double, 6, 1> pivots = solver.vectorD().cwiseAbs();
   if (solver.info() != Eigen::Success || !(pivots.minCoeff() > 1e-10 * pivots.maxCoeff()) ||

@@ -170,7 +170,7 @@ struct CellGrid
 //------------------------------------------------------------------------------
 TriangleCollapseResult Collapser::RunPartitionedGreedy()
 {
-  const bool curvature = this->Options.Method != CollapseMethod::Quadric;
+  const bool curvature = this->RefitsLazily();
   if (curvature && this->Options.CurvatureRanking == CurvatureCost::Weight)
   {
     // Paper 000's weight in parallel rounds: on a sphere with radii perturbed by up to 8% the
@@ -298,7 +298,7 @@ std::uint32_t Collapser::ListCandidates(double threshold, const CellGrid* grid)
       {
         const Id* tri = mesh.Triangle(t);
         const std::uint32_t c = grid ? this->Owner[tri[0]] : 0;
-        cell = !grid || (this->Owner[tri[1]] == c && this->Owner[tri[2]] == c) ? c : NoCell;
+        cell = !grid || CornersOwnedBy(this->Owner.data(), tri, c) ? c : NoCell;
       }
       this->CandidateCell[i] = cell;
     }
@@ -403,7 +403,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
   vtkSMPThreadLocal<CellScratch> scratch;
   const std::int64_t clock = this->Clock;
   const std::int64_t sequence = this->Sequence;
-  const bool widen = this->Options.Method != CollapseMethod::Quadric;
+  const bool widen = this->RefitsLazily();
   vtkSMPTools::For(0, cellsBusy, 1, [&](Id begin, Id end) {
     CellScratch& mine = scratch.Local();
     for (Id b = begin; b < end; ++b)
@@ -424,12 +424,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
       mine.Cost.Block = cell;
       // A new cost for triangle s, which stays a candidate while it is below the threshold.
       const auto reweigh = [&](Id s) {
-        this->Lot.Unpark(s);
-        if (widen)
-        {
-          this->Stale[s] = 0;
-        }
-        this->Costs[s] = this->EvaluateCost(s, mine.Cost);
+        this->Reweigh(s, mine.Cost);
         if (this->Costs[s] <= threshold)
         {
           heap.Update(s);
@@ -443,9 +438,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
       // triangles whose corners are all its own; the others wait for the end of the round.
       const auto defer = [&](Id s) {
         const Id* tri = this->State.Mesh.Triangle(s);
-        if (parallel &&
-          (this->Owner[tri[0]] != cell || this->Owner[tri[1]] != cell ||
-            this->Owner[tri[2]] != cell))
+        if (parallel && !CornersOwnedBy(this->Owner.data(), tri, cell))
         {
           mine.Shared.push_back(s);
         }
@@ -534,8 +527,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
     {
       if (this->State.IsAlive(s) && !this->MarkStale(s))
       {
-        this->Lot.Unpark(s);
-        this->Costs[s] = this->EvaluateCost(s, cost);
+        this->Reweigh(s, cost);
       }
     }
   }

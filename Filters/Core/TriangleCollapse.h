@@ -57,8 +57,9 @@ struct TriangleCollapseOptions
   CollapseMethod Method = CollapseMethod::Quadric;
   CollapseSchedule Schedule = CollapseSchedule::Greedy;
   CollapseOperator Operator = CollapseOperator::TrianglesAndEdges;
-  /// Greedy schedule, quadric method: run the greedy order in parallel over spatial blocks
-  /// (PartitionedGreedy.cxx) rather than strictly one collapse after the other.
+  /// Greedy schedule: run the greedy order in parallel over spatial blocks
+  /// (PartitionedGreedy.cxx) rather than strictly one collapse after the other (the curvature
+  /// method ranked by Weight always takes the strict order).
   bool PartitionedGreedy = true;
   /// TrianglesAndEdges: a triangle collapses whole when that costs at most this many times its
   /// cheapest edge collapse (>= 1).
