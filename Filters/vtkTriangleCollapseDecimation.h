@@ -100,8 +100,9 @@
  *   are marked for re-fitting at the end of the round, and a fit reads only its own cell's
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its
- *   whole hierarchy the curvature method takes 2-3x the time vtkQuadricDecimation needs for
- *   one 10% target on one thread (the quadric method: 0.25-0.45x, Benchmarks/RESULTS.md).
+ *   whole hierarchy the curvature method takes 1.6-2.2x the time vtkQuadricDecimation needs
+ *   for one 10% target on one thread, and 1.8-2.1x less on two (the quadric method: 0.26-0.44x
+ *   over the last three runs, Benchmarks/RESULTS.md).
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
@@ -362,12 +363,12 @@ public:
    * WEIGHT is paper 000's weight W = A (wk kappa + wa alpha + wv V) from the three weights
    * above, at the collapse point described in the class docs. The fit and the legality rules
    * are the same for both. On the benchmark isosurfaces FIT_DEVIATION's Hausdorff distance
-   * is 0.97-1.37x and its RMS distance 1.13-1.22x vtkQuadricDecimation's, against 4.7-8.9x
+   * is 0.91-1.40x and its RMS distance 1.12-1.21x vtkQuadricDecimation's, against 6.1-8.9x
    * and 2.6-3.4x for WEIGHT (Benchmarks/RESULTS.md): the paper's weight is dominated by the
    * area, so it evens out the triangles' sizes instead of keeping small ones where the surface
    * bends. On the other meshes of the benchmark (a torus, noisy spheres, Boy's surface, a
    * superquadric, a faceted cylinder and the surfaces of a segmented volume, with the default
-   * operator: see SetOperator) FIT_DEVIATION is at 1.0-1.8x and 1.0-1.4x. Where it falls
+   * operator: see SetOperator) FIT_DEVIATION is at 0.9-1.8x and 1.0-1.4x. Where it falls
    * short: a very rough input with high-valence poles (a UV sphere with radial noise of an
    * edge) gets long triangles across it at coarse levels (at 1% 4x vtkQuadricDecimation's
    * Hausdorff distance, WEIGHT 2x).
