@@ -462,10 +462,24 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
       atTarget[p] = (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) ? 1 : 0;
     }
   });
-  cache.Schedule.reset(new meshlod::CollapseSchedule);
-  cache.Schedule->Build(cache.Triangles.data(), static_cast<Id>(cache.Triangles.size() / 3),
-    static_cast<Id>(n), cache.TargetIds.data(), rank.data(), atTarget.data(), from.data(),
-    to.data());
+  // Collapses that would fold triangles over wait for their neighbours (on a UV sphere's octree
+  // levels, 44% of the counts had a folded triangle without the waiting, none with it), unless
+  // the waiting leaves fewer counts reachable: collapses that keep waiting are made last, in
+  // groups, and between a group's steps no count can be stopped at (two levels 97% apart: 8 of
+  // 22 counts out of reach). The schedule that keeps 98% of the counts reachable or more wins.
+  const auto build = [&](bool waitForFolds) {
+    auto schedule = std::unique_ptr<meshlod::CollapseSchedule>(new meshlod::CollapseSchedule);
+    schedule->Build(cache.Triangles.data(), static_cast<Id>(cache.Triangles.size() / 3),
+      static_cast<Id>(n), cache.TargetIds.data(), rank.data(), atTarget.data(), from.data(),
+      to.data(), waitForFolds);
+    return schedule;
+  };
+  cache.Schedule = build(true);
+  std::unique_ptr<meshlod::CollapseSchedule> plain = build(false);
+  if (cache.Schedule->NumberOfReachableCounts() < 0.98 * plain->NumberOfReachableCounts())
+  {
+    cache.Schedule = std::move(plain);
+  }
   return true;
 }
 

@@ -316,7 +316,7 @@ std::vector<Id> SortMovingPoints(
 //------------------------------------------------------------------------------
 void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints,
   const Id* target, const std::int64_t* rank, const std::uint8_t* atTarget,
-  const double* positions, const double* targetPositions)
+  const double* positions, const double* targetPositions, bool waitForFolds)
 {
   this->Step.assign(numberOfPoints, Unassigned);
   this->Order.clear();
@@ -456,6 +456,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   // every step that leaves a fold anywhere made most counts of a collapse of many points
   // unreachable.)
   const bool geometry = positions != nullptr && targetPositions != nullptr;
+  waitForFolds = waitForFolds && geometry;
   // Whether triangle tri is live and folded with the settled points, and `extra`, settled.
   auto isFolded = [&](Id tri, Id extra) {
     const Id* v = triangles + 3 * static_cast<size_t>(tri);
@@ -619,7 +620,15 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       this->Step[moving[i]] = Never; // settled, for the test
       parent[moving[i]] = root;
     }
-    const bool whole = settledHaveOneFan(t);
+    bool whole = settledHaveOneFan(t);
+    for (size_t i = collapses[c].first; i < collapses[c].second && whole && waitForFolds; ++i)
+    {
+      const Id q = moving[i];
+      for (Id j = adjacency.Begin(q); j < adjacency.End(q) && whole; ++j)
+      {
+        whole = !isFolded(adjacency.Triangles[j], Unassigned);
+      }
+    }
     for (size_t i = collapses[c].first; i < collapses[c].second; ++i)
     {
       this->Step[moving[i]] = Unassigned;
@@ -772,6 +781,17 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     removed += this->CountAfter[k];
     this->CountAfter[k] = numberOfTriangles - removed;
   }
+}
+
+//------------------------------------------------------------------------------
+Id CollapseSchedule::NumberOfReachableCounts() const
+{
+  Id counts = 0;
+  for (size_t i = 0; i < this->Stops.size(); ++i)
+  {
+    counts += i == 0 || this->CountAfter[this->Stops[i]] != this->CountAfter[this->Stops[i - 1]];
+  }
+  return counts;
 }
 
 //------------------------------------------------------------------------------
