@@ -466,7 +466,8 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
   // levels, 44% of the counts had a folded triangle without the waiting, none with it), unless
   // the waiting leaves fewer counts reachable: collapses that keep waiting are made last, in
   // groups, and between a group's steps no count can be stopped at (two levels 97% apart: 8 of
-  // 22 counts out of reach). The schedule that keeps 98% of the counts reachable or more wins.
+  // 22 counts out of reach). The schedule that keeps 98% of the counts reachable or more wins;
+  // when no collapse waited, the two are the same and the second is not built.
   const auto build = [&](bool waitForFolds) {
     auto schedule = std::unique_ptr<meshlod::CollapseSchedule>(new meshlod::CollapseSchedule);
     schedule->Build(cache.Triangles.data(), static_cast<Id>(cache.Triangles.size() / 3),
@@ -475,10 +476,13 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
     return schedule;
   };
   cache.Schedule = build(true);
-  std::unique_ptr<meshlod::CollapseSchedule> plain = build(false);
-  if (cache.Schedule->NumberOfReachableCounts() < 0.98 * plain->NumberOfReachableCounts())
+  if (cache.Schedule->WaitedForFolds)
   {
-    cache.Schedule = std::move(plain);
+    std::unique_ptr<meshlod::CollapseSchedule> plain = build(false);
+    if (cache.Schedule->NumberOfReachableCounts() < 0.98 * plain->NumberOfReachableCounts())
+    {
+      cache.Schedule = std::move(plain);
+    }
   }
   return true;
 }

@@ -320,6 +320,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
 {
   this->Step.assign(numberOfPoints, Unassigned);
   this->Order.clear();
+  this->WaitedForFolds = false;
   for (Id p = 0; p < numberOfPoints; ++p)
   {
     if (atTarget[p])
@@ -623,11 +624,8 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     bool whole = settledHaveOneFan(t);
     for (size_t i = collapses[c].first; i < collapses[c].second && whole && waitForFolds; ++i)
     {
-      const Id q = moving[i];
-      for (Id j = adjacency.Begin(q); j < adjacency.End(q) && whole; ++j)
-      {
-        whole = !isFolded(adjacency.Triangles[j], Unassigned);
-      }
+      whole = !foldsAround(moving[i]);
+      this->WaitedForFolds = this->WaitedForFolds || !whole;
     }
     for (size_t i = collapses[c].first; i < collapses[c].second; ++i)
     {

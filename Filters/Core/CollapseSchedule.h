@@ -51,6 +51,7 @@ struct VTKFILTERSMESHLOD_EXPORT CollapseSchedule
   std::vector<Id> RemovalStep; // per triangle: the step at which it disappears, or Never
   std::vector<Id> CountAfter;  // triangles left after k steps, k = 0 .. NumberOfSteps()
   std::vector<Id> Stops;       // the steps whose mesh is valid to stop at, increasing (0 first)
+  bool WaitedForFolds = false; // a collapse waited because its merge would fold (waitForFolds)
 
   /// `target` and `rank` hold one entry per point; `atTarget[p]` is non-zero when point p is
   /// already at its target position. With `positions` and `targetPositions` (x, y, z per point:
