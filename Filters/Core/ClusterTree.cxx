@@ -566,29 +566,22 @@ void ClusterTree::VertexQuadric(Id v, Quadric& q, double normal[3]) const
 }
 
 //------------------------------------------------------------------------------
-void ClusterTree::RelatedQuadric(Id node,
-  Quadric& q,
-  std::vector<Id>* crossing,
-  double normal[3],
-  std::vector<Id>* boundaryEdges,
-  std::vector<double>* planes) const
+void ClusterTree::RelatedQuadric(
+  Id node, Quadric& q, double normal[3], RelatedTriangles* details) const
 {
   q.Clear();
-  if (planes)
+  if (details)
   {
-    planes->clear();
-  }
-  if (boundaryEdges)
-  {
-    boundaryEdges->clear();
+    details->Crossing.clear();
+    details->CrossingPlanes.clear();
+    details->CrossingNormals.clear();
+    details->CrossingEnds.clear();
+    details->BoundaryEdges.clear();
+    details->Planes.clear();
   }
   double unused[3];
   normal = normal ? normal : unused;
   normal[0] = normal[1] = normal[2] = 0.0;
-  if (crossing)
-  {
-    crossing->clear();
-  }
   const Id first = this->Position(node);
   const Id last = first + this->Count(node);
   const VertexTriangleAdjacency& adj = this->Topology->VertexTriangles;
@@ -608,10 +601,6 @@ void ClusterTree::RelatedQuadric(Id node,
         insideCount += inside[k] ? 1 : 0;
       }
       const int c = CornerOf(tri, v);
-      if (crossing && insideCount == 1)
-      {
-        crossing->push_back(3 * t + c);
-      }
       // Each triangle once, from its first vertex inside; each boundary edge once, from its
       // first end inside.
       const int firstInside = inside[0] ? 0 : (inside[1] ? 1 : 2);
@@ -620,8 +609,7 @@ void ClusterTree::RelatedQuadric(Id node,
       {
         const int e = j == 0 ? c : (c + 2) % 3;
         const int from = inside[e] ? e : (e + 1) % 3;
-        boundary[j] = from == c &&
-          this->Topology->IsBoundaryEdge(t, e);
+        boundary[j] = from == c && this->Topology->IsBoundaryEdge(t, e);
       }
       if (firstInside != c && !boundary[0] && !boundary[1])
       {
@@ -639,12 +627,25 @@ void ClusterTree::RelatedQuadric(Id node,
         {
           normal[k] += n[k];
         }
-        const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (planes && length > 0.0)
+        if (details)
         {
-          const double u[3] = { n[0] / length, n[1] / length, n[2] / length };
-          planes->insert(planes->end(),
-            { u[0], u[1], u[2], -(u[0] * p[0][0] + u[1] * p[0][1] + u[2] * p[0][2]) });
+          if (insideCount == 1)
+          {
+            details->Crossing.push_back(3 * t + c);
+            details->CrossingPlanes.push_back(face);
+            details->CrossingNormals.insert(details->CrossingNormals.end(), n, n + 3);
+            for (const int k : { (c + 1) % 3, (c + 2) % 3 })
+            {
+              details->CrossingEnds.insert(details->CrossingEnds.end(), p[k], p[k] + 3);
+            }
+          }
+          const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          if (length > 0.0)
+          {
+            const double u[3] = { n[0] / length, n[1] / length, n[2] / length };
+            details->Planes.insert(details->Planes.end(),
+              { u[0], u[1], u[2], -(u[0] * p[0][0] + u[1] * p[0][1] + u[2] * p[0][2]) });
+          }
         }
       }
       for (int j = 0; j < 2; ++j)
@@ -655,9 +656,9 @@ void ClusterTree::RelatedQuadric(Id node,
           Quadric edge;
           BoundaryEdgeQuadric(p[e], p[(e + 1) % 3], n, this->Options.BoundaryWeight, edge);
           q.Add(edge);
-          if (boundaryEdges)
+          if (details)
           {
-            boundaryEdges->push_back(3 * t + e);
+            details->BoundaryEdges.push_back(3 * t + e);
           }
         }
       }
@@ -831,6 +832,15 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   {
     nodeOffsets[c + 1] = nodeOffsets[c] + static_cast<Id>(cellNodes[c].size());
   }
+  // Room for the top tier's nodes as well: each joins two or more of the components the cells
+  // leave, so there are fewer of them than components. (Appended without it, they would double
+  // the array's room for the rest of the run: 10 bytes per input triangle.)
+  Id components = 0;
+  for (Id v = 0; v < nv; ++v)
+  {
+    components += builder.UF[v] == v ? 1 : 0;
+  }
+  this->Nodes.reserve(static_cast<size_t>(nodeOffsets[numberOfCells]) + components);
   this->Nodes.resize(nodeOffsets[numberOfCells]);
   vtkSMPTools::For(0,
     numberOfCells,

@@ -41,6 +41,17 @@ struct VTKFILTERSMESHLOD_EXPORT ClusterTreeOptions
   double PlacementTolerance = 1e-3;
 };
 
+/// The related triangle set of a node in detail (ClusterTree::RelatedQuadric).
+struct RelatedTriangles
+{
+  std::vector<Id> Crossing;            // triangles with exactly one vertex inside: 3 t + its corner
+  std::vector<Quadric> CrossingPlanes; // their area-weighted plane quadrics
+  std::vector<double> CrossingNormals; // their normals, 3 numbers each (twice the area long)
+  std::vector<double> CrossingEnds;    // their corners outside, relative to Centre: 6 numbers
+  std::vector<Id> BoundaryEdges;       // boundary edges with an end inside: 3 t + k for edge k
+  std::vector<double> Planes;          // every triangle's plane: unit normal and offset
+};
+
 /// An internal node of the tree.
 struct ClusterNode
 {
@@ -175,17 +186,11 @@ public:
   /// The centroid of a node's vertices (relative to Centre).
   void Centroid(Id node, double out[3]) const;
 
-  /// The quadric of the related triangle set of `node`, recomputed from its vertices; with
-  /// `crossing`, also the triangles with exactly one vertex inside (3 t + that corner), with
-  /// `normal` the sum of the area-weighted normals of its triangles, with `boundaryEdges` the
-  /// boundary edges with an end inside (3 t + k for edge k of triangle t) and with `planes` the
-  /// triangles' planes (unit normal and offset, 4 numbers each).
-  void RelatedQuadric(Id node,
-    Quadric& q,
-    std::vector<Id>* crossing,
-    double normal[3],
-    std::vector<Id>* boundaryEdges = nullptr,
-    std::vector<double>* planes = nullptr) const;
+  /// The quadric of the related triangle set of `node`, recomputed from its vertices, with
+  /// `normal` (optional) the sum of the area-weighted normals of its triangles and `details`
+  /// (optional) the lists of RelatedTriangles.
+  void RelatedQuadric(
+    Id node, Quadric& q, double normal[3], RelatedTriangles* details = nullptr) const;
 
   /// The quadric of the related triangle set of a single vertex.
   void VertexQuadric(Id v, Quadric& q, double normal[3]) const;

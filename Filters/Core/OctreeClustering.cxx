@@ -316,7 +316,7 @@ double OctreeClustering::CheckNodeQuadrics(Id count) const
   {
     const ClusterNode& n = tree.Nodes[i];
     Quadric q;
-    tree.RelatedQuadric(tree.NV + i, q, nullptr, nullptr);
+    tree.RelatedQuadric(tree.NV + i, q, nullptr);
     double centre[3];
     tree.Centroid(tree.NV + i, centre);
     double rep[3];

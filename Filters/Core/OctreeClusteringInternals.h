@@ -32,15 +32,9 @@ enum class NodeState : std::uint8_t
   Inadmissible = 2,
 };
 
-// The crossing triangles of a node (exactly one vertex inside) with their planes.
-struct EvaluationScratch
-{
-  std::vector<Id> Crossing;      // 3 t + corner of the vertex inside
-  std::vector<Quadric> Planes;   // area-weighted plane quadric of each
-  std::vector<double> Normals;   // 3 per crossing triangle (twice the area in length)
-  std::vector<Id> BoundaryEdges; // boundary edges with an end inside (3 t + k)
-  std::vector<double> Related;   // planes of the related triangle set (unit normal, offset)
-};
+// The related triangle set of the node being evaluated: its crossing triangles (exactly one
+// vertex inside) with their planes, its boundary edges and all its planes.
+using EvaluationScratch = RelatedTriangles;
 
 // Synthesis::Duplicate: the same clusters as an earlier kept triangle, in the same order (up to
 // rotation) or in the opposite order.
@@ -166,7 +160,8 @@ struct OctreeClustering::Internals
   // --- nodes -----------------------------------------------------------------------------------
   bool CheapInadmissible(Id index) const;
   void UpdateThreshold(Id index);
-  void MovedNormal(Id item, const double v0[3], double moved[3]) const;
+  void MovedNormal(
+    const octree::EvaluationScratch& crossing, size_t i, const double v0[3], double moved[3]) const;
   void AddCrossingTerms(const double v0[3], const octree::EvaluationScratch& crossing, Quadric& q) const;
   bool HasFlip(const double v0[3],
     const octree::EvaluationScratch& crossing,

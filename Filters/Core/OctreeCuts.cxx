@@ -53,9 +53,9 @@ void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cu
     const Id i = node - nv;
     return this->Thr[i] <= epsilon && parentOpen(this->Tree.Nodes[i].Parent);
   };
-  cut.resize(static_cast<size_t>(nv) + ni);
-  const Id count = ParallelCompact(nv + ni, isCluster, [&](Id node, Id slot) { cut[slot] = node; });
-  cut.resize(count);
+  const ParallelCompaction clusters(nv + ni, isCluster);
+  cut.resize(clusters.Count());
+  clusters.Write(isCluster, [&](Id node, Id slot) { cut[slot] = node; });
   // (Distinct positions: the parallel sort gives the same order for any thread count.)
   vtkSMPTools::Sort(cut.begin(),
     cut.end(),

@@ -45,12 +45,17 @@ void OctreeClustering::Internals::UpdateThreshold(Id index)
 }
 
 //------------------------------------------------------------------------------
-// Normal (not normalised) of crossing triangle item / 3 with its corner item % 3 moved to v0.
-void OctreeClustering::Internals::MovedNormal(Id item, const double v0[3], double moved[3]) const
+// Normal (not normalised) of crossing triangle i with its corner inside moved to v0 (its corners
+// in their order: the same arithmetic as the triangle's own normal).
+void OctreeClustering::Internals::MovedNormal(
+  const EvaluationScratch& crossing, size_t i, const double v0[3], double moved[3]) const
 {
-  double p[3][3];
-  this->Tree.RelativeTriangle(this->Mesh.Triangle(item / 3), p);
-  std::copy_n(v0, 3, p[item % 3]);
+  const int c = static_cast<int>(crossing.Crossing[i] % 3);
+  const double* ends = crossing.CrossingEnds.data() + 6 * i;
+  const double* p[3];
+  p[c] = v0;
+  p[(c + 1) % 3] = ends;
+  p[(c + 2) % 3] = ends + 3;
   Normal(p[0], p[1], p[2], moved);
 }
 
@@ -65,13 +70,13 @@ void OctreeClustering::Internals::AddCrossingTerms(const double v0[3],
   for (size_t i = 0; i < crossing.Crossing.size(); ++i)
   {
     double moved[3];
-    this->MovedNormal(crossing.Crossing[i], v0, moved);
-    const double* n = crossing.Normals.data() + 3 * i;
+    this->MovedNormal(crossing, i, v0, moved);
+    const double* n = crossing.CrossingNormals.data() + 3 * i;
     const double before = Dot(n, n);
     const double after = Dot(moved, moved);
     const double weight =
       after * MaximumCrossingWeight > before ? before / after : MaximumCrossingWeight;
-    q.Add(crossing.Planes[i], weight);
+    q.Add(crossing.CrossingPlanes[i], weight);
   }
 }
 
@@ -102,8 +107,8 @@ bool OctreeClustering::Internals::HasFlip(const double v0[3],
       continue;
     }
     double moved[3];
-    this->MovedNormal(item, v0, moved);
-    if (!(Dot(crossing.Normals.data() + 3 * i, moved) > 0.0) &&
+    this->MovedNormal(crossing, i, v0, moved);
+    if (!(Dot(crossing.CrossingNormals.data() + 3 * i, moved) > 0.0) &&
       !(surface != nullptr && Dot(surface, moved) > 0.0))
     {
       return true;
@@ -230,18 +235,7 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   const ClusterNode& n = this->Tree.Nodes[index];
   Quadric q1;
   double* slot = this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[index]);
-  this->Tree.RelatedQuadric(
-    node, q1, &scratch.Crossing, slot + 3, &scratch.BoundaryEdges, &scratch.Related);
-  const size_t crossings = scratch.Crossing.size();
-  scratch.Planes.resize(crossings);
-  scratch.Normals.resize(3 * crossings);
-  for (size_t i = 0; i < crossings; ++i)
-  {
-    const Id* tri = this->Mesh.Triangle(scratch.Crossing[i] / 3);
-    double p[3][3];
-    this->Tree.RelativeTriangle(tri, p);
-    TriangleQuadric(p[0], p[1], p[2], scratch.Planes[i], scratch.Normals.data() + 3 * i);
-  }
+  this->Tree.RelatedQuadric(node, q1, slot + 3, &scratch);
   const EvaluationScratch& crossing = scratch;
 
   double centre[3];
@@ -325,9 +319,9 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
     error = std::max(error, this->BoundaryDistance(scratch.BoundaryEdges, v0));
   }
   double farthest = 0.0;
-  for (size_t i = 0; i < scratch.Related.size(); i += 4)
+  for (size_t i = 0; i < scratch.Planes.size(); i += 4)
   {
-    const double* plane = scratch.Related.data() + i;
+    const double* plane = scratch.Planes.data() + i;
     farthest = std::max(farthest, std::abs(Dot(plane, v0) + plane[3]));
   }
   error = std::max(error, 0.5 * farthest);

@@ -149,10 +149,11 @@ Id OctreeClustering::Internals::ReindexTriangles(Synthesis& s) const
     const Id a = pc[prev[3 * t]], b = pc[prev[3 * t + 1]], c = pc[prev[3 * t + 2]];
     return a != b && b != c && c != a;
   };
-  s.From.resize(previousTriangles);
-  const Id kept =
-    ParallelCompact(previousTriangles, nonDegenerate, [&](Id t, Id slot) { s.From[slot] = t; });
+  // Counted before written: From, which lives through the trial, gets only the room it needs.
+  const ParallelCompaction survivors(previousTriangles, nonDegenerate);
+  const Id kept = survivors.Count();
   s.From.resize(kept);
+  survivors.Write(nonDegenerate, [&](Id t, Id slot) { s.From[slot] = t; });
   s.Triangles.resize(3 * static_cast<size_t>(kept));
   vtkSMPTools::For(0,
     kept,
