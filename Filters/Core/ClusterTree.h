@@ -197,6 +197,7 @@ public:
 
 private:
   struct Builder;
+  void HintRelated(Id pos, Id last) const;
   void ComputeFrame();
   void ComputeCodes();
   void PlaceIslands();

@@ -141,11 +141,12 @@ void MinimizeQuadric(const Quadric& quadric,
 }
 
 //------------------------------------------------------------------------------
-void TriangleQuadric(const double a[3],
+bool TriangleQuadric(const double a[3],
   const double b[3],
   const double c[3],
   Quadric& q,
-  double normal[3])
+  double normal[3],
+  double plane[4])
 {
   const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
   const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
@@ -157,10 +158,16 @@ void TriangleQuadric(const double a[3],
     std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
   if (!(length > 0.0))
   {
-    return;
+    return false;
   }
   const double n[3] = { normal[0] / length, normal[1] / length, normal[2] / length };
   q.AddPlane(n, a, 0.5 * length);
+  if (plane)
+  {
+    std::copy_n(n, 3, plane);
+    plane[3] = -(n[0] * a[0] + n[1] * a[1] + n[2] * a[2]);
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------

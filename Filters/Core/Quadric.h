@@ -94,12 +94,15 @@ VTKFILTERSMESHLOD_EXPORT void MinimizeQuadric(const Quadric& q,
   double result[3]);
 
 /// Plane quadric of triangle (a, b, c), weighted by its area; zero for a degenerate triangle.
-/// Also returns the triangle's (unnormalised) normal, twice its area in length.
-VTKFILTERSMESHLOD_EXPORT void TriangleQuadric(const double a[3],
+/// Also returns the triangle's (unnormalised) normal, twice its area in length, and with
+/// `plane` its plane (unit normal and offset: n . x + d = 0), written only when the triangle is
+/// not degenerate; returns false when it is.
+VTKFILTERSMESHLOD_EXPORT bool TriangleQuadric(const double a[3],
   const double b[3],
   const double c[3],
   Quadric& q,
-  double normal[3]);
+  double normal[3],
+  double plane[4] = nullptr);
 
 /// The unit normal of the plane through the boundary edge (a, b) perpendicular to its triangle
 /// (whose normal is `faceNormal`, any length); false, and `unit` untouched, when degenerate.
