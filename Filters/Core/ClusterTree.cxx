@@ -995,6 +995,51 @@ void ClusterTree::ComputeOrder()
       this->Order[pos] = v;
     }
   }
+  this->ComputeChildren();
+}
+
+//------------------------------------------------------------------------------
+// The nodes that start at a position are the vertex there and those of its ancestors that start
+// there too: taking the positions in order lists every node's children, and the roots, in
+// depth-first order.
+void ClusterTree::ComputeChildren()
+{
+  const Id nv = this->NV;
+  const Id ni = this->NumberOfInternalNodes();
+  this->ChildOffsets.assign(static_cast<size_t>(ni) + 1, 0);
+  for (Id node = 0; node < nv + ni; ++node)
+  {
+    const Id parent = this->Parent(node);
+    if (parent != InvalidId)
+    {
+      ++this->ChildOffsets[parent - nv + 1];
+    }
+  }
+  for (Id i = 0; i < ni; ++i)
+  {
+    this->ChildOffsets[i + 1] += this->ChildOffsets[i];
+  }
+  this->Children.resize(this->ChildOffsets[ni]);
+  this->Roots.clear();
+  std::vector<Id> cursor(this->ChildOffsets.begin(), this->ChildOffsets.end() - 1);
+  for (Id pos = 0; pos < nv; ++pos)
+  {
+    for (Id node = this->Order[pos];;)
+    {
+      const Id parent = this->Parent(node);
+      if (parent == InvalidId)
+      {
+        this->Roots.push_back(node);
+        break;
+      }
+      this->Children[cursor[parent - nv]++] = node;
+      if (this->Position(parent) != pos)
+      {
+        break;
+      }
+      node = parent;
+    }
+  }
 }
 
 } // namespace meshlod

@@ -88,6 +88,11 @@ public:
   std::vector<Id> Begin;          // internal node -> first position in Order
   std::vector<Id> Order;          // depth-first vertex order
   std::vector<Id> PosOf;          // vertex -> position in Order
+  // The children of internal node NV + i, in depth-first order: Children[ChildOffsets[i] ..
+  // ChildOffsets[i + 1]); and the roots (nodes without a parent) in depth-first order.
+  std::vector<Id> ChildOffsets;
+  std::vector<Id> Children;
+  std::vector<Id> Roots;
   int Depth = 0;                  // deepest node
   /// Per vertex, its curve neighbours and sheet count when it is a regular point of a curve
   /// where sheets meet (IsRegularCurveVertex; Sheets 0 otherwise). Empty when the mesh has no
@@ -173,15 +178,14 @@ public:
     return MaxDepth - bits;
 #endif
   }
-  /// The child of internal node `node` that holds the vertex at position `pos` of its range.
-  Id ChildAt(Id node, Id pos) const
+  /// The children of internal node `node`, in depth-first order.
+  const Id* ChildrenBegin(Id node) const
   {
-    Id child = this->Order[pos];
-    while (this->Parent(child) != node)
-    {
-      child = this->Parent(child);
-    }
-    return child;
+    return this->Children.data() + this->ChildOffsets[node - this->NV];
+  }
+  const Id* ChildrenEnd(Id node) const
+  {
+    return this->Children.data() + this->ChildOffsets[node - this->NV + 1];
   }
   /// The centroid of a node's vertices (relative to Centre).
   void Centroid(Id node, double out[3]) const;
@@ -203,6 +207,7 @@ private:
   void PlaceIslands();
   void FindCurves();
   void ComputeOrder();
+  void ComputeChildren();
 };
 
 } // namespace meshlod

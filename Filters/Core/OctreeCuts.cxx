@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <limits>
 
 namespace meshlod
@@ -37,29 +38,27 @@ void OctreeClustering::Internals::ComputeActivation(bool guess)
 
 //------------------------------------------------------------------------------
 // The clusters at `epsilon`: the topmost nodes whose threshold is at most epsilon (a vertex on
-// its own always qualifies), in depth-first order. Needs ComputeActivation().
+// its own always qualifies), in depth-first order: a walk down from the roots that stops at
+// them, which visits the nodes above the cut and the cut only.
 void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cut) const
 {
-  const Id ni = this->Tree.NumberOfInternalNodes();
-  const Id nv = this->NV;
-  auto parentOpen = [&](Id parent)
-  { return parent == InvalidId || this->Activation[parent - nv] > epsilon; };
-  auto isCluster = [&](Id node)
+  const ClusterTree& tree = this->Tree;
+  cut.clear();
+  std::vector<Id> stack(tree.Roots.rbegin(), tree.Roots.rend());
+  while (!stack.empty())
   {
-    if (node < nv)
+    const Id node = stack.back();
+    stack.pop_back();
+    if (node < this->NV || this->Thr[node - this->NV] <= epsilon)
     {
-      return parentOpen(this->Tree.LeafParent[node]);
+      cut.push_back(node);
     }
-    const Id i = node - nv;
-    return this->Thr[i] <= epsilon && parentOpen(this->Tree.Nodes[i].Parent);
-  };
-  const ParallelCompaction clusters(nv + ni, isCluster);
-  cut.resize(clusters.Count());
-  clusters.Write(isCluster, [&](Id node, Id slot) { cut[slot] = node; });
-  // (Distinct positions: the parallel sort gives the same order for any thread count.)
-  vtkSMPTools::Sort(cut.begin(),
-    cut.end(),
-    [&](Id a, Id b) { return this->Tree.Position(a) < this->Tree.Position(b); });
+    else
+    {
+      stack.insert(stack.end(), std::make_reverse_iterator(tree.ChildrenEnd(node)),
+        std::make_reverse_iterator(tree.ChildrenBegin(node)));
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -73,7 +72,6 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
 {
   if (!update)
   {
-    this->ComputeActivation();
     this->CollectCut(epsilon, cut);
   }
   vtkSMPThreadLocal<EvaluationScratch> scratch;
@@ -105,12 +103,9 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
     {
       const Id parent = stack.back();
       stack.pop_back();
-      // The children tile the parent's range of the depth-first order.
-      const Id end = this->Tree.Position(parent) + this->Tree.Count(parent);
-      for (Id pos = this->Tree.Position(parent); pos < end;)
+      for (const Id* c = this->Tree.ChildrenBegin(parent); c != this->Tree.ChildrenEnd(parent); ++c)
       {
-        const Id child = this->Tree.ChildAt(parent, pos);
-        pos += this->Tree.Count(child);
+        const Id child = *c;
         if (child < this->NV || this->Thr[child - this->NV] <= epsilon)
         {
           into.push_back(child);
