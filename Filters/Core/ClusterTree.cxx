@@ -872,8 +872,9 @@ void ClusterTree::Build(const TriangleMesh& mesh,
     nodeOffsets[c + 1] = nodeOffsets[c] + static_cast<Id>(cellNodes[c].size());
   }
   // Room for the top tier's nodes as well: each joins two or more of the components the cells
-  // leave, so there are fewer of them than components. (Appended without it, they would double
-  // the array's room for the rest of the run: 10 bytes per input triangle.)
+  // leave, so there are fewer of them than components. (Appended without it, they would move
+  // the whole array into one of twice the room: the old and new arrays side by side for a
+  // moment, and half the new one never used.)
   Id components = 0;
   for (Id v = 0; v < nv; ++v)
   {
