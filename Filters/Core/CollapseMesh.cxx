@@ -92,8 +92,8 @@ void CollapseMesh::Initialize(
         const Id* tri = mesh.Triangle(t);
         Quadric plane;
         double normal[3];
-        TriangleQuadric(mesh.Point(tri[0]), mesh.Point(tri[1]), mesh.Point(tri[2]), plane, normal);
-        if (!(plane.Weight() > 0.0))
+        if (!TriangleQuadric(
+              mesh.Point(tri[0]), mesh.Point(tri[1]), mesh.Point(tri[2]), plane, normal))
         {
           continue; // degenerate triangle
         }
