@@ -2,6 +2,7 @@
 #ifndef meshlod_ParallelCompact_h
 #define meshlod_ParallelCompact_h
 
+#include "FreshMemory.h"
 #include "TriangleMesh.h"
 
 #include "vtkSMPTools.h"
@@ -83,6 +84,28 @@ Id ParallelCompact(Id n, Keep&& keep, Write&& write)
   const ParallelCompaction compaction(n, keep);
   compaction.Write(keep, write);
   return compaction.Count();
+}
+
+/// The ids in [0, n) that pass keep(id), in increasing order, into `ids` (on fresh memory).
+template <typename Keep>
+void ListPassing(Id n, Keep&& keep, std::vector<Id>& ids)
+{
+  const ParallelCompaction passing(n, keep);
+  ResizeFresh(ids, static_cast<std::size_t>(passing.Count()));
+  passing.Write(keep, [&](Id i, Id slot) { ids[slot] = i; });
+}
+
+/// Keep the ids in `ids` that pass keep(id), in order: in parallel, into new memory that then
+/// replaces the old.
+template <typename Keep>
+void KeepInOrder(std::vector<Id>& ids, Keep&& keep)
+{
+  const auto passes = [&](Id i) { return keep(ids[i]); };
+  const ParallelCompaction kept(static_cast<Id>(ids.size()), passes);
+  std::vector<Id> out;
+  ResizeFresh(out, static_cast<std::size_t>(kept.Count()));
+  kept.Write(passes, [&](Id i, Id slot) { out[slot] = ids[i]; });
+  ids.swap(out);
 }
 
 } // namespace meshlod

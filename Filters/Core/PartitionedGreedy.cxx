@@ -28,6 +28,7 @@
 // extended stencil skips the others); triangles one ring out with a corner in another cell are
 // marked after the round. Its last collapses before each level are the plain greedy loop's.
 #include "Collapser.h"
+#include "ParallelCompact.h"
 #include "RankSelection.h"
 
 #include "vtkSMPThreadLocal.h"
@@ -36,7 +37,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 namespace meshlod
 {
@@ -550,20 +550,17 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
 //------------------------------------------------------------------------------
 void Collapser::ListLive()
 {
-  const auto dead = [&](Id t) { return !this->State.IsAlive(t); };
-  const auto merged = [&](Id v) { return this->State.Survivor[v] != v; };
+  const auto alive = [&](Id t) { return this->State.IsAlive(t); };
+  const auto unmerged = [&](Id v) { return this->State.Survivor[v] == v; };
   if (this->LiveTriangles.empty())
   {
-    ResizeFresh(this->LiveTriangles, this->State.Mesh.GetNumberOfTriangles());
-    std::iota(this->LiveTriangles.begin(), this->LiveTriangles.end(), 0);
-    ResizeFresh(this->LiveVertices, this->State.Mesh.GetNumberOfPoints());
-    std::iota(this->LiveVertices.begin(), this->LiveVertices.end(), 0);
+    ListPassing(this->State.Mesh.GetNumberOfTriangles(), alive, this->LiveTriangles);
+    ListPassing(this->State.Mesh.GetNumberOfPoints(), unmerged, this->LiveVertices);
     this->PrepareGrid();
+    return;
   }
-  auto& t = this->LiveTriangles;
-  t.erase(std::remove_if(t.begin(), t.end(), dead), t.end());
-  auto& v = this->LiveVertices;
-  v.erase(std::remove_if(v.begin(), v.end(), merged), v.end());
+  KeepInOrder(this->LiveTriangles, alive);
+  KeepInOrder(this->LiveVertices, unmerged);
 }
 
 //------------------------------------------------------------------------------
