@@ -261,10 +261,11 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
 // orientation, the one most of its triangles already have: an inconsistently oriented input (an
 // STL export, a merged soup) otherwise refuses most collapses, whose link test follows the
 // triangles' winding. A part that is not orientable (a Moebius band) is left as it is. Returns
-// the number of triangles flipped; the topology must then be rebuilt.
-vtkIdType OrientConsistently(TriangleMesh& mesh, const TriangleTopology& topology)
+// the number of triangles flipped; the topology must then be rebuilt. `current`: the topology
+// was built from the mesh as it is (no triangle dropped since).
+vtkIdType OrientConsistently(TriangleMesh& mesh, const TriangleTopology& topology, bool current)
 {
-  if (topology.IsConsistentlyOriented(mesh))
+  if (current ? topology.OrientedWhenBuilt : topology.IsConsistentlyOriented(mesh))
   {
     return 0;
   }
@@ -603,7 +604,8 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
       "Dropped " << result.DegenerateTriangles << " degenerate and " << result.DuplicateTriangles
                  << " duplicate triangles.");
   }
-  result.FlippedTriangles = OrientConsistently(mesh, result.Topology);
+  result.FlippedTriangles =
+    OrientConsistently(mesh, result.Topology, result.DuplicateTriangles == 0);
   if (result.FlippedTriangles > 0)
   {
     vtkWarningWithObjectMacro(caller,

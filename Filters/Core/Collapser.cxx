@@ -61,7 +61,7 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   }
   this->InitialTriangles = mesh.GetNumberOfTriangles();
   // (The input's parts were oriented consistently where they can be: see ReadInputMesh.)
-  this->Rules.StarShapedBySide = !topology.IsConsistentlyOriented(mesh);
+  this->Rules.StarShapedBySide = !topology.OrientedWhenBuilt;
   this->Tracker.Initialize(mesh.GetNumberOfPoints(), curvature);
   // Boundary planes weigh BoundaryWeight per unit of boundary length and of diagonal: the same
   // per unit length at every input resolution (see TriangleCollapseOptions::BoundaryWeight).

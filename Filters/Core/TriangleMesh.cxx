@@ -5,6 +5,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numeric>
 #include <utility>
@@ -134,8 +135,10 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
   AssignFresh(this->EdgeNeighbors, 3 * static_cast<size_t>(nt), BoundaryEdge);
   std::vector<std::uint8_t>().swap(this->BoundaryFlags);
 
-  // Edge neighbours: for edge (a, b) of t, the other triangles in a's row that contain b.
+  // Edge neighbours: for edge (a, b) of t, the other triangles in a's row that contain b; and
+  // whether each manifold edge's two triangles run it in opposite directions.
   const VertexTriangleAdjacency& adj = this->VertexTriangles;
+  std::atomic<bool> inconsistent(false);
   vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
     for (Id t = begin; t < end; ++t)
     {
@@ -164,9 +167,19 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
           }
         }
         this->EdgeNeighbors[3 * static_cast<size_t>(t) + k] = found;
+        if (found >= 0)
+        {
+          // t runs tri[k] -> tri[k + 1], so the neighbour must run tri[k + 1] -> tri[k].
+          const Id* ntri = mesh.Triangle(found);
+          if (ntri[(CornerOf(ntri, tri[(k + 1) % 3]) + 1) % 3] != tri[k])
+          {
+            inconsistent.store(true, std::memory_order_relaxed);
+          }
+        }
       }
     }
   });
+  this->OrientedWhenBuilt = !inconsistent.load();
 
   // Vertex kinds: walk the fan of the first incident triangle; any triangle not reached means
   // several fans meet at the vertex.

@@ -106,6 +106,9 @@ struct VTKFILTERSMESHLOD_EXPORT TriangleTopology
   /// Per triangle, bit k set when edge k is a boundary edge; filled only by
   /// KeepBoundaryFlagsOnly().
   std::vector<std::uint8_t> BoundaryFlags;
+  /// IsConsistentlyOriented() of the mesh given to Build(), found on the way: valid while the
+  /// mesh's triangles are those it was built from.
+  bool OrientedWhenBuilt = true;
 
   /// Build everything (data-parallel over triangles and vertices).
   void Build(const TriangleMesh& mesh);

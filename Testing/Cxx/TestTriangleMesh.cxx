@@ -71,11 +71,13 @@ void TestOctahedron()
   MESHLOD_CHECK_EQ(edges.NonManifold, 0);
   MESHLOD_CHECK_EQ(topo.EulerCharacteristic(mesh), 2);
   MESHLOD_CHECK(topo.IsConsistentlyOriented(mesh));
+  MESHLOD_CHECK(topo.OrientedWhenBuilt);
 
   // Flipping one triangle breaks the orientation.
   std::swap(mesh.Triangle(5)[0], mesh.Triangle(5)[1]);
   topo.Build(mesh);
   MESHLOD_CHECK(!topo.IsConsistentlyOriented(mesh));
+  MESHLOD_CHECK(!topo.OrientedWhenBuilt);
   MESHLOD_CHECK_EQ(topo.EulerCharacteristic(mesh), 2);
 }
 
