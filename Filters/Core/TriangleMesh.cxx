@@ -12,6 +12,14 @@
 
 namespace meshlod
 {
+namespace
+{
+// VertexTriangleAdjacency::Build splits the vertices into as many ranges as threads, up to
+// this many, from this many triangles up (below, one pass costs less than starting threads).
+constexpr Id MaximumRowChunks = 8;
+constexpr Id ParallelRowsMinimumTriangles = 65536;
+}
+
 //------------------------------------------------------------------------------
 void TriangleMesh::AreaVector(Id t, double n[3]) const
 {
@@ -32,36 +40,49 @@ void VertexTriangleAdjacency::Build(const Id* triangles, Id numberOfTriangles, I
   // Counting sort: count, prefix sum, fill. Filling in triangle order keeps each row sorted.
   // The offsets double as the fill cursors (row v is filled from Offsets[v] on, which ends at
   // the old Offsets[v + 1]), and are shifted back afterwards: no other array is needed, and
-  // rebuilding reuses the rows' memory.
-  AssignFresh(this->Offsets, static_cast<size_t>(numberOfPoints) + 1, 0);
-  for (Id t = 0; t < numberOfTriangles; ++t)
-  {
-    const Id* tri = triangles + 3 * static_cast<size_t>(t);
-    if (tri[0] == InvalidId)
+  // rebuilding reuses the rows' memory. With several threads, each counts and fills the rows of
+  // one range of vertices, reading every triangle: the scattered writes, which take the time,
+  // are shared out, and every row is still filled in triangle order by one thread.
+  const Id chunks = numberOfTriangles < ParallelRowsMinimumTriangles
+    ? 1
+    : std::max<Id>(1, std::min<Id>(MaximumRowChunks, vtkSMPTools::GetEstimatedNumberOfThreads()));
+  const auto forEachCorner = [&](Id chunk, auto&& f) {
+    const Id low = numberOfPoints * chunk / chunks;
+    const Id high = numberOfPoints * (chunk + 1) / chunks;
+    for (Id t = 0; t < numberOfTriangles; ++t)
     {
-      continue;
+      const Id* tri = triangles + 3 * static_cast<size_t>(t);
+      if (tri[0] == InvalidId)
+      {
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        if (tri[k] >= low && tri[k] < high)
+        {
+          f(t, tri[k]);
+        }
+      }
     }
-    ++this->Offsets[tri[0] + 1];
-    ++this->Offsets[tri[1] + 1];
-    ++this->Offsets[tri[2] + 1];
-  }
+  };
+  AssignFresh(this->Offsets, static_cast<size_t>(numberOfPoints) + 1, 0);
+  vtkSMPTools::For(0, chunks, 1, [&](Id begin, Id end) {
+    for (Id chunk = begin; chunk < end; ++chunk)
+    {
+      forEachCorner(chunk, [&](Id, Id v) { ++this->Offsets[v + 1]; });
+    }
+  });
   for (Id v = 0; v < numberOfPoints; ++v)
   {
     this->Offsets[v + 1] += this->Offsets[v];
   }
   ResizeFresh(this->Triangles, this->Offsets[numberOfPoints]);
-  for (Id t = 0; t < numberOfTriangles; ++t)
-  {
-    const Id* tri = triangles + 3 * static_cast<size_t>(t);
-    if (tri[0] == InvalidId)
+  vtkSMPTools::For(0, chunks, 1, [&](Id begin, Id end) {
+    for (Id chunk = begin; chunk < end; ++chunk)
     {
-      continue;
+      forEachCorner(chunk, [&](Id t, Id v) { this->Triangles[this->Offsets[v]++] = t; });
     }
-    for (int k = 0; k < 3; ++k)
-    {
-      this->Triangles[this->Offsets[tri[k]]++] = t;
-    }
-  }
+  });
   for (Id v = numberOfPoints; v > 0; --v)
   {
     this->Offsets[v] = this->Offsets[v - 1];

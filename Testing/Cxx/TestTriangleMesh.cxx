@@ -260,6 +260,36 @@ void TestFreshMemory()
   MESHLOD_CHECK_EQ(small.size(), 10u);
   MESHLOD_CHECK_EQ(small[9], 1.5);
 }
+// Rows of a mesh large enough for the rows to be built by ranges of vertices in parallel (from
+// 65,536 triangles, with more than one thread): every row lists its live triangles in
+// increasing order, as one pass in triangle order gives.
+void TestLargeRows()
+{
+  TriangleMesh mesh = ToCore(testing::MakeGrid(200, 200)); // 80,000 triangles
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); t += 7)
+  {
+    mesh.Triangle(t)[0] = InvalidId;
+  }
+  std::vector<std::vector<Id>> expected(mesh.GetNumberOfPoints());
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    const Id* tri = mesh.Triangle(t);
+    for (int k = 0; tri[0] != InvalidId && k < 3; ++k)
+    {
+      expected[tri[k]].push_back(t);
+    }
+  }
+  VertexTriangleAdjacency rows;
+  rows.Build(mesh);
+  bool same = rows.Offsets.size() == expected.size() + 1;
+  for (Id v = 0; same && v < mesh.GetNumberOfPoints(); ++v)
+  {
+    same = std::equal(rows.Triangles.begin() + rows.Begin(v), rows.Triangles.begin() + rows.End(v),
+      expected[v].begin(), expected[v].end());
+  }
+  MESHLOD_CHECK(same);
+  MESHLOD_CHECK_EQ(rows.Offsets.back(), 3 * (80000 - (80000 + 6) / 7));
+}
 } // namespace
 
 int TestTriangleMesh(int, char*[])
@@ -271,5 +301,6 @@ int TestTriangleMesh(int, char*[])
   TestHole();
   TestCompaction();
   TestFreshMemory();
+  TestLargeRows();
   return meshlod::testing::Result();
 }
