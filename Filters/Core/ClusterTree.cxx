@@ -1,6 +1,7 @@
 #include "ClusterTree.h"
 
 #include "CacheHint.h"
+#include "FreshMemory.h"
 
 #include "vtkSMPTools.h"
 
@@ -134,14 +135,14 @@ struct ClusterTree::Builder
     : Tree(tree)
   {
     const Id nv = tree.NV;
-    this->UF.resize(nv);
+    ResizeFresh(this->UF, nv);
     std::iota(this->UF.begin(), this->UF.end(), 0);
-    this->UFSize.assign(nv, 1);
-    this->NodeOf.resize(nv);
+    AssignFresh(this->UFSize, nv, 1);
+    ResizeFresh(this->NodeOf, nv);
     std::iota(this->NodeOf.begin(), this->NodeOf.end(), 0);
-    this->StampOld.assign(nv, -1);
-    this->StampNew.assign(nv, -1);
-    this->NewNode.assign(nv, InvalidId);
+    AssignFresh(this->StampOld, nv, -1);
+    AssignFresh(this->StampNew, nv, -1);
+    AssignFresh(this->NewNode, nv, InvalidId);
   }
 
   Id Find(Id v) { return FindRoot(this->UF, v); }
@@ -384,7 +385,7 @@ void ClusterTree::ComputeCodes()
   const TriangleMesh& mesh = *this->Mesh;
   const double scale = std::ldexp(1.0, AxisBits) / this->Size;
   const double top = std::ldexp(1.0, AxisBits) - 1.0;
-  this->Codes.resize(nv);
+  ResizeFresh(this->Codes, nv);
   vtkSMPTools::For(0, nv, [&](Id begin, Id end) {
     for (Id v = begin; v < end; ++v)
     {
@@ -451,7 +452,7 @@ void ClusterTree::PlaceIslands()
     return 3 * static_cast<int>(std::min<double>(AxisBits, octreeDepth));
   };
   const std::vector<std::uint64_t>& codes = this->Codes;
-  std::vector<std::uint64_t> placed(codes);
+  std::vector<std::uint64_t> placed = FreshCopy(codes.begin(), codes.end());
   vtkSMPTools::For(0, nv, [&](Id begin, Id end) {
     std::vector<Id> island;
     auto inIsland = [&](Id w)
@@ -715,7 +716,7 @@ void ClusterTree::FindCurves()
   {
     return;
   }
-  this->Curves.resize(this->NV);
+  ResizeFresh(this->Curves, this->NV);
   vtkSMPTools::For(0,
     this->NV,
     [&](Id begin, Id end)
@@ -780,7 +781,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   this->Options = options;
   this->NV = mesh.GetNumberOfPoints();
   this->Nodes.clear();
-  this->LeafParent.assign(this->NV, InvalidId);
+  AssignFresh(this->LeafParent, this->NV, InvalidId);
   this->ComputeFrame();
   const Id nv = this->NV;
   this->FindCurves();
@@ -804,9 +805,9 @@ void ClusterTree::Build(const TriangleMesh& mesh,
     }
     keyOffsets[key + 1] += keyOffsets[key];
   }
-  std::vector<Id> cellVertices(nv);
+  std::vector<Id> cellVertices = FreshVector<Id>(nv);
   {
-    std::vector<Id> cursor(keyOffsets.begin(), keyOffsets.end() - 1);
+    std::vector<Id> cursor = FreshCopy(keyOffsets.begin(), keyOffsets.end() - 1);
     for (Id v = 0; v < nv; ++v)
     {
       cellVertices[cursor[this->Codes[v] >> shift]++] = v;
@@ -880,7 +881,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   {
     components += builder.UF[v] == v ? 1 : 0;
   }
-  this->Nodes.reserve(static_cast<size_t>(nodeOffsets[numberOfCells]) + components);
+  ReserveFresh(this->Nodes, static_cast<size_t>(nodeOffsets[numberOfCells]) + components);
   this->Nodes.resize(nodeOffsets[numberOfCells]);
   vtkSMPTools::For(0,
     numberOfCells,
@@ -956,10 +957,10 @@ void ClusterTree::ComputeOrder()
 {
   const Id nv = this->NV;
   const Id ni = static_cast<Id>(this->Nodes.size());
-  this->Begin.assign(ni, 0);
-  this->Order.resize(nv);
-  this->PosOf.resize(nv);
-  std::vector<Id> cursor(ni, 0);
+  AssignFresh(this->Begin, ni, 0);
+  ResizeFresh(this->Order, nv);
+  ResizeFresh(this->PosOf, nv);
+  std::vector<Id> cursor = FreshVector<Id>(ni, 0);
   Id next = 0;
   for (Id v = 0; v < nv; ++v)
   {
@@ -1007,7 +1008,7 @@ void ClusterTree::ComputeChildren()
 {
   const Id nv = this->NV;
   const Id ni = this->NumberOfInternalNodes();
-  this->ChildOffsets.assign(static_cast<size_t>(ni) + 1, 0);
+  AssignFresh(this->ChildOffsets, static_cast<size_t>(ni) + 1, 0);
   for (Id node = 0; node < nv + ni; ++node)
   {
     const Id parent = this->Parent(node);
@@ -1020,9 +1021,9 @@ void ClusterTree::ComputeChildren()
   {
     this->ChildOffsets[i + 1] += this->ChildOffsets[i];
   }
-  this->Children.resize(this->ChildOffsets[ni]);
+  ResizeFresh(this->Children, this->ChildOffsets[ni]);
   this->Roots.clear();
-  std::vector<Id> cursor(this->ChildOffsets.begin(), this->ChildOffsets.end() - 1);
+  std::vector<Id> cursor = FreshCopy(this->ChildOffsets.begin(), this->ChildOffsets.end() - 1);
   for (Id pos = 0; pos < nv; ++pos)
   {
     for (Id node = this->Order[pos];;)

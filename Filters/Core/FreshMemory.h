@@ -64,6 +64,25 @@ void AssignFresh(
   ReserveFresh(v, n);
   v.assign(n, value);
 }
+/// A vector of n copies of value, on prepared memory when it is large.
+template <typename T>
+std::vector<T> FreshVector(std::size_t n, const T& value = T())
+{
+  std::vector<T> v;
+  AssignFresh(v, n, value);
+  return v;
+}
+
+/// A vector holding [first, last), on prepared memory when it is large.
+template <typename Iterator>
+auto FreshCopy(Iterator first, Iterator last)
+  -> std::vector<typename std::iterator_traits<Iterator>::value_type>
+{
+  std::vector<typename std::iterator_traits<Iterator>::value_type> v;
+  ReserveFresh(v, static_cast<std::size_t>(std::distance(first, last)));
+  v.assign(first, last);
+  return v;
+}
 } // namespace meshlod
 
 #endif

@@ -1,5 +1,6 @@
 // The octree clustering (OctreeClustering.h): the public class; the work is in the files
 // listed in OctreeClusteringInternals.h.
+#include "FreshMemory.h"
 #include "OctreeClusteringInternals.h"
 
 #include "vtkSMPTools.h"
@@ -48,12 +49,12 @@ void OctreeClustering::BuildTree()
   options.PlacementTolerance = impl.Options.PlacementTolerance;
   impl.Tree.Build(impl.Mesh, impl.Topology, options);
   const Id ni = impl.Tree.NumberOfInternalNodes();
-  impl.State.assign(ni, NodeState::NotEvaluated);
-  impl.Refused.assign(ni, 0);
+  AssignFresh(impl.State, ni, NodeState::NotEvaluated);
+  AssignFresh(impl.Refused, ni, 0);
   impl.RefusedNodes.clear();
-  impl.RepSlot.assign(ni, InvalidId);
+  AssignFresh(impl.RepSlot, ni, InvalidId);
   impl.Reps.clear();
-  impl.Thr.resize(ni);
+  ResizeFresh(impl.Thr, ni);
   vtkSMPTools::For(0,
     ni,
     [&](Id begin, Id end)
@@ -69,7 +70,7 @@ void OctreeClustering::BuildTree()
   impl.CurrentLevelZero.clear();
   impl.PointNode.clear();
   impl.PointVertexCount.clear();
-  impl.ClusterOfVertex.assign(impl.NV, InvalidId);
+  AssignFresh(impl.ClusterOfVertex, impl.NV, InvalidId);
   impl.CurrentEpsilon = 0.0;
   impl.LabelPreviousPieces();
 }

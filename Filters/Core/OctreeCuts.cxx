@@ -1,4 +1,5 @@
 // Octree clustering: cuts of the cluster tree and the epsilon search (see OctreeClusteringInternals.h).
+#include "FreshMemory.h"
 #include "OctreeClusteringInternals.h"
 
 #include "vtkSMPThreadLocal.h"
@@ -25,7 +26,7 @@ void OctreeClustering::Internals::ComputeActivation(bool guess)
   const float inflation = static_cast<float>(
     guess && this->RatioCount > 0 ? std::exp(this->LogRatioSum / this->RatioCount) : 1.0);
   const Id ni = this->Tree.NumberOfInternalNodes();
-  this->Activation.resize(ni);
+  ResizeFresh(this->Activation, ni);
   for (Id i = ni - 1; i >= 0; --i)
   {
     const Id parent = this->Tree.Nodes[i].Parent;
@@ -76,10 +77,13 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
   }
   vtkSMPThreadLocal<EvaluationScratch> scratch;
   std::vector<Id> pending, failed, kept, stack;
+  const auto unevaluated = [&](Id node) {
+    return node >= this->NV && this->State[node - this->NV] == NodeState::NotEvaluated &&
+      !this->Refused[node - this->NV];
+  };
   auto queue = [&](Id node)
   {
-    if (node >= this->NV && this->State[node - this->NV] == NodeState::NotEvaluated &&
-      !this->Refused[node - this->NV])
+    if (unevaluated(node))
     {
       const Id i = node - this->NV;
       pending.push_back(node);
@@ -123,6 +127,11 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
   {
     pending.clear();
     failed.clear();
+    // Room for the slots of the nodes to evaluate, on prepared memory (queue appends them one by
+    // one).
+    const std::size_t slots = SlotSize *
+      static_cast<std::size_t>(std::count_if(candidates.begin(), candidates.end(), unevaluated));
+    ReserveFresh(this->Reps, this->Reps.size() + slots);
     for (const Id node : candidates)
     {
       queue(node);
@@ -261,7 +270,7 @@ double OctreeClustering::Internals::EpsilonForCount(Id target) const
       }
     }
   });
-  std::vector<std::int64_t> histogram(bins, 0);
+  std::vector<std::int64_t> histogram = FreshVector<std::int64_t>(bins, 0);
   for (const std::vector<std::int64_t>& local : histograms)
   {
     for (std::size_t k = 0; k < local.size(); ++k)

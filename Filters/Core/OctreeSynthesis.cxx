@@ -1,4 +1,5 @@
 // Octree clustering: a level from a cut of the cluster tree (see OctreeClusteringInternals.h).
+#include "FreshMemory.h"
 #include "OctreeClusteringInternals.h"
 #include "TriangulationFlips.h"
 
@@ -69,7 +70,7 @@ void OctreeClustering::Internals::LabelPreviousPieces()
   }
   // Numbered 0, 1, ... in the order of their smallest point (a root comes before the rest of
   // its piece), so that MarkBreaks needs one entry per piece, not per point.
-  this->PreviousPiece.resize(points);
+  ResizeFresh(this->PreviousPiece, points);
   std::uint32_t count = 0;
   for (Id p = 0; p < points; ++p)
   {
@@ -103,7 +104,7 @@ void OctreeClustering::Internals::AssignClusters(Synthesis& s)
       }
     });
   const Id previousPoints = this->PreviousPoints();
-  s.PointCluster.resize(previousPoints);
+  ResizeFresh(s.PointCluster, previousPoints);
   vtkSMPTools::For(0,
     previousPoints,
     [&](Id begin, Id end)
@@ -113,7 +114,7 @@ void OctreeClustering::Internals::AssignClusters(Synthesis& s)
         s.PointCluster[p] = this->ClusterOfVertex[this->FirstVertex(this->NodeOfPoint(p))];
       }
     });
-  s.Reps.resize(3 * static_cast<size_t>(clusters));
+  ResizeFresh(s.Reps, 3 * static_cast<size_t>(clusters));
   vtkSMPTools::For(0,
     clusters,
     [&](Id begin, Id end)
@@ -124,13 +125,14 @@ void OctreeClustering::Internals::AssignClusters(Synthesis& s)
       }
     });
   // A cluster is unchanged when it is exactly one previous point.
-  std::vector<Id> count(clusters, 0), some(clusters, InvalidId);
+  std::vector<Id> count = FreshVector<Id>(clusters, 0);
+  std::vector<Id> some = FreshVector<Id>(clusters, InvalidId);
   for (Id p = 0; p < previousPoints; ++p)
   {
     ++count[s.PointCluster[p]];
     some[s.PointCluster[p]] = p;
   }
-  s.Changed.resize(clusters);
+  ResizeFresh(s.Changed, clusters);
   for (Id k = 0; k < clusters; ++k)
   {
     s.Changed[k] = (count[k] == 1 && this->NodeOfPoint(some[k]) == s.Cut[k]) ? 0 : 1;
@@ -152,9 +154,9 @@ Id OctreeClustering::Internals::ReindexTriangles(Synthesis& s) const
   // Counted before written: From, which lives through the trial, gets only the room it needs.
   const ParallelCompaction survivors(previousTriangles, nonDegenerate);
   const Id kept = survivors.Count();
-  s.From.resize(kept);
+  ResizeFresh(s.From, kept);
   survivors.Write(nonDegenerate, [&](Id t, Id slot) { s.From[slot] = t; });
-  s.Triangles.resize(3 * static_cast<size_t>(kept));
+  ResizeFresh(s.Triangles, 3 * static_cast<size_t>(kept));
   vtkSMPTools::For(0,
     kept,
     [&](Id begin, Id end)
@@ -180,7 +182,7 @@ void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
   const std::vector<Id>& tris = s.Triangles;
   auto smallest = [&](Id j)
   { return std::min(tris[3 * j], std::min(tris[3 * j + 1], tris[3 * j + 2])); };
-  std::vector<Id> offsets(static_cast<size_t>(clusters) + 1, 0);
+  std::vector<Id> offsets = FreshVector<Id>(static_cast<size_t>(clusters) + 1, 0);
   for (Id j = 0; j < kept; ++j)
   {
     ++offsets[smallest(j) + 1];
@@ -189,7 +191,7 @@ void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
   {
     offsets[k + 1] += offsets[k];
   }
-  std::vector<Id> grouped(kept);
+  std::vector<Id> grouped = FreshVector<Id>(kept);
   {
     std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
     for (Id j = 0; j < kept; ++j)
@@ -197,7 +199,7 @@ void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
       grouped[cursor[smallest(j)]++] = j;
     }
   }
-  s.Duplicate.assign(kept, 0);
+  AssignFresh(s.Duplicate, kept, 0);
   vtkSMPTools::For(0,
     clusters,
     [&](Id begin, Id end)
@@ -248,7 +250,7 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
   const Id kept = static_cast<Id>(s.From.size());
   const Id clusters = static_cast<Id>(s.Cut.size());
   // Surface normals only for the clusters of triangles that can have folded.
-  std::vector<unsigned char> needed(clusters, 0);
+  std::vector<unsigned char> needed = FreshVector<unsigned char>(clusters, 0);
   for (Id j = 0; j < kept; ++j)
   {
     if (s.Involved(j))
@@ -259,7 +261,7 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
       }
     }
   }
-  std::vector<double> normals(3 * static_cast<size_t>(clusters), 0.0);
+  std::vector<double> normals = FreshVector<double>(3 * static_cast<size_t>(clusters), 0.0);
   vtkSMPTools::For(0,
     clusters,
     [&](Id begin, Id end)
@@ -272,7 +274,7 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
         }
       }
     });
-  std::vector<unsigned char> folded(kept, 0);
+  std::vector<unsigned char> folded = FreshVector<unsigned char>(kept, 0);
   vtkSMPTools::For(0,
     kept,
     [&](Id begin, Id end)
@@ -338,7 +340,7 @@ Id OctreeClustering::Internals::MarkBreaks(Synthesis& s)
   const Id kept = static_cast<Id>(s.From.size());
   const Id clusters = static_cast<Id>(s.Cut.size());
   Pieces after(clusters); // the clusters joined by the kept triangles
-  std::vector<unsigned char> alive(clusters, 0);
+  std::vector<unsigned char> alive = FreshVector<unsigned char>(clusters, 0);
   for (Id j = 0; j < kept; ++j)
   {
     if (!s.Duplicate[j])
@@ -352,7 +354,7 @@ Id OctreeClustering::Internals::MarkBreaks(Synthesis& s)
   // (A cluster's previous points are connected: they lie in one previous piece.)
   const Id previousPoints = this->PreviousPoints();
   std::vector<Id> keptPiece(this->PreviousPieces, InvalidId); // by previous piece
-  std::vector<unsigned char> broken(this->PreviousPieces, 0);
+  std::vector<unsigned char> broken = FreshVector<unsigned char>(this->PreviousPieces, 0);
   bool any = false;
   for (Id p = 0; p < previousPoints; ++p)
   {
@@ -418,7 +420,7 @@ Id OctreeClustering::Internals::MarkChanged(Synthesis& s,
     }
     this->UpdateThreshold(i);
   };
-  std::vector<unsigned char> split(this->SplitFully ? s.Cut.size() : 0, 0);
+  std::vector<unsigned char> split = FreshVector<unsigned char>(this->SplitFully ? s.Cut.size() : 0, 0);
   for (const Id k : clusters)
   {
     if (s.Changed[k])
@@ -465,7 +467,7 @@ Id OctreeClustering::Internals::MarkPinchedVertices(Synthesis& s)
   const Id kept = static_cast<Id>(s.From.size());
   const Id clusters = static_cast<Id>(s.Cut.size());
   // The kept triangles around each cluster (counting sort by cluster).
-  std::vector<Id> offsets(static_cast<size_t>(clusters) + 1, 0);
+  std::vector<Id> offsets = FreshVector<Id>(static_cast<size_t>(clusters) + 1, 0);
   for (Id j = 0; j < kept; ++j)
   {
     for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
@@ -477,7 +479,7 @@ Id OctreeClustering::Internals::MarkPinchedVertices(Synthesis& s)
   {
     offsets[k + 1] += offsets[k];
   }
-  std::vector<Id> around(offsets[clusters]);
+  std::vector<Id> around = FreshVector<Id>(offsets[clusters]);
   {
     std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
     for (Id j = 0; j < kept; ++j)
@@ -488,7 +490,7 @@ Id OctreeClustering::Internals::MarkPinchedVertices(Synthesis& s)
       }
     }
   }
-  std::vector<unsigned char> pinched(clusters, 0);
+  std::vector<unsigned char> pinched = FreshVector<unsigned char>(clusters, 0);
   struct LinkScratch
   {
     std::vector<Id> Ends, Vertices, Up;
@@ -641,7 +643,7 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
 {
   const Id kept = static_cast<Id>(s.From.size());
   const Id clusters = static_cast<Id>(s.Cut.size());
-  std::vector<Id> offsets(static_cast<size_t>(clusters) + 1, 0);
+  std::vector<Id> offsets = FreshVector<Id>(static_cast<size_t>(clusters) + 1, 0);
   auto forEachEdge = [&](auto visit)
   {
     for (Id j = 0; j < kept; ++j)
@@ -661,7 +663,7 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
   // Each entry packs the larger cluster (high bits) and the triangle, so that sorting a
   // cluster's entries brings the triangles of each of its edges together (n log n even around a
   // vertex with very many triangles).
-  std::vector<std::uint64_t> entries(offsets[clusters]);
+  std::vector<std::uint64_t> entries = FreshVector<std::uint64_t>(offsets[clusters]);
   {
     std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
     forEachEdge([&](Id low, Id other, Id j) {
@@ -681,7 +683,7 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
       static_cast<std::size_t>(it->Sheets) == run;
   };
   // pinched[x]: entry x is on an edge with three or more triangles, one of them involved.
-  std::vector<unsigned char> pinched(entries.size(), 0);
+  std::vector<unsigned char> pinched = FreshVector<unsigned char>(entries.size(), 0);
   vtkSMPTools::For(0,
     clusters,
     [&](Id begin, Id end)
@@ -743,19 +745,19 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
   const Id previousTriangles = this->PreviousTriangles();
   const Id* prev = this->PreviousTriangleData();
   std::vector<Id> final;
-  final.resize(s.From.size());
+  ResizeFresh(final, s.From.size());
   const Id count = ParallelCompact(
     static_cast<Id>(s.From.size()),
     [&](Id j) { return s.Duplicate[j] == 0; },
     [&](Id j, Id slot) { final[slot] = j; });
-  final.resize(count);
+  ResizeFresh(final, count);
   if (count == 0)
   {
     return; // everything collapsed: no level
   }
 
   // Points: the clusters some triangle uses, in depth-first order.
-  std::vector<Id> newId(clusters, InvalidId);
+  std::vector<Id> newId = FreshVector<Id>(clusters, InvalidId);
   for (const Id j : final)
   {
     for (int c = 0; c < 3; ++c)
@@ -768,9 +770,9 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
   {
     newId[k] = newId[k] == 0 ? points++ : InvalidId;
   }
-  level.Mesh.Points.resize(3 * static_cast<size_t>(points));
-  level.PointNode.resize(points);
-  level.PointVertexCount.resize(points);
+  ResizeFresh(level.Mesh.Points, 3 * static_cast<size_t>(points));
+  ResizeFresh(level.PointNode, points);
+  ResizeFresh(level.PointVertexCount, points);
   double worst = 0.0;
   for (Id k = 0; k < clusters; ++k)
   {
@@ -783,8 +785,8 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
     }
   }
   level.EstimatedError = worst;
-  level.Mesh.Triangles.resize(3 * static_cast<size_t>(count));
-  level.LevelZeroTriangle.resize(count);
+  ResizeFresh(level.Mesh.Triangles, 3 * static_cast<size_t>(count));
+  ResizeFresh(level.LevelZeroTriangle, count);
   vtkSMPTools::For(0,
     count,
     [&](Id begin, Id end)
@@ -803,7 +805,7 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
   // Clusters that lost all their triangles send their previous points to the nearest cluster
   // joined to them by a previous triangle, else to the nearer kept cluster before or after them
   // in depth-first order.
-  std::vector<Id> redirect(clusters, InvalidId);
+  std::vector<Id> redirect = FreshVector<Id>(clusters, InvalidId);
   std::vector<double> distance(clusters, std::numeric_limits<double>::max());
   auto offer = [&](Id k, Id candidate)
   {
@@ -839,7 +841,7 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
         }
       }
     }
-    std::vector<Id> before(clusters, InvalidId);
+    std::vector<Id> before = FreshVector<Id>(clusters, InvalidId);
     Id lastKept = InvalidId;
     for (Id k = 0; k < clusters; ++k)
     {
@@ -864,8 +866,8 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
   }
 
   // Targets; collapse ranks: the clusters that changed, by increasing error.
-  level.Target.resize(previousPoints);
-  std::vector<unsigned char> receives(clusters, 0);
+  ResizeFresh(level.Target, previousPoints);
+  std::vector<unsigned char> receives = FreshVector<unsigned char>(clusters, 0);
   for (Id p = 0; p < previousPoints; ++p)
   {
     Id k = s.PointCluster[p];
@@ -891,12 +893,12 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
       const double ea = this->NodeError(s.Cut[a]), eb = this->NodeError(s.Cut[b]);
       return ea < eb || (ea == eb && s.Cut[a] < s.Cut[b]);
     });
-  std::vector<Id> rankOfPoint(points, -1);
+  std::vector<Id> rankOfPoint = FreshVector<Id>(points, -1);
   for (size_t r = 0; r < ranked.size(); ++r)
   {
     rankOfPoint[newId[ranked[r]]] = static_cast<Id>(r);
   }
-  level.Rank.resize(previousPoints);
+  ResizeFresh(level.Rank, previousPoints);
   for (Id p = 0; p < previousPoints; ++p)
   {
     level.Rank[p] = rankOfPoint[level.Target[p]];
@@ -904,7 +906,7 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
   level.ChangedClusters = static_cast<Id>(ranked.size());
 
   // Sources: the previous points of each cluster, weighted by the input vertices they stand for.
-  level.SourceOffsets.assign(static_cast<size_t>(points) + 1, 0);
+  AssignFresh(level.SourceOffsets, static_cast<size_t>(points) + 1, 0);
   for (Id p = 0; p < previousPoints; ++p)
   {
     const Id j = newId[s.PointCluster[p]];
@@ -917,8 +919,8 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
   {
     level.SourceOffsets[j + 1] += level.SourceOffsets[j];
   }
-  level.SourceParents.resize(level.SourceOffsets[points]);
-  level.SourceWeights.resize(level.SourceOffsets[points]);
+  ResizeFresh(level.SourceParents, level.SourceOffsets[points]);
+  ResizeFresh(level.SourceWeights, level.SourceOffsets[points]);
   std::vector<Id> cursor(level.SourceOffsets.begin(), level.SourceOffsets.end() - 1);
   for (Id p = 0; p < previousPoints; ++p)
   {
@@ -989,7 +991,7 @@ void OctreeClustering::Internals::FlipLevelEdges(ClusterLevel& level) const
 {
   // The walks over the input start at the vertex of each cluster nearest its representative.
   const Id points = level.Mesh.GetNumberOfPoints();
-  std::vector<Id> start(points);
+  std::vector<Id> start = FreshVector<Id>(points);
   vtkSMPTools::For(0,
     points,
     [&](Id begin, Id end)
