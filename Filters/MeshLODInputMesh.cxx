@@ -166,7 +166,7 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
   std::vector<Id> groups;           // per run: the first member of each group
   std::vector<size_t> memberGroup;  // per run member: its group
   // Union-find over the vertices; a group's root is its lowest id.
-  std::vector<Id> root(nv);
+  std::vector<Id> root = FreshVector<Id>(nv);
   std::iota(root.begin(), root.end(), 0);
   for (int first = 0; first < 3; ++first)
   {
@@ -336,7 +336,7 @@ vtkIdType DropDuplicateTriangles(
   TriangleMesh& mesh, const TriangleTopology& topology, std::vector<vtkIdType>& cellIds)
 {
   const Id nt = mesh.GetNumberOfTriangles();
-  std::vector<unsigned char> duplicate(nt, 0);
+  std::vector<unsigned char> duplicate = FreshVector<unsigned char>(nt, 0);
   vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
     for (Id t = begin; t < end; ++t)
     {

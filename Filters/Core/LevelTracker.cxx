@@ -96,7 +96,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   std::vector<Id>& newIndex = this->NewIndex; // kept between snapshots: no fresh pages each time
   ResizeFresh(newIndex, nv);
   vtkSMPTools::Fill(newIndex.begin(), newIndex.end(), InvalidId);
-  std::vector<Id> vertices(count);
+  std::vector<Id> vertices = FreshVector<Id>(count);
   liveVertices.Write(liveVertex, [&](Id i, Id slot) {
     newIndex[candidates[i]] = slot;
     vertices[slot] = candidates[i];
@@ -167,7 +167,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   // rank of the group it ends in.
   const auto collapsed = [&](Id i) { return this->GroupSequence[vertices[i]] >= 0; };
   const ParallelCompaction collapsedGroups(count, collapsed);
-  std::vector<Id> rankOf(count, InvalidId);
+  std::vector<Id> rankOf = FreshVector<Id>(count, InvalidId);
   // The range of the level's collapse numbers.
   using Range = std::pair<std::int64_t, std::int64_t>;
   vtkSMPThreadLocal<Range> ranges(Range(std::numeric_limits<std::int64_t>::max(), -1));

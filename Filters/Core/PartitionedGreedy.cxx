@@ -566,32 +566,56 @@ void Collapser::ListLive()
 //------------------------------------------------------------------------------
 void Collapser::PrepareGrid()
 {
+  // Bounds and area of the live triangles, per fixed block of triangles in parallel, then the
+  // blocks in order: the same sums for any number of threads.
   const TriangleMesh& mesh = this->State.Mesh;
-  for (int i = 0; i < 3; ++i)
+  const Id nt = mesh.GetNumberOfTriangles();
+  constexpr Id Block = 16384;
+  const Id blocks = (nt + Block - 1) / Block;
+  struct Extent
   {
-    this->GridBounds[2 * i] = InfiniteCost;
-    this->GridBounds[2 * i + 1] = -InfiniteCost;
-  }
-  double area = 0.0;
-  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
-  {
-    if (!this->State.IsAlive(t))
+    double Bounds[6] = { InfiniteCost, -InfiniteCost, InfiniteCost, -InfiniteCost, InfiniteCost,
+      -InfiniteCost };
+    double Area = 0.0;
+  };
+  std::vector<Extent> extents(blocks);
+  vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
+    for (Id b = begin; b < end; ++b)
     {
-      continue;
-    }
-    double n[3];
-    mesh.AreaVector(t, n);
-    area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (int k = 0; k < 3; ++k)
-    {
-      const double* x = mesh.Point(mesh.Triangle(t)[k]);
-      for (int i = 0; i < 3; ++i)
+      Extent& e = extents[b];
+      for (Id t = b * Block; t < std::min(nt, (b + 1) * Block); ++t)
       {
-        this->GridBounds[2 * i] = std::min(this->GridBounds[2 * i], x[i]);
-        this->GridBounds[2 * i + 1] = std::max(this->GridBounds[2 * i + 1], x[i]);
+        if (!this->State.IsAlive(t))
+        {
+          continue;
+        }
+        double n[3];
+        mesh.AreaVector(t, n);
+        e.Area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int k = 0; k < 3; ++k)
+        {
+          const double* x = mesh.Point(mesh.Triangle(t)[k]);
+          for (int i = 0; i < 3; ++i)
+          {
+            e.Bounds[2 * i] = std::min(e.Bounds[2 * i], x[i]);
+            e.Bounds[2 * i + 1] = std::max(e.Bounds[2 * i + 1], x[i]);
+          }
+        }
       }
     }
+  });
+  Extent all;
+  for (const Extent& e : extents)
+  {
+    all.Area += e.Area;
+    for (int i = 0; i < 3; ++i)
+    {
+      all.Bounds[2 * i] = std::min(all.Bounds[2 * i], e.Bounds[2 * i]);
+      all.Bounds[2 * i + 1] = std::max(all.Bounds[2 * i + 1], e.Bounds[2 * i + 1]);
+    }
   }
+  std::copy_n(all.Bounds, 6, this->GridBounds);
+  const double area = all.Area;
   // A surface of zero area (all triangles degenerate) still needs cells of some size.
   double diagonal = 0.0;
   for (int i = 0; i < 3; ++i)
