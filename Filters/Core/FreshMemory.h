@@ -64,6 +64,7 @@ void AssignFresh(
   ReserveFresh(v, n);
   v.assign(n, value);
 }
+
 /// A vector of n copies of value, on prepared memory when it is large.
 template <typename T>
 std::vector<T> FreshVector(std::size_t n, const T& value = T())

@@ -886,7 +886,7 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
       ranked.push_back(k);
     }
   }
-  std::sort(ranked.begin(),
+  vtkSMPTools::Sort(ranked.begin(),
     ranked.end(),
     [&](Id a, Id b)
     {
