@@ -882,6 +882,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
     components += builder.UF[v] == v ? 1 : 0;
   }
   ReserveFresh(this->Nodes, static_cast<size_t>(nodeOffsets[numberOfCells]) + components);
+  this->CellNodeOffsets = nodeOffsets;
   this->Nodes.resize(nodeOffsets[numberOfCells]);
   vtkSMPTools::For(0,
     numberOfCells,

@@ -93,6 +93,10 @@ public:
   std::vector<Id> ChildOffsets;
   std::vector<Id> Children;
   std::vector<Id> Roots;
+  // The internal nodes built cell by cell (the bottom tier), Nodes[CellNodeOffsets[c] ..
+  // CellNodeOffsets[c + 1]) for cell c; their parents lie in the same range or in the top tier,
+  // Nodes[CellNodeOffsets.back() ..).
+  std::vector<Id> CellNodeOffsets;
   int Depth = 0;                  // deepest node
   /// Per vertex, its curve neighbours and sheet count when it is a regular point of a curve
   /// where sheets meet (IsRegularCurveVertex; Sheets 0 otherwise). Empty when the mesh has no

@@ -27,14 +27,30 @@ void OctreeClustering::Internals::ComputeActivation(bool guess)
     guess && this->RatioCount > 0 ? std::exp(this->LogRatioSum / this->RatioCount) : 1.0);
   const Id ni = this->Tree.NumberOfInternalNodes();
   ResizeFresh(this->Activation, ni);
-  for (Id i = ni - 1; i >= 0; --i)
-  {
+  // Parents before children, i.e. downwards by id (a parent has a larger id): the top tier on
+  // one thread, then the cells of the bottom tier at once (see ClusterTree::CellNodeOffsets).
+  const auto activate = [&](Id i) {
     const Id parent = this->Tree.Nodes[i].Parent;
     const float own =
       this->State[i] == NodeState::NotEvaluated ? this->Thr[i] * inflation : this->Thr[i];
     this->Activation[i] =
       parent == InvalidId ? own : std::min(own, this->Activation[parent - this->NV]);
+  };
+  const std::vector<Id>& cells = this->Tree.CellNodeOffsets;
+  const Id topTier = cells.empty() ? 0 : cells.back();
+  for (Id i = ni - 1; i >= topTier; --i)
+  {
+    activate(i);
   }
+  vtkSMPTools::For(0, static_cast<Id>(cells.empty() ? 0 : cells.size() - 1), [&](Id begin, Id end) {
+    for (Id c = begin; c < end; ++c)
+    {
+      for (Id i = cells[c + 1] - 1; i >= cells[c]; --i)
+      {
+        activate(i);
+      }
+    }
+  });
 }
 
 //------------------------------------------------------------------------------
