@@ -925,6 +925,12 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   // Top tier, serially.
   std::unordered_map<Id, Building> finished;
   std::vector<HalfEdge> top;
+  std::size_t topItems = 0;
+  for (Id c = 0; c < numberOfCells; ++c)
+  {
+    topItems += cellTop[c].size();
+  }
+  ReserveFresh(top, topItems);
   for (Id c = 0; c < numberOfCells; ++c)
   {
     for (const auto& root : cellRoots[c])
