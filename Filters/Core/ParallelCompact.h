@@ -95,17 +95,43 @@ void ListPassing(Id n, Keep&& keep, std::vector<Id>& ids)
   passing.Write(keep, [&](Id i, Id slot) { ids[slot] = i; });
 }
 
-/// Keep the ids in `ids` that pass keep(id), in order: in parallel, into new memory that then
-/// replaces the old.
+/// Keep the ids in `ids` that pass keep(id), in order, in place (no second array, which at the
+/// start of a run would raise the peak memory): each fixed block keeps its own in front of
+/// itself in parallel, then the blocks' kept items move down into place one block after the
+/// other (each moves to where earlier blocks have been read already).
 template <typename Keep>
 void KeepInOrder(std::vector<Id>& ids, Keep&& keep)
 {
-  const auto passes = [&](Id i) { return keep(ids[i]); };
-  const ParallelCompaction kept(static_cast<Id>(ids.size()), passes);
-  std::vector<Id> out;
-  ResizeFresh(out, static_cast<std::size_t>(kept.Count()));
-  kept.Write(passes, [&](Id i, Id slot) { out[slot] = ids[i]; });
-  ids.swap(out);
+  constexpr Id BlockSize = ParallelCompaction::BlockSize;
+  const Id n = static_cast<Id>(ids.size());
+  const Id blocks = (n + BlockSize - 1) / BlockSize;
+  std::vector<Id> kept(static_cast<std::size_t>(blocks));
+  vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
+    for (Id b = begin; b < end; ++b)
+    {
+      Id* block = ids.data() + b * BlockSize;
+      Id count = 0;
+      for (Id i = 0; i < std::min(BlockSize, n - b * BlockSize); ++i)
+      {
+        if (keep(block[i]))
+        {
+          block[count++] = block[i];
+        }
+      }
+      kept[b] = count;
+    }
+  });
+  Id size = 0;
+  for (Id b = 0; b < blocks; ++b)
+  {
+    const Id* block = ids.data() + b * BlockSize;
+    if (size < b * BlockSize) // else already in place
+    {
+      std::copy(block, block + kept[b], ids.data() + size);
+    }
+    size += kept[b];
+  }
+  ids.resize(static_cast<std::size_t>(size));
 }
 
 } // namespace meshlod
