@@ -57,8 +57,8 @@
  *   noisy terrain (height noise of 1.5 edges) asked for 10% and 1% got 13% and 1.25%, a noisy
  *   height field with noise of an edge 11.6% and 1.25%, a sphere of 158,400 triangles with its
  *   radii moved at random by up to two thirds of an edge 14% and 4.9%, by up to an edge 18% and
- *   3.7% (a large cluster that folds such a level gives way to the topmost clusters below it
- *   that neither fold nor flip a triangle, and those are small); a self-intersecting surface
+ *   3.7% (at such a level a large cluster that folds gives way to the topmost clusters below
+ *   it that neither fold nor flip a triangle, and those are small); a self-intersecting surface
  *   (vtkParametricBoy, 178,204 triangles) stops near 9%, its clusters folding where it turns
  *   tightly; when the trials miss, the one nearest the
  *   target in ratio is kept, never a level cut at the octree's roots because it is nearer in

@@ -881,7 +881,8 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   {
     components += builder.UF[v] == v ? 1 : 0;
   }
-  ReserveFresh(this->Nodes, static_cast<size_t>(nodeOffsets[numberOfCells]) + components);
+  this->Nodes.reserve(static_cast<size_t>(nodeOffsets[numberOfCells]) + components);
+  PrepareForWriting(this->Nodes.data(), sizeof(ClusterNode) * nodeOffsets[numberOfCells]);
   this->CellNodeOffsets = nodeOffsets;
   this->Nodes.resize(nodeOffsets[numberOfCells]);
   vtkSMPTools::For(0,

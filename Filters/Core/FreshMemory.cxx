@@ -41,9 +41,12 @@ void PrepareForWriting(void* data, std::size_t bytes)
   if (last > first)
   {
     // Maps the pages that are not mapped yet and leaves the others, and their contents, alone.
-    madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
-    // On a virtual machine the first write to each page costs again (about 4 us per page on
-    // the benchmark machine, most of what remains): one byte of every page is rewritten with
+    if (madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE) != 0)
+    {
+      return; // not mapped: the caller's first writes fault as they would have
+    }
+    // On a virtual machine the first write to each mapped page costs again (about 4 us per page
+    // on the benchmark machine, most of what remains): one byte of every page is rewritten with
     // its own value, in parallel, so that the caller's fill, often serial, finds the pages
     // ready. (Two threads halve that cost; the fill alone writes at memory speed.)
     const std::uintptr_t pageSize = static_cast<std::uintptr_t>(page);

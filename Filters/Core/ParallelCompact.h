@@ -8,6 +8,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace meshlod
@@ -28,14 +29,14 @@ public:
   template <typename Keep>
   ParallelCompaction(Id n, Keep&& keep)
     : Size(n)
-    , Offsets(static_cast<std::size_t>((n + BlockSize - 1) / BlockSize) + 1, 0)
+    , Offsets(static_cast<std::size_t>((std::int64_t(n) + BlockSize - 1) / BlockSize) + 1, 0)
   {
     const Id blocks = static_cast<Id>(this->Offsets.size()) - 1;
     vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
       for (Id b = begin; b < end; ++b)
       {
         Id count = 0;
-        for (Id i = b * BlockSize; i < std::min(n, (b + 1) * BlockSize); ++i)
+        for (Id i = b * BlockSize; i < b * BlockSize + std::min(BlockSize, n - b * BlockSize); ++i)
         {
           count += keep(i) ? 1 : 0;
         }
@@ -61,7 +62,7 @@ public:
       for (Id b = begin; b < end; ++b)
       {
         Id slot = this->Offsets[b];
-        for (Id i = b * BlockSize; i < std::min(n, (b + 1) * BlockSize); ++i)
+        for (Id i = b * BlockSize; i < b * BlockSize + std::min(BlockSize, n - b * BlockSize); ++i)
         {
           if (keep(i))
           {
@@ -104,7 +105,7 @@ void KeepInOrder(std::vector<Id>& ids, Keep&& keep)
 {
   constexpr Id BlockSize = ParallelCompaction::BlockSize;
   const Id n = static_cast<Id>(ids.size());
-  const Id blocks = (n + BlockSize - 1) / BlockSize;
+  const Id blocks = static_cast<Id>((std::int64_t(n) + BlockSize - 1) / BlockSize);
   std::vector<Id> kept(static_cast<std::size_t>(blocks));
   vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
     for (Id b = begin; b < end; ++b)

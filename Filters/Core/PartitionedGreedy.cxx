@@ -571,7 +571,7 @@ void Collapser::PrepareGrid()
   const TriangleMesh& mesh = this->State.Mesh;
   const Id nt = mesh.GetNumberOfTriangles();
   constexpr Id Block = 16384;
-  const Id blocks = (nt + Block - 1) / Block;
+  const Id blocks = static_cast<Id>((std::int64_t(nt) + Block - 1) / Block);
   struct Extent
   {
     double Bounds[6] = { InfiniteCost, -InfiniteCost, InfiniteCost, -InfiniteCost, InfiniteCost,
@@ -583,7 +583,7 @@ void Collapser::PrepareGrid()
     for (Id b = begin; b < end; ++b)
     {
       Extent& e = extents[b];
-      for (Id t = b * Block; t < std::min(nt, (b + 1) * Block); ++t)
+      for (Id t = b * Block; t < b * Block + std::min(Block, nt - b * Block); ++t)
       {
         if (!this->State.IsAlive(t))
         {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <utility>
 
@@ -47,8 +48,8 @@ void VertexTriangleAdjacency::Build(const Id* triangles, Id numberOfTriangles, I
     ? 1
     : std::max<Id>(1, std::min<Id>(MaximumRowChunks, vtkSMPTools::GetEstimatedNumberOfThreads()));
   const auto forEachCorner = [&](Id chunk, auto&& f) {
-    const Id low = numberOfPoints * chunk / chunks;
-    const Id high = numberOfPoints * (chunk + 1) / chunks;
+    const Id low = static_cast<Id>(std::int64_t(numberOfPoints) * chunk / chunks);
+    const Id high = static_cast<Id>(std::int64_t(numberOfPoints) * (chunk + 1) / chunks);
     for (Id t = 0; t < numberOfTriangles; ++t)
     {
       const Id* tri = triangles + 3 * static_cast<size_t>(t);
