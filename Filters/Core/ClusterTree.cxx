@@ -662,7 +662,7 @@ void ClusterTree::RelatedQuadric(
       this->RelativeTriangle(tri, p);
       Quadric face;
       double n[3], plane[4];
-      const bool flat = TriangleQuadric(p[0], p[1], p[2], face, n, plane);
+      const bool hasPlane = TriangleQuadric(p[0], p[1], p[2], face, n, plane);
       if (firstInside == c)
       {
         q.Add(face);
@@ -682,7 +682,7 @@ void ClusterTree::RelatedQuadric(
               details->CrossingEnds.insert(details->CrossingEnds.end(), p[k], p[k] + 3);
             }
           }
-          if (flat)
+          if (hasPlane)
           {
             details->Planes.insert(details->Planes.end(), plane, plane + 4);
           }

@@ -13,6 +13,19 @@
 
 namespace meshlod
 {
+/// [0, n) cut into fixed blocks of Size items (the last one shorter): work split this way, in
+/// parallel or not, and combined block by block in order, gives the same result for any number
+/// of threads.
+struct FixedBlocks
+{
+  static constexpr Id Size = 16384;
+  Id N;
+
+  Id Count() const { return static_cast<Id>((std::int64_t(this->N) + Size - 1) / Size); }
+  Id Begin(Id b) const { return b * Size; }
+  Id End(Id b) const { return b * Size + std::min(Size, this->N - b * Size); }
+};
+
 /// The i in [0, n) for which keep(i) holds, numbered 0, 1, 2, ... in increasing order: counts
 /// per fixed block of the range, a serial prefix sum over the blocks, then the numbering. The
 /// blocks do not depend on how vtkSMPTools spreads them over threads, so neither does the
@@ -24,26 +37,23 @@ namespace meshlod
 class ParallelCompaction
 {
 public:
-  static constexpr Id BlockSize = 16384;
-
   template <typename Keep>
   ParallelCompaction(Id n, Keep&& keep)
-    : Size(n)
-    , Offsets(static_cast<std::size_t>((std::int64_t(n) + BlockSize - 1) / BlockSize) + 1, 0)
+    : Blocks{ n }
+    , Offsets(static_cast<std::size_t>(Blocks.Count()) + 1, 0)
   {
-    const Id blocks = static_cast<Id>(this->Offsets.size()) - 1;
-    vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
+    vtkSMPTools::For(0, this->Blocks.Count(), [&](Id begin, Id end) {
       for (Id b = begin; b < end; ++b)
       {
         Id count = 0;
-        for (Id i = b * BlockSize; i < b * BlockSize + std::min(BlockSize, n - b * BlockSize); ++i)
+        for (Id i = this->Blocks.Begin(b); i < this->Blocks.End(b); ++i)
         {
           count += keep(i) ? 1 : 0;
         }
         this->Offsets[b + 1] = count;
       }
     });
-    for (Id b = 0; b < blocks; ++b)
+    for (Id b = 0; b < this->Blocks.Count(); ++b)
     {
       this->Offsets[b + 1] += this->Offsets[b];
     }
@@ -57,12 +67,11 @@ public:
   template <typename Keep, typename Writer>
   void Write(Keep&& keep, Writer&& write) const
   {
-    const Id n = this->Size;
-    vtkSMPTools::For(0, static_cast<Id>(this->Offsets.size()) - 1, [&](Id begin, Id end) {
+    vtkSMPTools::For(0, this->Blocks.Count(), [&](Id begin, Id end) {
       for (Id b = begin; b < end; ++b)
       {
         Id slot = this->Offsets[b];
-        for (Id i = b * BlockSize; i < b * BlockSize + std::min(BlockSize, n - b * BlockSize); ++i)
+        for (Id i = this->Blocks.Begin(b); i < this->Blocks.End(b); ++i)
         {
           if (keep(i))
           {
@@ -74,7 +83,7 @@ public:
   }
 
 private:
-  Id Size;
+  FixedBlocks Blocks;
   std::vector<Id> Offsets; // per block, the number passing before it; the total last
 };
 
@@ -103,16 +112,14 @@ void ListPassing(Id n, Keep&& keep, std::vector<Id>& ids)
 template <typename Keep>
 void KeepInOrder(std::vector<Id>& ids, Keep&& keep)
 {
-  constexpr Id BlockSize = ParallelCompaction::BlockSize;
-  const Id n = static_cast<Id>(ids.size());
-  const Id blocks = static_cast<Id>((std::int64_t(n) + BlockSize - 1) / BlockSize);
-  std::vector<Id> kept(static_cast<std::size_t>(blocks));
-  vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
+  const FixedBlocks blocks{ static_cast<Id>(ids.size()) };
+  std::vector<Id> kept(static_cast<std::size_t>(blocks.Count()));
+  vtkSMPTools::For(0, blocks.Count(), [&](Id begin, Id end) {
     for (Id b = begin; b < end; ++b)
     {
-      Id* block = ids.data() + b * BlockSize;
+      Id* block = ids.data() + blocks.Begin(b);
       Id count = 0;
-      for (Id i = 0; i < std::min(BlockSize, n - b * BlockSize); ++i)
+      for (Id i = 0; i < blocks.End(b) - blocks.Begin(b); ++i)
       {
         if (keep(block[i]))
         {
@@ -123,10 +130,10 @@ void KeepInOrder(std::vector<Id>& ids, Keep&& keep)
     }
   });
   Id size = 0;
-  for (Id b = 0; b < blocks; ++b)
+  for (Id b = 0; b < blocks.Count(); ++b)
   {
-    const Id* block = ids.data() + b * BlockSize;
-    if (size < b * BlockSize) // else already in place
+    const Id* block = ids.data() + blocks.Begin(b);
+    if (size < blocks.Begin(b)) // else already in place
     {
       std::copy(block, block + kept[b], ids.data() + size);
     }

@@ -569,21 +569,19 @@ void Collapser::PrepareGrid()
   // Bounds and area of the live triangles, per fixed block of triangles in parallel, then the
   // blocks in order: the same sums for any number of threads.
   const TriangleMesh& mesh = this->State.Mesh;
-  const Id nt = mesh.GetNumberOfTriangles();
-  constexpr Id Block = 16384;
-  const Id blocks = static_cast<Id>((std::int64_t(nt) + Block - 1) / Block);
+  const FixedBlocks blocks{ mesh.GetNumberOfTriangles() };
   struct Extent
   {
     double Bounds[6] = { InfiniteCost, -InfiniteCost, InfiniteCost, -InfiniteCost, InfiniteCost,
       -InfiniteCost };
     double Area = 0.0;
   };
-  std::vector<Extent> extents(blocks);
-  vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
+  std::vector<Extent> extents(blocks.Count());
+  vtkSMPTools::For(0, blocks.Count(), [&](Id begin, Id end) {
     for (Id b = begin; b < end; ++b)
     {
       Extent& e = extents[b];
-      for (Id t = b * Block; t < b * Block + std::min(Block, nt - b * Block); ++t)
+      for (Id t = blocks.Begin(b); t < blocks.End(b); ++t)
       {
         if (!this->State.IsAlive(t))
         {
