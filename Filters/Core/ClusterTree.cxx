@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
 
 namespace meshlod
 {
@@ -84,8 +83,6 @@ void ComputeE1(ClusterNode& node, const Quadric& q, const double sum[3], double 
   node.E1 = weight > 0.0 ? static_cast<float>(std::sqrt(q.Evaluate(rep) / weight)) : 0.0f;
 }
 
-// Nodes being created, with their quadrics. The node with id Base + i is Nodes[i]; lower ids
-// are nodes of the finished cells (only the serial top tier refers to them).
 // What a node needs only while it is built: its quadric and the sum of its vertex positions.
 struct Building
 {
@@ -93,28 +90,47 @@ struct Building
   double Sum[3] = { 0.0, 0.0, 0.0 };
 };
 
+// A node of a finished cell, with its quadric, that the top tier still merges.
+using FinishedNode = std::pair<Id, Building>;
+
+// Nodes being created, with their quadrics. The tree's node array has room for every node from
+// the start (a node joins two or more parts, so there are fewer than NV): the node with id
+// Base + i is written in place, at Tree->Nodes[Base - NV + i], and its quadric is Work[i].
+// Lower ids are nodes made before (of the same cell, or, for the serial top tier, of the
+// finished cells, whose quadrics are in Finished).
 struct NodeStore
 {
   Id Base = 0;
-  std::vector<ClusterNode> Nodes;
+  Id Created = 0;
   std::vector<Building> Work;
   ClusterTree* Tree = nullptr;
-  const std::unordered_map<Id, Building>* Finished = nullptr;
+  const std::vector<FinishedNode>* Finished = nullptr; // by increasing id
 
-  ClusterNode& Record(Id id)
-  {
-    return id >= this->Base ? this->Nodes[id - this->Base] : this->Tree->Nodes[id - this->Tree->NV];
-  }
+  ClusterNode& Record(Id id) { return this->Tree->Nodes[id - this->Tree->NV]; }
   const Building& WorkOf(Id id) const
   {
-    return id >= this->Base ? this->Work[id - this->Base] : this->Finished->at(id);
+    if (id >= this->Base)
+    {
+      return this->Work[id - this->Base];
+    }
+    const auto found = std::lower_bound(this->Finished->begin(), this->Finished->end(), id,
+      [](const FinishedNode& node, Id value) { return node.first < value; });
+    return found->second;
   }
   Id Create(int depth)
   {
-    this->Nodes.emplace_back();
-    this->Nodes.back().Depth = static_cast<std::uint8_t>(depth);
+    ClusterNode& node = this->Record(this->Base + this->Created);
+    node = ClusterNode();
+    node.Depth = static_cast<std::uint8_t>(depth);
     this->Work.emplace_back();
-    return this->Base + static_cast<Id>(this->Nodes.size() - 1);
+    return this->Base + this->Created++;
+  }
+  /// Start on the nodes from id `base` on, reusing the room of the quadrics.
+  void Restart(Id base)
+  {
+    this->Base = base;
+    this->Created = 0;
+    this->Work.clear();
   }
 };
 } // namespace
@@ -816,11 +832,13 @@ void ClusterTree::Build(const TriangleMesh& mesh,
 
   // Bottom tier, cell by cell. Node ids are provisional, NV + (first slot of the cell in
   // cellVertices) + local index: a cell of n vertices makes at most n - 1 nodes, so the ranges
-  // never overlap. The quadrics of a cell's nodes live only while the cell is built, except
-  // those of its top components, which the top tier still needs.
+  // never overlap, and each cell writes its nodes straight into the node array, sized for all
+  // nodes of the tree from the start. The quadrics of a cell's nodes live only while the cell is
+  // built, except those of its top components, which the top tier still needs.
   const Id numberOfCells = static_cast<Id>(cells.size());
-  std::vector<std::vector<ClusterNode>> cellNodes(numberOfCells);
-  std::vector<std::vector<std::pair<Id, Building>>> cellRoots(numberOfCells);
+  ResizeFresh(this->Nodes, nv);
+  std::vector<Id> cellCounts(numberOfCells, 0);
+  std::vector<std::vector<FinishedNode>> cellRoots(numberOfCells);
   std::vector<std::vector<HalfEdge>> cellTop(numberOfCells);
   const VertexTriangleAdjacency& adj = topology.VertexTriangles;
   vtkSMPTools::For(0,
@@ -828,6 +846,8 @@ void ClusterTree::Build(const TriangleMesh& mesh,
     [&](Id begin, Id end)
     {
       std::vector<HalfEdge> items, scratch;
+      NodeStore store;
+      store.Tree = this;
       for (Id c = begin; c < end; ++c)
       {
         const Id key = cells[c];
@@ -846,12 +866,12 @@ void ClusterTree::Build(const TriangleMesh& mesh,
           }
         }
         SortByDepth(items, scratch);
-        NodeStore store;
-        store.Base = nv + keyOffsets[key];
+        store.Restart(nv + keyOffsets[key]);
         builder.MergeSorted(items, c * (MaxDepth + 2), store);
-        for (size_t i = 0; i < store.Nodes.size(); ++i)
+        for (Id i = 0; i < store.Created; ++i)
         {
-          ComputeE1(store.Nodes[i], store.Work[i].Q, store.Work[i].Sum, options.PlacementTolerance);
+          ComputeE1(store.Record(store.Base + i), store.Work[i].Q, store.Work[i].Sum,
+            options.PlacementTolerance);
         }
         for (Id i = keyOffsets[key]; i < keyOffsets[key + 1]; ++i)
         {
@@ -862,7 +882,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
               builder.NodeOf[v], store.Work[builder.NodeOf[v] - store.Base]);
           }
         }
-        cellNodes[c].swap(store.Nodes);
+        cellCounts[c] = store.Created;
       }
     });
 
@@ -870,21 +890,9 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   std::vector<Id> nodeOffsets(static_cast<size_t>(numberOfCells) + 1, 0);
   for (Id c = 0; c < numberOfCells; ++c)
   {
-    nodeOffsets[c + 1] = nodeOffsets[c] + static_cast<Id>(cellNodes[c].size());
+    nodeOffsets[c + 1] = nodeOffsets[c] + cellCounts[c];
   }
-  // Room for the top tier's nodes as well: each joins two or more of the components the cells
-  // leave, so there are fewer of them than components. (Appended without it, they would move
-  // the whole array into one of twice the room: the old and new arrays side by side for a
-  // moment, and half the new one never used.)
-  Id components = 0;
-  for (Id v = 0; v < nv; ++v)
-  {
-    components += builder.UF[v] == v ? 1 : 0;
-  }
-  this->Nodes.reserve(static_cast<size_t>(nodeOffsets[numberOfCells]) + components);
-  PrepareForWriting(this->Nodes.data(), sizeof(ClusterNode) * nodeOffsets[numberOfCells]);
   this->CellNodeOffsets = nodeOffsets;
-  this->Nodes.resize(nodeOffsets[numberOfCells]);
   vtkSMPTools::For(0,
     numberOfCells,
     [&](Id begin, Id end)
@@ -901,9 +909,9 @@ void ClusterTree::Build(const TriangleMesh& mesh,
             id += shiftBy;
           }
         };
-        for (ClusterNode& n : cellNodes[c])
+        for (Id i = 0; i < cellCounts[c]; ++i)
         {
-          fix(n.Parent);
+          fix(this->Nodes[keyOffsets[key] + i].Parent);
         }
         for (Id i = keyOffsets[key]; i < keyOffsets[key + 1]; ++i)
         {
@@ -918,26 +926,35 @@ void ClusterTree::Build(const TriangleMesh& mesh,
         {
           fix(root.first);
         }
-        std::copy(cellNodes[c].begin(), cellNodes[c].end(), this->Nodes.begin() + nodeOffsets[c]);
-        std::vector<ClusterNode>().swap(cellNodes[c]);
       }
     });
+  // Close the gaps, in cell order: a cell's nodes only ever move down (its final offset is at
+  // most its provisional one), onto slots of earlier cells already moved.
+  for (Id c = 0; c < numberOfCells; ++c)
+  {
+    const auto from = this->Nodes.begin() + keyOffsets[cells[c]];
+    std::copy(from, from + cellCounts[c], this->Nodes.begin() + nodeOffsets[c]);
+  }
 
   // Top tier, serially.
-  std::unordered_map<Id, Building> finished;
+  // The cells' top components with their quadrics, by id (each cell's ids lie above the
+  // previous cell's), and the half-edges between cells.
+  std::vector<FinishedNode> finished;
   std::vector<HalfEdge> top;
-  std::size_t topItems = 0;
+  std::size_t topItems = 0, roots = 0;
   for (Id c = 0; c < numberOfCells; ++c)
   {
     topItems += cellTop[c].size();
+    roots += cellRoots[c].size();
   }
   ReserveFresh(top, topItems);
+  ReserveFresh(finished, roots);
   for (Id c = 0; c < numberOfCells; ++c)
   {
-    for (const auto& root : cellRoots[c])
-    {
-      finished.emplace(root.first, root.second);
-    }
+    std::sort(cellRoots[c].begin(), cellRoots[c].end(),
+      [](const FinishedNode& a, const FinishedNode& b) { return a.first < b.first; });
+    finished.insert(finished.end(), cellRoots[c].begin(), cellRoots[c].end());
+    std::vector<FinishedNode>().swap(cellRoots[c]);
     top.insert(top.end(), cellTop[c].begin(), cellTop[c].end());
     std::vector<HalfEdge>().swap(cellTop[c]);
   }
@@ -946,15 +963,16 @@ void ClusterTree::Build(const TriangleMesh& mesh,
     SortByDepth(top, scratch);
   }
   NodeStore store;
-  store.Base = nv + static_cast<Id>(this->Nodes.size());
   store.Tree = this;
   store.Finished = &finished;
+  store.Restart(nv + nodeOffsets[numberOfCells]);
   builder.MergeSorted(top, numberOfCells * (MaxDepth + 2), store);
-  for (size_t i = 0; i < store.Nodes.size(); ++i)
+  for (Id i = 0; i < store.Created; ++i)
   {
-    ComputeE1(store.Nodes[i], store.Work[i].Q, store.Work[i].Sum, options.PlacementTolerance);
+    ComputeE1(
+      store.Record(store.Base + i), store.Work[i].Q, store.Work[i].Sum, options.PlacementTolerance);
   }
-  this->Nodes.insert(this->Nodes.end(), store.Nodes.begin(), store.Nodes.end());
+  this->Nodes.resize(nodeOffsets[numberOfCells] + store.Created);
   this->ComputeOrder();
 }
 

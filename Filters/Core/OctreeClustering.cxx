@@ -53,7 +53,8 @@ void OctreeClustering::BuildTree()
   AssignFresh(impl.Refused, ni, 0);
   impl.RefusedNodes.clear();
   AssignFresh(impl.RepSlot, ni, InvalidId);
-  impl.Reps.clear();
+  impl.RepBlocks.clear();
+  impl.RepCount = 0;
   ResizeFresh(impl.Thr, ni);
   vtkSMPTools::For(0,
     ni,

@@ -6,6 +6,7 @@
 #ifndef meshlod_OctreeClusteringInternals_h
 #define meshlod_OctreeClusteringInternals_h
 
+#include "FreshMemory.h"
 #include "OctreeClustering.h"
 #include "ParallelCompact.h"
 #include "Vector3.h"
@@ -105,9 +106,28 @@ struct OctreeClustering::Internals
   std::vector<Id> RefusedNodes;
   std::vector<float> Thr; // the smallest epsilon at which the node may be a cluster
   std::vector<Id> RepSlot;
-  // Per evaluated node (RepSlot): representative, surface normal and error.
+  // Per evaluated node (RepSlot): representative, surface normal and error, in blocks that
+  // never move, so that they grow without a copy and without the spare half of a doubling.
   static constexpr int SlotSize = 7;
-  std::vector<double> Reps;
+  static constexpr Id SlotsPerBlock = 4096;
+  std::vector<std::vector<double>> RepBlocks;
+  Id RepCount = 0;
+  /// The slot of internal node `index` (node NV + index), evaluated or queued.
+  double* Slot(Id index)
+  {
+    const Id s = this->RepSlot[index];
+    return this->RepBlocks[s / SlotsPerBlock].data() + SlotSize * static_cast<size_t>(s % SlotsPerBlock);
+  }
+  const double* Slot(Id index) const { return const_cast<Internals*>(this)->Slot(index); }
+  /// Give internal node `index` a slot (serially).
+  void NewSlot(Id index)
+  {
+    if (this->RepCount % SlotsPerBlock == 0)
+    {
+      this->RepBlocks.push_back(FreshVector<double>(SlotSize * static_cast<size_t>(SlotsPerBlock)));
+    }
+    this->RepSlot[index] = this->RepCount++;
+  }
   std::vector<float> Activation;
   double LogRatioSum = 0.0; // log(full error / e1) summed over the evaluated nodes
   Id RatioCount = 0;

@@ -103,8 +103,7 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
     {
       const Id i = node - this->NV;
       pending.push_back(node);
-      this->RepSlot[i] = static_cast<Id>(this->Reps.size() / SlotSize);
-      this->Reps.resize(this->Reps.size() + SlotSize);
+      this->NewSlot(i);
     }
     else if (node < this->NV || this->Thr[node - this->NV] <= epsilon)
     {
@@ -143,11 +142,6 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
   {
     pending.clear();
     failed.clear();
-    // Room for the slots of the nodes to evaluate, on prepared memory (queue appends them one by
-    // one).
-    const std::size_t slots = SlotSize *
-      static_cast<std::size_t>(std::count_if(candidates.begin(), candidates.end(), unevaluated));
-    ReserveFresh(this->Reps, this->Reps.size() + slots);
     for (const Id node : candidates)
     {
       queue(node);

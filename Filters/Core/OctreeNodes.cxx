@@ -40,7 +40,7 @@ void OctreeClustering::Internals::UpdateThreshold(Id index)
   }
   const float e1 = this->Tree.Nodes[index].E1;
   thr = this->State[index] == NodeState::Admissible
-    ? static_cast<float>(this->Reps[SlotSize * static_cast<size_t>(this->RepSlot[index]) + 6])
+    ? static_cast<float>(this->Slot(index)[6])
     : (e1 < 1e-6 * this->Tree.Size ? 0.0f : e1);
 }
 
@@ -234,7 +234,7 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   const Id node = this->NV + index;
   const ClusterNode& n = this->Tree.Nodes[index];
   Quadric q1;
-  double* slot = this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[index]);
+  double* slot = this->Slot(index);
   this->Tree.RelatedQuadric(node, q1, slot + 3, &scratch);
   const EvaluationScratch& crossing = scratch;
 
@@ -348,8 +348,7 @@ void OctreeClustering::Internals::RepresentativeOf(Id node, double out[3]) const
     std::copy_n(this->Mesh.Point(node), 3, out);
     return;
   }
-  const double* r =
-    this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[node - this->NV]);
+  const double* r = this->Slot(node - this->NV);
   for (int c = 0; c < 3; ++c)
   {
     out[c] = r[c] + this->Tree.Centre[c];
@@ -360,7 +359,7 @@ double OctreeClustering::Internals::NodeError(Id node) const
 {
   return this->Tree.IsLeaf(node)
     ? 0.0
-    : this->Reps[SlotSize * static_cast<size_t>(this->RepSlot[node - this->NV]) + 6];
+    : this->Slot(node - this->NV)[6];
 }
 
 // The area-weighted normal of the input surface at a node's vertices (not normalised); kept
@@ -369,10 +368,7 @@ void OctreeClustering::Internals::SurfaceNormal(Id node, double normal[3]) const
 {
   if (!this->Tree.IsLeaf(node))
   {
-    std::copy_n(
-      this->Reps.data() + SlotSize * static_cast<size_t>(this->RepSlot[node - this->NV]) + 3,
-      3,
-      normal);
+    std::copy_n(this->Slot(node - this->NV) + 3, 3, normal);
     return;
   }
   normal[0] = normal[1] = normal[2] = 0.0;
