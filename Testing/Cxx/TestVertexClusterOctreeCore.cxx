@@ -136,6 +136,27 @@ void TestTree(vtkPolyData* poly)
   }
   MESHLOD_CHECK_EQ(badCount, 0);
 
+  // The bottom tier's nodes, cell by cell: each node's parent lies in its own cell's range or in
+  // the top tier (the parallel passes over cells rely on it).
+  const std::vector<Id>& cellOffsets = tree.CellNodeOffsets;
+  MESHLOD_CHECK_GT(cellOffsets.size(), 2u);
+  MESHLOD_CHECK_EQ(cellOffsets.front(), 0);
+  MESHLOD_CHECK_LE(cellOffsets.back(), ni);
+  Id badCell = 0;
+  for (size_t c = 0; c + 1 < cellOffsets.size(); ++c)
+  {
+    badCell += cellOffsets[c] <= cellOffsets[c + 1] ? 0 : 1;
+    for (Id i = cellOffsets[c]; i < cellOffsets[c + 1]; ++i)
+    {
+      const Id parent = tree.Nodes[i].Parent;
+      const bool sameCell = parent != InvalidId && parent - nv >= cellOffsets[c] &&
+        parent - nv < cellOffsets[c + 1];
+      const bool top = parent != InvalidId && parent - nv >= cellOffsets.back();
+      badCell += parent == InvalidId || sameCell || top ? 0 : 1;
+    }
+  }
+  MESHLOD_CHECK_EQ(badCell, 0);
+
   // Every node: its vertices share one cell of its depth and are connected inside the node.
   const VertexTriangleAdjacency& adj = in.Topology.VertexTriangles;
   Id outsideCell = 0, disconnected = 0;
