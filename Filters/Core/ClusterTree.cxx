@@ -96,8 +96,8 @@ using FinishedNode = std::pair<Id, Building>;
 // Nodes being created, with their quadrics. The tree's node array has room for every node from
 // the start (a node joins two or more parts, so there are fewer than NV): the node with id
 // Base + i is written in place, at Tree->Nodes[Base - NV + i], and its quadric is Work[i].
-// Lower ids are nodes made before (of the same cell, or, for the serial top tier, of the
-// finished cells, whose quadrics are in Finished).
+// Lower ids are nodes of the finished cells: only the serial top tier refers to them, and only
+// to the cells' top components, whose quadrics are in Finished.
 struct NodeStore
 {
   Id Base = 0;
@@ -113,6 +113,8 @@ struct NodeStore
     {
       return this->Work[id - this->Base];
     }
+    // (Always there: a node below Base that the top tier merges is a finished cell's top
+    // component, and Finished lists all of them.)
     const auto found = std::lower_bound(this->Finished->begin(), this->Finished->end(), id,
       [](const FinishedNode& node, Id value) { return node.first < value; });
     return found->second;
@@ -926,33 +928,36 @@ void ClusterTree::Build(const TriangleMesh& mesh,
         {
           fix(root.first);
         }
+        std::sort(cellRoots[c].begin(), cellRoots[c].end(),
+          [](const FinishedNode& a, const FinishedNode& b) { return a.first < b.first; });
       }
     });
   // Close the gaps, in cell order: a cell's nodes only ever move down (its final offset is at
   // most its provisional one), onto slots of earlier cells already moved.
   for (Id c = 0; c < numberOfCells; ++c)
   {
-    const auto from = this->Nodes.begin() + keyOffsets[cells[c]];
-    std::copy(from, from + cellCounts[c], this->Nodes.begin() + nodeOffsets[c]);
+    if (nodeOffsets[c] != keyOffsets[cells[c]])
+    {
+      const auto from = this->Nodes.begin() + keyOffsets[cells[c]];
+      std::copy(from, from + cellCounts[c], this->Nodes.begin() + nodeOffsets[c]);
+    }
   }
 
   // Top tier, serially.
-  // The cells' top components with their quadrics, by id (each cell's ids lie above the
-  // previous cell's), and the half-edges between cells.
+  // The cells' top components with their quadrics, by id (each cell's list is sorted, and its
+  // ids lie above the previous cell's), and the half-edges between cells.
   std::vector<FinishedNode> finished;
   std::vector<HalfEdge> top;
-  std::size_t topItems = 0, roots = 0;
+  std::size_t topItems = 0, rootCount = 0;
   for (Id c = 0; c < numberOfCells; ++c)
   {
     topItems += cellTop[c].size();
-    roots += cellRoots[c].size();
+    rootCount += cellRoots[c].size();
   }
   ReserveFresh(top, topItems);
-  ReserveFresh(finished, roots);
+  ReserveFresh(finished, rootCount);
   for (Id c = 0; c < numberOfCells; ++c)
   {
-    std::sort(cellRoots[c].begin(), cellRoots[c].end(),
-      [](const FinishedNode& a, const FinishedNode& b) { return a.first < b.first; });
     finished.insert(finished.end(), cellRoots[c].begin(), cellRoots[c].end());
     std::vector<FinishedNode>().swap(cellRoots[c]);
     top.insert(top.end(), cellTop[c].begin(), cellTop[c].end());
@@ -972,6 +977,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
     ComputeE1(
       store.Record(store.Base + i), store.Work[i].Q, store.Work[i].Sum, options.PlacementTolerance);
   }
+  // (The room of the NV - 1 nodes a tree can have stays: shrinking would copy the array.)
   this->Nodes.resize(nodeOffsets[numberOfCells] + store.Created);
   this->ComputeOrder();
 }

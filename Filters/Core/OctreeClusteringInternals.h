@@ -113,12 +113,16 @@ struct OctreeClustering::Internals
   std::vector<std::vector<double>> RepBlocks;
   Id RepCount = 0;
   /// The slot of internal node `index` (node NV + index), evaluated or queued.
-  double* Slot(Id index)
+  const double* Slot(Id index) const
   {
     const Id s = this->RepSlot[index];
-    return this->RepBlocks[s / SlotsPerBlock].data() + SlotSize * static_cast<size_t>(s % SlotsPerBlock);
+    return this->RepBlocks[s / SlotsPerBlock].data() +
+      SlotSize * static_cast<size_t>(s % SlotsPerBlock);
   }
-  const double* Slot(Id index) const { return const_cast<Internals*>(this)->Slot(index); }
+  double* Slot(Id index)
+  {
+    return const_cast<double*>(static_cast<const Internals*>(this)->Slot(index));
+  }
   /// Give internal node `index` a slot (serially).
   void NewSlot(Id index)
   {
