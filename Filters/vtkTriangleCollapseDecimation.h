@@ -100,9 +100,10 @@
  *   are marked for re-fitting at the end of the round, and a fit reads only its own cell's
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its
- *   whole hierarchy the curvature method takes 1.6-2.2x the time vtkQuadricDecimation needs
- *   for one 10% target on one thread, and 1.8-2.1x less on two (the quadric method: 0.26-0.44x
- *   over the last three runs, Benchmarks/RESULTS.md).
+ *   whole hierarchy the curvature method takes 1.2-2.3x the time vtkQuadricDecimation needs
+ *   for one 10% target on one thread, and 1.7-2.1x less on two (the quadric method: 0.22-0.41x
+ *   over the last three runs, Benchmarks/RESULTS.md; the ratios move with the machine's load,
+ *   vtkQuadricDecimation's own time on the same mesh varying by up to half between runs).
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
