@@ -889,12 +889,12 @@ void ClusterTree::Build(const TriangleMesh& mesh,
     });
 
   // Final ids: the cells' nodes in cell order, then the top tier's.
-  std::vector<Id> nodeOffsets(static_cast<size_t>(numberOfCells) + 1, 0);
+  std::vector<Id>& nodeOffsets = this->CellNodeOffsets;
+  nodeOffsets.assign(static_cast<size_t>(numberOfCells) + 1, 0);
   for (Id c = 0; c < numberOfCells; ++c)
   {
     nodeOffsets[c + 1] = nodeOffsets[c] + cellCounts[c];
   }
-  this->CellNodeOffsets = nodeOffsets;
   vtkSMPTools::For(0,
     numberOfCells,
     [&](Id begin, Id end)

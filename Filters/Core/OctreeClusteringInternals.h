@@ -6,7 +6,6 @@
 #ifndef meshlod_OctreeClusteringInternals_h
 #define meshlod_OctreeClusteringInternals_h
 
-#include "FreshMemory.h"
 #include "OctreeClustering.h"
 #include "ParallelCompact.h"
 #include "Vector3.h"
@@ -128,7 +127,7 @@ struct OctreeClustering::Internals
   {
     if (this->RepCount % SlotsPerBlock == 0)
     {
-      this->RepBlocks.push_back(FreshVector<double>(SlotSize * static_cast<size_t>(SlotsPerBlock)));
+      this->RepBlocks.emplace_back(SlotSize * static_cast<size_t>(SlotsPerBlock));
     }
     this->RepSlot[index] = this->RepCount++;
   }

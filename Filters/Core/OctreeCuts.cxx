@@ -93,13 +93,10 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
   }
   vtkSMPThreadLocal<EvaluationScratch> scratch;
   std::vector<Id> pending, failed, kept, stack;
-  const auto unevaluated = [&](Id node) {
-    return node >= this->NV && this->State[node - this->NV] == NodeState::NotEvaluated &&
-      !this->Refused[node - this->NV];
-  };
   auto queue = [&](Id node)
   {
-    if (unevaluated(node))
+    if (node >= this->NV && this->State[node - this->NV] == NodeState::NotEvaluated &&
+      !this->Refused[node - this->NV])
     {
       const Id i = node - this->NV;
       pending.push_back(node);

@@ -750,7 +750,7 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
     static_cast<Id>(s.From.size()),
     [&](Id j) { return s.Duplicate[j] == 0; },
     [&](Id j, Id slot) { final[slot] = j; });
-  ResizeFresh(final, count);
+  final.resize(count);
   if (count == 0)
   {
     return; // everything collapsed: no level
