@@ -1,5 +1,6 @@
 #include "MeshLODHierarchy.h"
 
+#include "Core/FreshMemory.h"
 #include "MeshLODInputMesh.h"
 #include "MeshLODSurfaceDistance.h"
 
@@ -244,12 +245,6 @@ void SetLevelFieldData(vtkPolyData* poly, int level, double estimatedError)
   fd->AddArray(index);
   fd->AddArray(triangles);
   fd->AddArray(error);
-}
-
-template <typename T>
-void Release(std::vector<T>& values)
-{
-  std::vector<T>().swap(values);
 }
 
 void SetDoubleField(vtkPolyData* poly, const char* name, double value)

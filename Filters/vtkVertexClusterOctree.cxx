@@ -1,5 +1,6 @@
 #include "vtkVertexClusterOctree.h"
 
+#include "Core/FreshMemory.h"
 #include "Core/OctreeClustering.h"
 #include "Core/TextureAtlas.h"
 #include "MeshLODHierarchy.h"
@@ -472,8 +473,8 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   meshlod::HierarchyBuilder builder;
   builder.SetLevelZero(in);
   // The source ids were only needed for level 0.
-  std::vector<vtkIdType>().swap(in.SourcePointIds);
-  std::vector<vtkIdType>().swap(in.SourceCellIds);
+  meshlod::Release(in.SourcePointIds);
+  meshlod::Release(in.SourceCellIds);
   if (this->BakeTexture)
   {
     textures->SetBlock(0, texture && inputTCoords ? texture : nullptr);

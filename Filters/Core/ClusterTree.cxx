@@ -959,9 +959,9 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   for (Id c = 0; c < numberOfCells; ++c)
   {
     finished.insert(finished.end(), cellRoots[c].begin(), cellRoots[c].end());
-    std::vector<FinishedNode>().swap(cellRoots[c]);
+    Release(cellRoots[c]);
     top.insert(top.end(), cellTop[c].begin(), cellTop[c].end());
-    std::vector<HalfEdge>().swap(cellTop[c]);
+    Release(cellTop[c]);
   }
   {
     std::vector<HalfEdge> scratch;

@@ -84,6 +84,13 @@ auto FreshCopy(Iterator first, Iterator last)
   v.assign(first, last);
   return v;
 }
+
+/// Give v's memory back now (clear() keeps it).
+template <typename T>
+void Release(std::vector<T>& v)
+{
+  std::vector<T>().swap(v);
+}
 } // namespace meshlod
 
 #endif

@@ -58,8 +58,12 @@ void Collapser::Reweigh(Id s, CostScratch& scratch)
 //------------------------------------------------------------------------------
 Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
 {
+  // The heap's positions are the parallel rounds' (PartitionedGreedy.cxx), which hold no heap
+  // now: the curvature method lands every level here, and a second array of a position per
+  // triangle alive with the first was 4 bytes per input triangle of its peak memory.
+  ResizeFresh(this->HeapPositions, this->InitialTriangles, InvalidId);
   IndexedHeap heap;
-  heap.Reset(&this->Costs, this->InitialTriangles, &this->Spreads);
+  heap.Attach(&this->Costs, &this->Spreads, this->HeapPositions.data());
   heap.Build([&](Id t) {
     return this->State.IsAlive(t) && this->Costs[t] < InfiniteCost && !this->Lot.IsParked(t);
   });

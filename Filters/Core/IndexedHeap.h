@@ -20,27 +20,21 @@ namespace meshlod
 class IndexedHeap
 {
 public:
-  /// Ids 0..size-1 keyed by costs[id], then ties[id] (when given); the heap reads both arrays
-  /// when an id is inserted or updated (it does not copy them).
-  void Reset(const std::vector<double>* costs, Id size, const std::vector<float>* ties = nullptr)
-  {
-    this->Costs = costs;
-    this->Ties = ties;
-    this->Heap.clear();
-    this->OwnPositions.assign(size, InvalidId);
-    this->Position = this->OwnPositions.data();
-    this->Size = size;
-  }
+  /// Leaves the shared positions as it found them (see Attach). (Copyable for vtkSMPThreadLocal,
+  /// which copies an empty exemplar: a copy of a heap holding ids would share its positions.)
+  ~IndexedHeap() { this->Clear(); }
 
-  /// The same keyed by shared arrays, with the positions kept in `positions` (one per id,
-  /// InvalidId for every id not in this heap): several heaps holding disjoint ids can share it,
-  /// each used by one thread. Clear() before the heap is dropped.
+  /// Ids 0..costs->size()-1 keyed by costs[id], then ties[id] (when given); the heap reads both
+  /// arrays when an id is inserted or updated (it does not copy them). The position of each id
+  /// is kept in `positions` (one per id, InvalidId for every id not in this heap; the caller
+  /// owns it): several heaps holding disjoint ids can share it, each used by one thread, and one
+  /// array serves the heaps that come one after the other. Clear() and the destructor set the
+  /// positions of the ids left in the heap back to InvalidId.
   void Attach(const std::vector<double>* costs, const std::vector<float>* ties, Id* positions)
   {
+    this->Clear();
     this->Costs = costs;
     this->Ties = ties;
-    this->Heap.clear();
-    this->OwnPositions.clear();
     this->Position = positions;
     this->Size = static_cast<Id>(costs->size());
   }
@@ -223,9 +217,8 @@ private:
   const std::vector<double>* Costs = nullptr;
   const std::vector<float>* Ties = nullptr;
   std::vector<Entry> Heap;
-  Id* Position = nullptr; // OwnPositions, or shared positions (Attach)
+  Id* Position = nullptr; // the caller's (Attach)
   Id Size = 0;
-  std::vector<Id> OwnPositions;
 };
 
 } // namespace meshlod

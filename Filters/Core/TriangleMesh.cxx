@@ -296,7 +296,7 @@ void TriangleTopology::KeepBoundaryFlagsOnly()
       }
     }
   }
-  std::vector<Id>().swap(this->EdgeNeighbors);
+  Release(this->EdgeNeighbors);
 }
 
 //------------------------------------------------------------------------------
