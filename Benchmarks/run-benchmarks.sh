@@ -2,7 +2,7 @@
 # Builds MeshLOD (installing the Debian packages it needs if missing) and runs the side-by-side
 # benchmark; writes Benchmarks/RESULTS.md. Arguments are passed to MeshLODBenchmark (see the
 # top of MeshLODBenchmark.cxx), e.g. --meshes gyroid:600000 --targets 0.1.
-# Takes about fifteen minutes on two cores (more when other programs use them).
+# Takes twenty to thirty minutes on two cores (more when other programs use them).
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
 build=${MESHLOD_BUILD_DIR:-"$repo/build"}

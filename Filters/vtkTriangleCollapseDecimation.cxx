@@ -1,5 +1,6 @@
 #include "vtkTriangleCollapseDecimation.h"
 
+#include "Core/FreshMemory.h"
 #include "Core/LevelData.h"
 #include "Core/TriangleCollapse.h"
 #include "MeshLODHierarchy.h"
@@ -217,6 +218,20 @@ int vtkTriangleCollapseDecimation::RequestData(
 
   meshlod::HierarchyBuilder builder;
   builder.SetLevelZero(mesh);
+  // The maps to the source were for level 0; only the curvature method's fits still read the
+  // input's points through the point map, and not when it is the identity (as it mostly is).
+  // (12 bytes per input triangle alive to the end of the run otherwise.)
+  meshlod::Release(mesh.SourceCellIds);
+  bool identityPoints = true;
+  for (std::size_t i = 0; i < mesh.SourcePointIds.size() && identityPoints; ++i)
+  {
+    identityPoints = mesh.SourcePointIds[i] == static_cast<vtkIdType>(i);
+  }
+  if (identityPoints || options.InputPointIds == nullptr)
+  {
+    options.InputPointIds = nullptr;
+    meshlod::Release(mesh.SourcePointIds);
+  }
   // A level whose estimated error jumps far beyond what its triangle count explains (on a
   // smooth surface the error grows about as the count falls) was made of collapses that had
   // only costly choices left: a broken input (a locked seam, non-manifold parts) forced by the

@@ -359,6 +359,13 @@ double Collapser::LevelError() const
 
 void Collapser::EmitLevel()
 {
+  // The parallel rounds' lists were sized for the live triangles and vertices of earlier levels:
+  // give the room back before the level is built, which comes near the peak of the run (at the
+  // last level all of the output is built and the lists hold a few percent of what they had).
+  Release(this->CandidateCell);
+  Release(this->Candidates);
+  ShrinkLoose(this->LiveTriangles);
+  ShrinkLoose(this->LiveVertices);
   LevelData level;
   // (The partitioned run's list of live triangles, when it keeps one, spares a pass over all.)
   this->Tracker.Snapshot(this->State, this->LevelError(), level,

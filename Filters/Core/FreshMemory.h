@@ -91,6 +91,18 @@ void Release(std::vector<T>& v)
 {
   std::vector<T>().swap(v);
 }
+
+/// Give v's spare room back when it uses less than half of it (by a copy; shrink_to_fit may
+/// keep the room).
+template <typename T>
+void ShrinkLoose(std::vector<T>& v)
+{
+  if (v.size() < v.capacity() / 2 && v.capacity() * sizeof(T) >= FreshMemoryMinimumBytes)
+  {
+    std::vector<T> tight = FreshCopy(v.begin(), v.end());
+    v.swap(tight);
+  }
+}
 } // namespace meshlod
 
 #endif
