@@ -27,9 +27,13 @@
  *   Triangulations", IEEE Visualization 1997): a least-squares quadratic height field
  *   f(u, v) is fitted over the triangle's stencil and its ancestral points (the original
  *   vertices merged into its corners, at most MaximumFitPoints of them as an evenly strided
- *   subset; an extended stencil when the fit is singular). Collapses are ranked by
- *   CurvatureCost. By default (FIT_DEVIATION) a collapse costs the integral over the new
- *   triangles of their squared height above the fitted surface, or the merged planes'
+ *   subset; an extended stencil when the fit is singular; around a vertex where more than 64
+ *   triangles meet, such as a fan's centre, a cone's tip or a UV sphere's pole, a fit reads
+ *   about 64 of them, each standing for its share, and a collapse next to it does not re-fit
+ *   them all: otherwise the work grows with the cube of the valence, 88 s for a fan of 2,000
+ *   triangles, against 0.1 s now). Collapses are ranked by CurvatureCost. By default
+ *   (FIT_DEVIATION) a collapse costs the integral over the new triangles of their squared
+ *   height above the fitted surface, or the merged planes'
  *   area-weighted squared distance at the collapse point where that is larger; the collapse
  *   point is on the normal through the centroid c at the height where that deviation is least,
  *   or the merged planes' minimiser when that costs less. With WEIGHT, paper 000's own ranking,
@@ -148,8 +152,10 @@
  *
  * Input: triangles (polygons and strips are triangulated first; vertices and lines are
  * ignored with a warning). Empty input gives a hierarchy of one empty level, without error.
- * NaN or infinite coordinates, point ids out of range and a bounding-box diagonal outside
- * [1e-30, 1e30] (the collapse costs hold squared areas) are an error; point- or cell-data
+ * NaN or infinite coordinates, point ids out of range and a bounding-box diagonal above 1e30 or
+ * below 1e-30 but not 0 (the collapse costs hold squared areas) are an error (all points at one
+ * place, a diagonal of 0, are simplified like any other mesh: every collapse is free); point- or
+ * cell-data
  * arrays whose tuple count is not the number of points or cells are ignored with a warning.
  * Points on boundary or non-manifold
  * edges that coincide up to rounding (1e-12 of the bounding diagonal) and carry the same point
@@ -222,7 +228,10 @@ public:
   ///@{
   /**
    * Order of the collapses: GREEDY (default, one at a time, cheapest first) or
-   * INDEPENDENT_SETS (passes of many simultaneous collapses with disjoint stencils).
+   * INDEPENDENT_SETS (passes of many simultaneous collapses with disjoint stencils). Around a
+   * vertex of very high valence every stencil holds that vertex, so INDEPENDENT_SETS makes one
+   * collapse there per pass, each pass costing time in proportion to the mesh: a fan of 30,000
+   * triangles around one point took 27 s with it, 1 s with GREEDY.
    */
   vtkSetClampMacro(Schedule, int, INDEPENDENT_SETS, GREEDY);
   vtkGetMacro(Schedule, int);

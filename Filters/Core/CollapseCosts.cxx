@@ -238,7 +238,7 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
     if (scratch.Fit.Valid)
     {
       c.Cost = std::max(c.Cost,
-        this->FitDeviation(scratch.RimEdges, scratch.Fit, c.Position));
+        this->FitDeviation(scratch, c.Position));
       if (!boundary)
       {
         // A second collapse point competes, the merged planes' minimiser, off the normal where
@@ -249,7 +249,7 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
         double planes[3];
         q.MinimizeRegularized(centroid, planes);
         const double cost =
-          std::max(q.Evaluate(planes), this->FitDeviation(scratch.RimEdges, scratch.Fit, planes));
+          std::max(q.Evaluate(planes), this->FitDeviation(scratch, planes));
         if (cost < c.Cost)
         {
           c.Cost = cost;
@@ -419,9 +419,10 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
 }
 
 //------------------------------------------------------------------------------
-double CollapseCostModel::CollapseHeight(
-  const std::vector<Id>& rimEdges, const SurfaceFitResult& fit, bool leastDeviation) const
+double CollapseCostModel::CollapseHeight(const CostScratch& scratch, bool leastDeviation) const
 {
+  const std::vector<Id>& rimEdges = scratch.RimEdges;
+  const SurfaceFitResult& fit = scratch.Fit;
   // The new triangles join the collapse point p = c + h n to the stencil boundary polygon. Over
   // one of them, (p, a, b) seen in the fit's frame, the mean of the linear triangle is the mean
   // of its corner heights, and the mean of the quadratic f is the mean of f at the edge
@@ -437,7 +438,7 @@ double CollapseCostModel::CollapseHeight(
     double ua, va, da, ub, vb, db;
     fit.Frame(this->State.Mesh.Point(rimEdges[e]), ua, va, da);
     fit.Frame(this->State.Mesh.Point(rimEdges[e + 1]), ub, vb, db);
-    const double area = 0.5 * std::abs(ua * vb - va * ub);
+    const double area = scratch.RimWeights[e / 2] * 0.5 * std::abs(ua * vb - va * ub);
     const double spokes = fit.At(0.5 * ua, 0.5 * va) + fit.At(0.5 * ub, 0.5 * vb) - 0.5 * (da + db);
     const double rim = fit.At(0.5 * (ua + ub), 0.5 * (va + vb)) - 0.5 * (da + db);
     weighted += area * (leastDeviation ? spokes : spokes + rim);
@@ -447,9 +448,10 @@ double CollapseCostModel::CollapseHeight(
 }
 
 //------------------------------------------------------------------------------
-double CollapseCostModel::FitDeviation(
-  const std::vector<Id>& rimEdges, const SurfaceFitResult& fit, const double position[3]) const
+double CollapseCostModel::FitDeviation(const CostScratch& scratch, const double position[3]) const
 {
+  const std::vector<Id>& rimEdges = scratch.RimEdges;
+  const SurfaceFitResult& fit = scratch.Fit;
   // Over a new triangle (p, a, b) the height difference g = linear - f is quadratic, and the
   // midpoint rule (the mean of g^2 at the edge midpoints) integrates quadratics exactly; for
   // g^2, of degree four, it is an estimate that is exact where g is linear.
@@ -461,7 +463,8 @@ double CollapseCostModel::FitDeviation(
     double ua, va, da, ub, vb, db;
     fit.Frame(this->State.Mesh.Point(rimEdges[e]), ua, va, da);
     fit.Frame(this->State.Mesh.Point(rimEdges[e + 1]), ub, vb, db);
-    const double area = 0.5 * std::abs((ua - up) * (vb - vp) - (va - vp) * (ub - up));
+    const double area = scratch.RimWeights[e / 2] * 0.5 *
+      std::abs((ua - up) * (vb - vp) - (va - vp) * (ub - up));
     const double pa = 0.5 * (dp + da) - fit.At(0.5 * (up + ua), 0.5 * (vp + va));
     const double pb = 0.5 * (dp + db) - fit.At(0.5 * (up + ub), 0.5 * (vp + vb));
     const double ab = 0.5 * (da + db) - fit.At(0.5 * (ua + ub), 0.5 * (va + vb));
@@ -493,9 +496,16 @@ void CollapseCostModel::FitSurface(
   // the seam of a non-orientable surface.)
   std::vector<Id>& stencil = scratch.Vertices;
   std::vector<Id>& rimEdges = scratch.RimEdges;
+  std::vector<double>& rimWeights = scratch.RimWeights;
   stencil.clear();
   rimEdges.clear();
+  rimWeights.clear();
   const auto member = [&](Id x) { return x == tri[0] || x == tri[1] || x == tri[2]; };
+  // Every how many of the triangles around v the fit reads (see FanTriangleLimit).
+  const auto everyNthAround = [&](Id v) {
+    const Id around = this->State.TriangleCount(v);
+    return around > FanTriangleLimit ? (around + FanTriangleLimit - 1) / FanTriangleLimit : Id(1);
+  };
   // Duplicates are dropped as they come (a dozen or so distinct vertices, most seen two to four
   // times): sorting the list with its duplicates had been a tenth of the curvature method's
   // time. Around a vertex of high valence (a cone's tip, a UV sphere's pole) the search would
@@ -514,7 +524,11 @@ void CollapseCostModel::FitSurface(
   for (int k = 0; k < 3; ++k)
   {
     const Id corner = tri[k];
-    this->State.ForEachTriangle(corner, [&](Id s) {
+    // Around a fan's centre about every `every`-th ring triangle, standing for `every` of them
+    // (see FanTriangleLimit; the neighbours of the collapsing triangle still come from the walks
+    // around its other corners, unless those are fans' centres too).
+    const Id every = everyNthAround(corner);
+    this->State.ForEachTriangle(corner, every, [&](Id s) {
       const Id* st = this->State.Mesh.Triangle(s);
       const int c = CornerOf(st, corner);
       const Id next = st[(c + 1) % 3], previous = st[(c + 2) % 3];
@@ -524,6 +538,7 @@ void CollapseCostModel::FitSurface(
         add(previous);
         rimEdges.push_back(next); // a ring triangle: its far edge bounds a new triangle
         rimEdges.push_back(previous);
+        rimWeights.push_back(static_cast<double>(every));
       }
       else
       {
@@ -573,7 +588,7 @@ void CollapseCostModel::FitSurface(
       {
         continue;
       }
-      this->State.ForEachTriangle(stencil[i], [&](Id s) {
+      this->State.ForEachTriangle(stencil[i], everyNthAround(stencil[i]), [&](Id s) {
         const Id* st = this->State.Mesh.Triangle(s);
         for (int k = 0; k < 3; ++k)
         {
@@ -593,15 +608,15 @@ void CollapseCostModel::FitSurface(
   // average or, ranked by FitDeviation, at its least (see CollapseHeight). A quadratic fitted
   // to points spread far beyond the triangle can extrapolate wildly at its centre; the surface
   // cannot be further from the centroid than about the triangle's size.
+  scratch.Fit = fit;
   double height = 0.0;
   if (fit.Valid && place)
   {
-    const double best = this->CollapseHeight(
-      rimEdges, fit, this->Options.CurvatureRanking == CurvatureCost::FitDeviation);
+    const double best =
+      this->CollapseHeight(scratch, this->Options.CurvatureRanking == CurvatureCost::FitDeviation);
     height = std::max(-scale, std::min(scale, best));
   }
   c.Kappa = fit.Valid ? fit.AbsoluteCurvature : 0.0;
-  scratch.Fit = fit;
   for (int i = 0; i < 3; ++i)
   {
     c.Position[i] = centroid[i] + height * c.Normal[i];

@@ -18,6 +18,13 @@ class LevelTracker;
 /// CollapseCandidate::Choice for a collapse of the whole triangle.
 constexpr int TriangleChoice = 3;
 
+/// Curvature method: around a vertex where more triangles than this meet (a fan, a cone's tip,
+/// a UV sphere's pole) a fit reads every k-th of them only, k the least that keeps at most this
+/// many, and a collapse next to it leaves their costs as they are: with every triangle of the
+/// fan read by every fit, and re-fitted after every collapse next to it, the work grew with
+/// the cube of the valence (a fan of 2,000 triangles took 88 s).
+constexpr Id FanTriangleLimit = 64;
+
 /// The evaluation of one triangle collapse.
 struct CollapseCandidate
 {
@@ -50,6 +57,7 @@ struct CostScratch
   std::vector<Id> Vertices;
   std::vector<double> Points;
   std::vector<Id> RimEdges; // curvature method: the far edges of the ring triangles, (a, b) pairs
+  std::vector<double> RimWeights; // per rim edge, the ring triangles it stands for (see FitSurface)
   SurfaceFitResult Fit;     // curvature method: the last fit
   /// After a collapse every triangle around the survivor is evaluated again, and each edge
   /// from the survivor belongs to two of them: between BeginSpokes(v) and EndSpokes() the
@@ -163,13 +171,11 @@ private:
   // The height along the normal through the centroid at which the new triangles, from the
   // collapse point to the far edges of the ring triangles (FitSurface gathers them), lie on the
   // fitted surface on average or, with `leastDeviation`, at which their FitDeviation is least.
-  double CollapseHeight(
-    const std::vector<Id>& rimEdges, const SurfaceFitResult& fit, bool leastDeviation) const;
+  double CollapseHeight(const CostScratch& scratch, bool leastDeviation) const;
   // The integral over the new triangles (from `position` to the rim edges) of their squared
   // height above the fitted surface, by the midpoint rule (exact for a quadratic integrand):
   // how far the collapse leaves the surface the fit sees, its ancestral points included.
-  double FitDeviation(
-    const std::vector<Id>& rimEdges, const SurfaceFitResult& fit, const double position[3]) const;
+  double FitDeviation(const CostScratch& scratch, const double position[3]) const;
 
   const TriangleCollapseOptions& Options;
   const CollapseMesh& State;

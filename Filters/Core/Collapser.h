@@ -233,6 +233,10 @@ private:
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     for (const Id u : touched)
     {
+      if (this->State.TriangleCount(u) > FanTriangleLimit)
+      {
+        continue; // (see FanTriangleLimit)
+      }
       this->State.ForEachTriangle(u, [&](Id s) {
         if (CornerOf(this->State.Mesh.Triangle(s), survivor) < 0)
         {

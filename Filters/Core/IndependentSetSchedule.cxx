@@ -263,7 +263,10 @@ TriangleCollapseResult Collapser::RunIndependentSets()
           const Id* st = this->State.Mesh.Triangle(s);
           for (int k = 0; k < 3; ++k)
           {
-            this->State.ForEachTriangle(st[k], markDirty);
+            if (this->State.TriangleCount(st[k]) <= FanTriangleLimit) // (see there)
+            {
+              this->State.ForEachTriangle(st[k], markDirty);
+            }
           }
         }
       });
