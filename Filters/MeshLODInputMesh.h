@@ -11,8 +11,9 @@
 // - Point- or cell-data arrays whose tuple count is not the number of points or cells are
 //   ignored, with a warning naming them (reading past their end would give garbage).
 // - More than 2^31 - 1 points or triangles: an error (the core uses 32-bit ids).
-// - A bounding-box diagonal outside [1e-30, 1e30]: an error from the filters that square
-//   lengths (CheckInputDiagonal).
+// - A bounding-box diagonal above 1e30, or above 0 and below 1e-30: an error from the filters
+//   that square lengths (CheckInputDiagonal). A diagonal of exactly 0 (all points at one place)
+//   is no error: nothing there is squared out of range.
 // - Triangles that repeat a point id are dropped; a triangle with the same three points as an
 //   earlier one is dropped (both with a warning giving the count).
 // - Points on boundary or non-manifold edges that coincide up to rounding (at most 1e-12 of the

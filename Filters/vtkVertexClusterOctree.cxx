@@ -224,12 +224,21 @@ double vtkVertexClusterOctree::GetLevelEpsilon(int level) const
 
 //------------------------------------------------------------------------------
 // The search meets a count within 0.2%; a level off by more than 2% of the count is reported
-// with its likely cause (see the class documentation).
+// with its likely cause (see the class documentation), and so is one that repeats the level
+// before.
 void vtkVertexClusterOctree::WarnIfCountMissed(
   int level, vtkIdType asked, vtkIdType reached, vtkIdType previous)
 {
   if (std::abs(reached - asked) <= std::max<vtkIdType>(2, asked / 50))
   {
+    if (reached == previous)
+    {
+      // Met within the tolerance, but by the very cut of the level before (small counts).
+      vtkWarningMacro("Level " << level << ": asked for " << asked << " triangles, reached "
+                               << reached << ", the count of level " << level - 1
+                               << ": no cut of the cluster tree lies between them (counts move "
+                                  "in steps of whole clusters), so the two levels are the same.");
+    }
     return;
   }
   if (asked >= previous)

@@ -75,6 +75,9 @@
  *   steps of whole clusters; many clusters of exactly zero error, as in an exactly flat region,
  *   merge at any epsilon: bound the clusters with MaximumCellSize to keep more); a count at or
  *   above the previous level's (a level never refines).
+ * A level that keeps exactly the triangles of the level before (an epsilon that merges nothing
+ * more, or a small count met within its tolerance by the same cut) is kept, the same mesh again,
+ * and said in a warning.
  * With RelativeUnits on (default) epsilon values and MaximumCellSize are fractions of the
  * input's bounding-box diagonal, otherwise world units. Levels nest: every cluster of a coarser
  * level is a union of clusters of the finer one (a coarser level cuts the same cluster tree
@@ -100,8 +103,10 @@
  * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input gives
  * a hierarchy of one empty level, without error; polygons and strips are triangulated; vertex and
  * line cells are ignored with a warning; NaN or infinite points and point ids out of range are an
- * error (no output), and so is a bounding-box diagonal outside [1e-30, 1e30] (cluster errors are
- * kept in single precision); arrays whose tuple count is not the number of points or cells are
+ * error (no output), and so is a bounding-box diagonal above 1e30 or below 1e-30 but not 0
+ * (cluster errors are kept in single precision; with all points at one place, a diagonal of 0,
+ * every cluster merges at any epsilon, so level 1 would keep no triangle and the hierarchy is
+ * level 0, with that warning); arrays whose tuple count is not the number of points or cells are
  * ignored with a warning; points on boundary or non-manifold edges that coincide up to rounding
  * (1e-12 of the bounding diagonal) and carry the same point data are stitched (an attribute seam
  * stays open, with a warning); triangles wound against the rest of their connected part are flipped

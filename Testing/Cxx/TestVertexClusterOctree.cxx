@@ -407,6 +407,32 @@ void TestUnreachableCount()
   MESHLOD_CHECK(observer->GetWarningMessage().find("at least the 2048 of level 0") !=
     std::string::npos);
   MESHLOD_CHECK_LE(Level(filter->GetHierarchy(), 2)->GetNumberOfPolys(), 4); // then merges again
+
+  // Small counts met within their tolerance (2 triangles) by the cut of the level before (5, 3,
+  // 3, 2, 2 triangles for 5 to 1): every level is kept, and each repeated one is said.
+  observer->Clear();
+  filter->RemoveAllTargetTriangleCounts();
+  for (const vtkIdType asked : { 5, 4, 3, 2, 1 })
+  {
+    filter->AddTargetTriangleCount(asked);
+  }
+  filter->Update();
+  h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 6u);
+  int repeats = 0;
+  for (unsigned int i = 2; i < h->GetNumberOfBlocks(); ++i)
+  {
+    const vtkIdType count = Level(h, i)->GetNumberOfPolys();
+    MESHLOD_CHECK_LE(count, Level(h, i - 1)->GetNumberOfPolys());
+    const std::string said = "Level " + std::to_string(i) + ": asked for " +
+      std::to_string(6 - i) + " triangles, reached " + std::to_string(count) +
+      ", the count of level " + std::to_string(i - 1);
+    const bool repeated = count == Level(h, i - 1)->GetNumberOfPolys();
+    repeats += repeated ? 1 : 0;
+    MESHLOD_CHECK_EQ(observer->GetWarningMessage().find(said) != std::string::npos, repeated);
+  }
+  MESHLOD_CHECK_GT(repeats, 0);
+
   filter->RemoveAllTargetTriangleCounts();
   filter->AddTargetTriangleCount(200);
 
@@ -1165,6 +1191,28 @@ void TestCellLimits()
     MESHLOD_CHECK_LT(level1->GetNumberOfPolys(), grid->GetNumberOfPolys() / 4);
   }
 }
+
+// All points at one place (a bounding-box diagonal of 0, which is no error): every cluster
+// merges at any epsilon, so the hierarchy is level 0 alone, with a warning saying why.
+void TestAllPointsCoincident()
+{
+  vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(3);
+  for (vtkIdType p = 0; p < sphere->GetNumberOfPoints(); ++p)
+  {
+    sphere->GetPoints()->SetPoint(p, 1.0, 2.0, 3.0);
+  }
+  vtkNew<vtkTest::ErrorObserver> observer;
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->SetInputData(sphere);
+  filter->Update();
+  MESHLOD_CHECK(!observer->GetError());
+  MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 1u);
+  MESHLOD_CHECK_EQ(Level(filter->GetHierarchy(), 0)->GetNumberOfPolys(), sphere->GetNumberOfPolys());
+  MESHLOD_CHECK(observer->GetWarningMessage().find("Level 1 would keep no triangle") !=
+    std::string::npos);
+}
 } // namespace
 
 int TestVertexClusterOctree(int, char*[])
@@ -1185,6 +1233,7 @@ int TestVertexClusterOctree(int, char*[])
   TestThinTube();
   TestHighValenceFan();
   TestCellLimits();
+  TestAllPointsCoincident();
   TestSettingsAndErrors();
   return meshlod::testing::Result();
 }
