@@ -1209,7 +1209,8 @@ void TestAllPointsCoincident()
   filter->Update();
   MESHLOD_CHECK(!observer->GetError());
   MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 1u);
-  MESHLOD_CHECK_EQ(Level(filter->GetHierarchy(), 0)->GetNumberOfPolys(), sphere->GetNumberOfPolys());
+  MESHLOD_CHECK_EQ(
+    Level(filter->GetHierarchy(), 0)->GetNumberOfPolys(), sphere->GetNumberOfPolys());
   MESHLOD_CHECK(observer->GetWarningMessage().find("Level 1 would keep no triangle") !=
     std::string::npos);
 }
