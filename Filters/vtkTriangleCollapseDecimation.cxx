@@ -200,8 +200,15 @@ int vtkTriangleCollapseDecimation::RequestData(
       {
         options.InputPointsDouble = doubles->GetPointer(0);
       }
+      // Through the map to the input's points, unless it is the identity (as it mostly is).
       // (The same type here: the cast only lets the discarded branch compile.)
-      options.InputPointIds = reinterpret_cast<const long long*>(mesh.SourcePointIds.data());
+      bool identity = true;
+      for (std::size_t i = 0; i < mesh.SourcePointIds.size() && identity; ++i)
+      {
+        identity = mesh.SourcePointIds[i] == static_cast<vtkIdType>(i);
+      }
+      options.InputPointIds =
+        identity ? nullptr : reinterpret_cast<const long long*>(mesh.SourcePointIds.data());
     }
   }
   const std::int64_t inputTriangles = mesh.Mesh.GetNumberOfTriangles();
@@ -218,18 +225,12 @@ int vtkTriangleCollapseDecimation::RequestData(
 
   meshlod::HierarchyBuilder builder;
   builder.SetLevelZero(mesh);
-  // The maps to the source were for level 0; only the curvature method's fits still read the
-  // input's points through the point map, and not when it is the identity (as it mostly is).
-  // (12 bytes per input triangle alive to the end of the run otherwise.)
+  // The maps to the source were for level 0, but for the point map when the curvature method's
+  // fits read the input's points through it (12 bytes per input triangle alive to the end of
+  // the run otherwise).
   meshlod::Release(mesh.SourceCellIds);
-  bool identityPoints = true;
-  for (std::size_t i = 0; i < mesh.SourcePointIds.size() && identityPoints; ++i)
+  if (options.InputPointIds == nullptr)
   {
-    identityPoints = mesh.SourcePointIds[i] == static_cast<vtkIdType>(i);
-  }
-  if (identityPoints || options.InputPointIds == nullptr)
-  {
-    options.InputPointIds = nullptr;
     meshlod::Release(mesh.SourcePointIds);
   }
   // A level whose estimated error jumps far beyond what its triangle count explains (on a

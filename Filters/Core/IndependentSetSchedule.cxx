@@ -29,7 +29,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
   std::vector<unsigned char> isDirty(nt, 0);
   // Vertex -> 1 + the index of the pass's candidate whose neighbourhood holds it, 0 if none.
   std::vector<Id> owner(this->State.Mesh.GetNumberOfPoints(), 0);
-  std::vector<Id> live(nt), dirty, pool, chosen, owned, survivors, neighbourhood;
+  std::vector<Id> live(nt), dirty, pool, chosen, owned, survivors, neighbourhood, touched;
   for (Id t = 0; t < nt; ++t)
   {
     live[t] = t;
@@ -258,18 +258,11 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       this->State.ForEachTriangle(survivor, [&](Id s) {
         markDirty(s);
         this->Lot.Touch(this->State.Mesh.Triangle(s), this->Clock);
-        if (widen)
-        {
-          const Id* st = this->State.Mesh.Triangle(s);
-          for (int k = 0; k < 3; ++k)
-          {
-            if (this->State.TriangleCount(st[k]) <= FanTriangleLimit) // (see there)
-            {
-              this->State.ForEachTriangle(st[k], markDirty);
-            }
-          }
-        }
       });
+      if (widen)
+      {
+        this->ForEachTriangleOneRingOut(survivor, touched, markDirty);
+      }
     }
     // Parked triangles further out may have become legal (valences and positions changed);
     // rather than searching for them around every collapse, look now and then.
