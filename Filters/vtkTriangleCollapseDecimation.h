@@ -230,10 +230,12 @@ public:
    * Order of the collapses: GREEDY (default, one at a time, cheapest first) or
    * INDEPENDENT_SETS (passes of many simultaneous collapses with disjoint stencils). Around a
    * vertex of very high valence every stencil holds that vertex, so INDEPENDENT_SETS makes one
-   * collapse there per pass, each pass costing time in proportion to the mesh, and the
-   * triangles waiting there are re-checked against the whole fan: a fan of 30,000 triangles
-   * around one point took 27 s with it, 1 s with GREEDY; with the curvature method a fan of
-   * 4,000 took 21 s and one of 8,000 96 s (GREEDY: 0.14 s and 0.28 s). Use GREEDY for such meshes.
+   * collapse there per pass, each pass costing time in proportion to the mesh: the time grows
+   * with the square of the valence. A fan of 8,000 triangles around one point takes 0.6 s with
+   * it, one of 30,000 12 s with either method (GREEDY: 0.7 s with the quadric method, 1.1 s
+   * with the curvature method); with the TRIANGLES operator, whose collapses a fan mostly
+   * refuses, a fan of 3,000 takes 2-3 s (each refusal sorts the fan's link). Use GREEDY for
+   * such meshes.
    */
   vtkSetClampMacro(Schedule, int, INDEPENDENT_SETS, GREEDY);
   vtkGetMacro(Schedule, int);

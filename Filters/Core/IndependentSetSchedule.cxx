@@ -17,6 +17,26 @@ constexpr std::int64_t PoolFactor = 4;
 
 // Triangles found illegal are retried after this many passes.
 constexpr std::int64_t ParkedRetryPasses = 8;
+
+// Passes with fewer items than this to evaluate, check or collapse do them on the calling
+// thread: around a vertex of very high valence passes make one collapse each, and handing a
+// few items to the thread pool thousands of times cost a quarter of such a run in waking and
+// parking threads.
+constexpr Id SerialItems = 32;
+
+// f(begin, end) over [0, n): with vtkSMPTools, or on this thread when n is small.
+template <typename F>
+void ForItems(Id n, F&& f)
+{
+  if (n < SerialItems)
+  {
+    f(0, n);
+  }
+  else
+  {
+    vtkSMPTools::For(0, n, f);
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -52,7 +72,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     ++this->Result.Passes;
     ++this->Clock;
     // 1. Re-weight what changed in the last pass (in parallel).
-    vtkSMPTools::For(0, static_cast<Id>(dirty.size()), [&](Id begin, Id end) {
+    ForItems(static_cast<Id>(dirty.size()), [&](Id begin, Id end) {
       CostScratch& mine = scratch.Local();
       for (Id i = begin; i < end; ++i)
       {
@@ -98,23 +118,37 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     {
       std::nth_element(pool.begin(), pool.begin() + eligible, pool.end(), cheaper);
     }
-    const std::size_t block = static_cast<std::size_t>(std::max<std::int64_t>(64, budget));
-    for (std::size_t first = 0; first < eligible && estimate < wanted; first += block)
+    // A candidate with a corner in a chosen neighbourhood stays blocked for the rest of the
+    // pass, so the blocked ones are dropped before the next block is ordered (the same choice:
+    // they would be skipped). Around a vertex of very high valence every stencil holds that
+    // vertex: one choice there blocks the others, which a pass would otherwise sort in full.
+    const auto cornerOwned = [&](Id t) {
+      const Id* tri = this->State.Mesh.Triangle(t);
+      return owner[tri[0]] || owner[tri[1]] || owner[tri[2]];
+    };
+    std::size_t left = eligible; // candidates [first, left) are still in the running
+    std::size_t block = static_cast<std::size_t>(std::max<std::int64_t>(64, budget / 4));
+    for (std::size_t first = 0; first < left && estimate < wanted; block *= 2)
     {
-      const std::size_t last = std::min(eligible, first + block);
-      if (last < eligible)
+      if (first > 0)
       {
-        std::nth_element(pool.begin() + first, pool.begin() + last, pool.begin() + eligible, cheaper);
+        left = static_cast<std::size_t>(
+          std::remove_if(pool.begin() + first, pool.begin() + left, cornerOwned) - pool.begin());
+      }
+      const std::size_t last = std::min(left, first + block);
+      if (last < left)
+      {
+        std::nth_element(pool.begin() + first, pool.begin() + last, pool.begin() + left, cheaper);
       }
       std::sort(pool.begin() + first, pool.begin() + last, cheaper);
       for (std::size_t i = first; i < last && estimate < wanted; ++i)
       {
         const Id t = pool[i];
-        const Id* tri = this->State.Mesh.Triangle(t);
-        if (owner[tri[0]] || owner[tri[1]] || owner[tri[2]])
+        if (cornerOwned(t))
         {
           continue;
         }
+        const Id* tri = this->State.Mesh.Triangle(t);
         neighbourhood.clear();
         bool blocked = false;
         for (int k = 0; k < 3 && !blocked; ++k)
@@ -143,6 +177,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
         }
         estimate += this->Choices[t] == TriangleChoice ? 4 : 2; // at most
       }
+      first = last;
     }
 
     // 4. Check the chosen ones (in parallel), keep the cheapest legal ones up to the pass's
@@ -152,7 +187,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     candidates.resize(count);
     outcome.assign(count, Refused);
     survivors.assign(count, InvalidId);
-    vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+    ForItems(count, [&](Id begin, Id end) {
       CostScratch& mine = scratch.Local();
       Star& star = stars.Local();
       for (Id i = begin; i < end; ++i)
@@ -180,7 +215,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       removed += outcome[i] == Collapsed ? candidates[i].Dying : 0;
     }
     const std::int64_t base = this->Sequence;
-    vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+    ForItems(count, [&](Id begin, Id end) {
       Star& star = stars.Local();
       for (Id i = begin; i < end; ++i)
       {
