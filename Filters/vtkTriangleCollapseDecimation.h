@@ -234,10 +234,12 @@ public:
    * with the square of the valence. A fan of 8,000 triangles around one point takes 0.6 s with
    * it, one of 30,000 12 s with either method (GREEDY: 0.7 s with the quadric method, 1.1 s
    * with the curvature method); with the TRIANGLES operator, whose collapses a fan mostly
-   * refuses, a fan of 3,000 takes 2-3 s (each refusal sorts the fan's link), and on a UV
-   * sphere of 116,000 triangles with poles of valence 1,000 the quadric method ran for over
-   * five minutes (GREEDY: 2.7 s): the triangles refused at a pole are retried one per pass each
-   * time a collapse changes the pole. Use GREEDY for such meshes.
+   * refuses, a fan of 3,000 takes 2-3 s (each refusal sorts the fan's link). Use GREEDY for
+   * such meshes. INDEPENDENT_SETS with the TRIANGLES operator can also jam on meshes of long
+   * thin triangles: on a UV sphere of 116,000 triangles (theta resolution 1,000, phi 60) the
+   * quadric method had not finished after five minutes (GREEDY: 3 s); below about 25,000
+   * triangles most of its triangle collapses were refused, away from the poles too, and each
+   * pass made a handful.
    */
   vtkSetClampMacro(Schedule, int, INDEPENDENT_SETS, GREEDY);
   vtkGetMacro(Schedule, int);
