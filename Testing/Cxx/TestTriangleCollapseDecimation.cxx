@@ -1058,6 +1058,52 @@ void TestHighValenceFanIndependentSets()
   }
 }
 
+// IndependentSets with the TRIANGLES operator on a UV sphere of long thin triangles (theta
+// resolution 300, phi 20): most triangle collapses are refused, the few candidates left crowd
+// together and each pass removed a tenth of a triangle or so. Passes that stall hand the level
+// to the greedy loop: every level on target and valid, in about 2,500 passes (each pass reports
+// progress) where there were 20,000 (on a sphere of 116,000 such triangles the run had not ended
+// after five minutes).
+void TestIndependentSetsStall()
+{
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(300);
+  source->SetPhiResolution(20);
+  source->Update();
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  filter->SetInputConnection(source->GetOutputPort());
+  filter->SetScheduleToIndependentSets();
+  filter->SetOperatorToTriangles();
+  filter->SetNumberOfLevels(3);
+  filter->SetTargetReduction(0.9);
+  int reports = 0;
+  vtkNew<vtkCallbackCommand> count;
+  count->SetClientData(&reports);
+  count->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+  filter->AddObserver(vtkCommand::ProgressEvent, count);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 4u);
+  if (h->GetNumberOfBlocks() != 4)
+  {
+    return;
+  }
+  const vtkIdType input = Level(h, 0)->GetNumberOfPolys();
+  MESHLOD_CHECK_EQ(input, 10800);
+  for (unsigned int i = 1; i < 4; ++i)
+  {
+    const testing::MeshReport report = testing::InspectMesh(Level(h, i));
+    MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
+    MESHLOD_CHECK_EQ(report.BoundaryEdges, 0);
+    MESHLOD_CHECK_EQ(report.DegenerateTriangles, 0);
+    MESHLOD_CHECK_EQ(report.EulerCharacteristic, 2);
+  }
+  MESHLOD_CHECK_LE(Level(h, 3)->GetNumberOfPolys(), 1080);
+  MESHLOD_CHECK_GE(Level(h, 3)->GetNumberOfPolys(), 1070);
+  MESHLOD_CHECK_LT(reports, 5000);
+}
+
 // A sphere of 19,600 triangles with uniform radial noise of `amplitude` (relative to the
 // radius): every level within 2x vtkQuadricDecimation's errors at the same count, the last at
 // its target.
@@ -1537,6 +1583,7 @@ int TestTriangleCollapseDecimation(int, char*[])
   TestParametricSeam();
   TestHighValenceFan();
   TestHighValenceFanIndependentSets();
+  TestIndependentSetsStall();
   TestFarFromOrigin();
   TestNoisySurface();
   TestSurfaceWithHoles();
