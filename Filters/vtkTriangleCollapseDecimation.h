@@ -229,19 +229,19 @@ public:
   ///@{
   /**
    * Order of the collapses: GREEDY (default, one at a time, cheapest first) or
-   * INDEPENDENT_SETS (passes of many simultaneous collapses with disjoint stencils). Around a
-   * vertex of very high valence every stencil holds that vertex, so INDEPENDENT_SETS makes one
-   * collapse there per pass, each pass costing time in proportion to the mesh: the time grows
-   * with the square of the valence. A fan of 8,000 triangles around one point takes 0.6 s with
-   * it, one of 30,000 12 s with either method (GREEDY: 0.7 s with the quadric method, 1.1 s
-   * with the curvature method); with the TRIANGLES operator, whose collapses a fan mostly
-   * refuses, a fan of 3,000 takes 2-3 s (each refusal sorts the fan's link). Use GREEDY for
-   * such meshes. Passes can also stall where most collapses are refused (long thin triangles
-   * with the TRIANGLES operator): after 64 passes in a row that each removed under 1% of their
-   * budget, the greedy loop makes the rest of the level, and the passes take up the next one.
-   * On a UV sphere of 116,000 such triangles (theta resolution 1,000, phi 60) the quadric
-   * method then takes 7 s instead of over five minutes; its coarsest level stops at 1,628
-   * triangles for 1,160 asked (GREEDY: 3 s, every level on target).
+   * INDEPENDENT_SETS (passes of many simultaneous collapses with disjoint stencils). Passes
+   * stall where few candidates can be taken at once: around a vertex of very high valence,
+   * whose every stencil holds it (one collapse there per pass), or where most collapses are
+   * refused (long thin triangles with the TRIANGLES operator). After 64 passes in a row that
+   * each removed under 1% of their budget, the greedy loop makes the rest of the level, and the
+   * passes take up the next one. With it, a fan of 30,000 triangles around one point takes
+   * 0.8 s with the quadric method and 1.3 s with the curvature method (GREEDY: 0.7 s and 1.1 s;
+   * 12 s and 13 s before the fallback), a UV sphere of 384,000 triangles with poles of valence
+   * 4,000 2.7 s and 9.8 s (GREEDY: 0.5 s and 4.8 s), and a UV sphere of 116,000 long thin
+   * triangles (theta resolution 1,000, phi 60) with the TRIANGLES operator 7 s where it had not
+   * finished after five minutes; its coarsest level stops at 1,628 triangles for 1,160 asked
+   * (GREEDY: 3 s, every level on target). With the TRIANGLES operator a fan of 3,000 takes
+   * 2-4 s (each refusal sorts the fan's link). GREEDY is the better choice for such meshes.
    */
   vtkSetClampMacro(Schedule, int, INDEPENDENT_SETS, GREEDY);
   vtkGetMacro(Schedule, int);
