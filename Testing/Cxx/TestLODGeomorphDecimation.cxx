@@ -8,12 +8,12 @@
 #include "vtkLODGeomorph.h"
 #include "vtkTriangleCollapseDecimation.h"
 
+#include "MeshLODEventCounter.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODHierarchyChecks.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -287,14 +287,9 @@ void TestVariant(vtkPolyData* surface, const Variant& variant)
   decimate->SetInputData(surface);
   decimate->SetSchedule(variant.Schedule);
   decimate->SetOperator(variant.Operator);
-  int decimationRuns = 0;
-  vtkNew<vtkCallbackCommand> counter;
-  counter->SetClientData(&decimationRuns);
-  counter->SetCallback(
-    [](vtkObject*, unsigned long, void* runs, void*) { ++*static_cast<int*>(runs); });
-  decimate->AddObserver(vtkCommand::EndEvent, counter);
+  const testing::EventCounter decimationRuns(decimate, vtkCommand::EndEvent);
   decimate->Update();
-  MESHLOD_CHECK_EQ(decimationRuns, 1);
+  MESHLOD_CHECK_EQ(decimationRuns.Count, 1);
   vtkMultiBlockDataSet* h = decimate->GetHierarchy();
   const int n = static_cast<int>(h->GetNumberOfBlocks());
   MESHLOD_CHECK_EQ(n, 9);
@@ -310,9 +305,9 @@ void TestVariant(vtkPolyData* surface, const Variant& variant)
   geomorph->UsePipelineTimeOff();
   CheckWholeLevels(geomorph, h);
   CheckTransitions(geomorph, h);
-  CheckPipelineTime(decimate, h, decimationRuns);
+  CheckPipelineTime(decimate, h, decimationRuns.Count);
   CheckExactCount(decimate, h);
-  MESHLOD_CHECK_EQ(decimationRuns, 1);
+  MESHLOD_CHECK_EQ(decimationRuns.Count, 1);
 }
 
 // An empty input (an isosurface empty at some iso-value) flows through the pipeline silently:

@@ -4,6 +4,7 @@
 #include "vtkLODGeomorph.h"
 #include "vtkTriangleCollapseDecimation.h"
 
+#include "MeshLODEventCounter.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODHierarchyChecks.h"
 #include "MeshLODSurfaceDistance.h"
@@ -1076,12 +1077,7 @@ void TestIndependentSetsStall()
   filter->SetOperatorToTriangles();
   filter->SetNumberOfLevels(3);
   filter->SetTargetReduction(0.9);
-  int reports = 0;
-  vtkNew<vtkCallbackCommand> count;
-  count->SetClientData(&reports);
-  count->SetCallback(
-    [](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
-  filter->AddObserver(vtkCommand::ProgressEvent, count);
+  const testing::EventCounter reports(filter, vtkCommand::ProgressEvent);
   filter->Update();
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
   MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 4u);
@@ -1101,7 +1097,7 @@ void TestIndependentSetsStall()
   }
   MESHLOD_CHECK_LE(Level(h, 3)->GetNumberOfPolys(), 1080);
   MESHLOD_CHECK_GE(Level(h, 3)->GetNumberOfPolys(), 1070);
-  MESHLOD_CHECK_LT(reports, 5000);
+  MESHLOD_CHECK_LT(reports.Count, 5000);
 }
 
 // A sphere of 19,600 triangles with uniform radial noise of `amplitude` (relative to the

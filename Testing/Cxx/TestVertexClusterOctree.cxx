@@ -1,13 +1,13 @@
 // vtkVertexClusterOctree: exact results on hand-made meshes, the hierarchy's properties on
 // generated ones, settings and input errors.
-#include "MeshLODHierarchyChecks.h"
+#include "MeshLODEventCounter.h"
 #include "MeshLODHierarchy.h"
+#include "MeshLODHierarchyChecks.h"
+#include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
-#include "MeshLODSurfaceDistance.h"
 #include "vtkVertexClusterOctree.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
@@ -1104,18 +1104,13 @@ void TestSettingsAndErrors()
   MESHLOD_CHECK_EQ(filter->GetTextureResolution(), 16);
 
   // Progress events, and PrintSelf names every setting.
-  int progressEvents = 0;
-  vtkNew<vtkCallbackCommand> progress;
-  progress->SetClientData(&progressEvents);
-  progress->SetCallback(
-    [](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
-  filter->AddObserver(vtkCommand::ProgressEvent, progress);
+  const testing::EventCounter progressEvents(filter, vtkCommand::ProgressEvent);
   filter->SetNumberOfLevels(2);
   filter->SetEpsilon(0.01);
   filter->SetInputData(testing::MakeIcosphere(3));
   filter->Update();
   MESHLOD_CHECK(!observer->GetError());
-  MESHLOD_CHECK_GE(progressEvents, 3);
+  MESHLOD_CHECK_GE(progressEvents.Count, 3);
   std::ostringstream printed;
   filter->Print(printed);
   for (const char* setting : { "LevelMode",
