@@ -239,9 +239,9 @@ public:
    * 12 s and 13 s before the fallback), a UV sphere of 384,000 triangles with poles of valence
    * 4,000 2.7 s and 9.8 s (GREEDY: 0.5 s and 4.8 s), and a UV sphere of 116,000 long thin
    * triangles (theta resolution 1,000, phi 60) with the TRIANGLES operator 7 s where it had not
-   * finished after five minutes; its coarsest level stops at 1,628 triangles for 1,160 asked
-   * (GREEDY: 3 s, every level on target). With the TRIANGLES operator a fan of 3,000 takes
-   * 2-4 s (each refusal sorts the fan's link). GREEDY is the better choice for such meshes.
+   * finished after five minutes (GREEDY: 3 s). With the TRIANGLES operator a fan of 3,000
+   * takes 2-4 s (each refusal sorts the fan's link). GREEDY is the better choice for such
+   * meshes.
    */
   vtkSetClampMacro(Schedule, int, INDEPENDENT_SETS, GREEDY);
   vtkGetMacro(Schedule, int);

@@ -101,9 +101,11 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     const std::int64_t budget = std::min<std::int64_t>(
       std::max<std::int64_t>(1, static_cast<std::int64_t>(4.0 * this->Options.LevelFraction * alive)),
       static_cast<std::int64_t>(alive) - this->CurrentTarget());
+    // (A triangle refused here gets an infinite cost; one the greedy loop refused (step 7)
+    // keeps its cost and waits in the parking lot.)
     pool.clear();
     std::copy_if(live.begin(), live.end(), std::back_inserter(pool),
-      [&](Id t) { return this->Costs[t] < InfiniteCost; });
+      [&](Id t) { return this->Costs[t] < InfiniteCost && !this->Lot.IsParked(t); });
     auto cheaper = [&](Id a, Id b) {
       return this->Costs[a] < this->Costs[b] || (this->Costs[a] == this->Costs[b] && a < b);
     };
