@@ -72,12 +72,8 @@ TriangleCollapseResult Collapser::RunIndependentSets()
     Skipped = 4,  // legal, not needed for this pass's budget
   };
 
-  int stalled = 0; // passes in a row that removed under StallShare of their budget
-  while (!this->Finished())
-  {
-    ++this->Result.Passes;
-    ++this->Clock;
-    // 1. Re-weight what changed in the last pass (in parallel).
+  // New costs for the listed triangles (in parallel), which leave the list.
+  const auto reweighDirty = [&]() {
     ForItems(static_cast<Id>(dirty.size()), [&](Id begin, Id end) {
       CostScratch& mine = scratch.Local();
       for (Id i = begin; i < end; ++i)
@@ -90,6 +86,15 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       isDirty[t] = 0;
     }
     dirty.clear();
+  };
+
+  int stalled = 0; // passes in a row that removed under StallShare of their budget
+  while (!this->Finished())
+  {
+    ++this->Result.Passes;
+    ++this->Clock;
+    // 1. Re-weight what changed in the last pass.
+    reweighDirty();
 
     // 2. The cheapest candidates: a pool a few times larger than what one pass can take.
     live.erase(std::remove_if(live.begin(), live.end(), [&](Id t) { return !this->State.IsAlive(t); }),
@@ -338,13 +343,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
       // Every refused triangle gets its cost back (a refusal here set it to infinity) and the
       // triangles changed since are re-weighted, as the greedy loop expects of its costs.
       this->Lot.ReleaseAll(this->State, markDirty);
-      CostScratch& mine = scratch.Local();
-      for (const Id t : dirty)
-      {
-        this->Costs[t] = this->EvaluateCost(t, mine);
-        isDirty[t] = 0;
-      }
-      dirty.clear();
+      reweighDirty();
       if (this->GreedySteps(this->CurrentTarget()) != StepsEnd::Reached)
       {
         break; // stuck, MaximumError reached or aborted
