@@ -11,6 +11,7 @@
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -23,6 +24,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 
 #include <cmath>
 #include <sstream>
@@ -332,6 +334,42 @@ void HierarchyBuilder::SetLevelZero(const InputMesh& input)
   SetLevelFieldData(level0, 0, 0.0);
   this->Impl->Levels.push_back(level0);
   this->Impl->InputFieldData = source->GetFieldData();
+}
+
+//------------------------------------------------------------------------------
+LevelCentering::LevelZeroView HierarchyBuilder::GetLevelZeroView(std::vector<double>& copy) const
+{
+  vtkPolyData* level0 = this->Impl->Levels.front();
+  LevelCentering::LevelZeroView view;
+  vtkDataArray* points = level0->GetPoints()->GetData();
+  if (auto* doubles = vtkDoubleArray::FastDownCast(points))
+  {
+    view.Doubles = doubles->GetPointer(0);
+  }
+  else if (auto* floats = vtkFloatArray::FastDownCast(points))
+  {
+    view.Floats = floats->GetPointer(0);
+  }
+  else
+  {
+    copy.resize(3 * static_cast<size_t>(points->GetNumberOfTuples()));
+    for (vtkIdType p = 0; p < points->GetNumberOfTuples(); ++p)
+    {
+      points->GetTuple(p, copy.data() + 3 * p);
+    }
+    view.Doubles = copy.data();
+  }
+  vtkCellArray* polys = level0->GetPolys();
+  if (polys->IsStorage64Bit())
+  {
+    view.Ids64 = polys->GetConnectivityArray64()->GetPointer(0);
+  }
+  else
+  {
+    view.Ids32 = polys->GetConnectivityArray32()->GetPointer(0);
+  }
+  view.Triangles = static_cast<Id>(polys->GetNumberOfCells());
+  return view;
 }
 
 //------------------------------------------------------------------------------

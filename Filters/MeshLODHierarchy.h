@@ -24,6 +24,7 @@
 #ifndef MeshLODHierarchy_h
 #define MeshLODHierarchy_h
 
+#include "Core/LevelCentering.h"
 #include "Core/LevelData.h"
 #include "vtkFiltersMeshLODModule.h"
 #include "vtkSmartPointer.h"
@@ -90,6 +91,10 @@ public:
   /// Consumes `level`: each of its arrays is released once converted, so that a level's plain
   /// arrays and its VTK arrays are not all alive at the peak of memory.
   void AppendLevel(LevelData&& level);
+
+  /// Level 0's points and triangles, to be read in place (LevelCentering): its points are
+  /// copied into `copy` when they are neither float nor double.
+  LevelCentering::LevelZeroView GetLevelZeroView(std::vector<double>& copy) const;
 
   /// Number of levels so far (level 0 included).
   int GetNumberOfLevels() const;

@@ -23,6 +23,7 @@ set(meshlod_private_headers
   Filters/Core/EdgeMerge.h
   Filters/Core/FreshMemory.h
   Filters/Core/IndexedHeap.h
+  Filters/Core/LevelCentering.h
   Filters/Core/LevelData.h
   Filters/Core/LevelTracker.h
   Filters/Core/LocalSurfaceFit.h
@@ -55,6 +56,7 @@ set(meshlod_sources
   Filters/Core/FreshMemory.cxx
   Filters/Core/GreedySchedule.cxx
   Filters/Core/IndependentSetSchedule.cxx
+  Filters/Core/LevelCentering.cxx
   Filters/Core/LevelTracker.cxx
   Filters/Core/LocalSurfaceFit.cxx
   Filters/Core/OctreeClustering.cxx

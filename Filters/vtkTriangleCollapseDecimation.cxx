@@ -1,6 +1,7 @@
 #include "vtkTriangleCollapseDecimation.h"
 
 #include "Core/FreshMemory.h"
+#include "Core/LevelCentering.h"
 #include "Core/LevelData.h"
 #include "Core/TriangleCollapse.h"
 #include "MeshLODHierarchy.h"
@@ -225,6 +226,12 @@ int vtkTriangleCollapseDecimation::RequestData(
 
   meshlod::HierarchyBuilder builder;
   builder.SetLevelZero(mesh);
+  meshlod::LevelCentering centering;
+  std::vector<double> levelZeroPoints; // only if its points are neither float nor double
+  if (this->CenterOnInput)
+  {
+    centering.SetLevelZero(builder.GetLevelZeroView(levelZeroPoints));
+  }
   // The maps to the source were for level 0, but for the point map when the curvature method's
   // fits read the input's points through it (12 bytes per input triangle alive to the end of
   // the run otherwise).
@@ -259,6 +266,11 @@ int vtkTriangleCollapseDecimation::RequestData(
     }
     previousError = error;
     previousTriangles = triangles;
+    if (this->CenterOnInput)
+    {
+      centering.Apply(level.Mesh, level.Target, level.Sources.Offsets, level.Sources.Parents,
+        level.Sources.Weights);
+    }
     builder.AppendLevel(std::move(level));
   };
   callbacks.Progress = [this](double fraction) {
@@ -357,6 +369,7 @@ void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BoundaryWeight: " << this->BoundaryWeight << "\n";
   os << indent << "MaximumNormalDeviation: " << this->MaximumNormalDeviation << "\n";
   os << indent << "MaximumFitPoints: " << this->MaximumFitPoints << "\n";
+  os << indent << "CenterOnInput: " << (this->CenterOnInput ? "On" : "Off") << "\n";
   os << indent << "ComputeLevelError: " << (this->ComputeLevelError ? "On" : "Off") << "\n";
   os << indent << "NumberOfLevelsProduced: " << this->NumberOfLevelsProduced << "\n";
   os << indent << "ActualReduction: " << this->ActualReduction << "\n";

@@ -442,6 +442,27 @@ public:
 
   ///@{
   /**
+   * Move every coarse level onto the middle of the input surface (Core/LevelCentering.h):
+   * quadric placement leaves a curved surface's levels to its outer side (the tangent planes of
+   * a convex patch meet above it), and each changed interior point of a level with at most a
+   * quarter of the input's triangles moves along its normal by the area-weighted mean signed
+   * distance of the input around it, as far as the largest deviation around the point does
+   * not grow and at most a quarter of its shortest edge. On the metaballs isosurface (154k
+   * triangles) this lowered the RMS distance by 10% at 10% of the triangles and 21% at 1%, the
+   * Hausdorff distance by 10% and 0%; on a gyroid, which curves as much one way as the other,
+   * by 2-3%. Not moved: boundary and non-manifold points, creases and corners (a triangle more
+   * than 35 degrees from the point's normal), planar facets (which stay exact), and points that
+   * keep their place between two levels (CollapseRank -1 holds). The triangles, counts and
+   * correspondence are those of the run without it. Costs up to a tenth of the run's time.
+   * Default on.
+   */
+  vtkSetMacro(CenterOnInput, bool);
+  vtkGetMacro(CenterOnInput, bool);
+  vtkBooleanMacro(CenterOnInput, bool);
+  ///@}
+
+  ///@{
+  /**
    * Measure every level's symmetric Hausdorff and RMS surface distance to level 0 and store
    * them as MeasuredHausdorff and MeasuredRMS field data (10,000 area samples per surface plus
    * up to 10,000 vertices; level 0 is sampled once). Default off: it costs a few times the
@@ -486,6 +507,7 @@ protected:
   double MaximumNormalDeviation = 90.0;
   int MaximumFitPoints = 48;
   bool ComputeLevelError = false;
+  bool CenterOnInput = true;
   int NumberOfLevelsProduced = 0;
   double ActualReduction = 0.0;
   vtkIdType NumberOfSwaps = 0;

@@ -1,6 +1,7 @@
 #include "vtkVertexClusterOctree.h"
 
 #include "Core/FreshMemory.h"
+#include "Core/LevelCentering.h"
 #include "Core/OctreeClustering.h"
 #include "Core/TextureAtlas.h"
 #include "MeshLODHierarchy.h"
@@ -515,6 +516,12 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
     inputNormals && inputNormals->GetName() ? inputNormals->GetName() : "Normals";
   const std::string tcoordsName =
     inputTCoords && inputTCoords->GetName() ? inputTCoords->GetName() : "TCoords";
+  meshlod::LevelCentering centering;
+  std::vector<double> levelZeroPoints; // only if its points are neither float nor double
+  if (this->CenterOnInput)
+  {
+    centering.SetLevelZero(builder.GetLevelZeroView(levelZeroPoints));
+  }
   SplitMap previous;
   Id previousPoints = in.Mesh.GetNumberOfPoints();
   for (size_t i = 0; i < requests.size(); ++i)
@@ -547,6 +554,11 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
                                   "EpsilonFactor or larger epsilon values give coarser levels).");
     }
 
+    if (this->CenterOnInput)
+    {
+      centering.Apply(
+        level.Mesh, level.Target, level.SourceOffsets, level.SourceParents, level.SourceWeights);
+    }
     meshlod::TextureAtlas atlas;
     SplitMap split;
     if (this->BakeTexture)
@@ -674,6 +686,7 @@ void vtkVertexClusterOctree::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumPointsPerCell: " << this->MaximumPointsPerCell << "\n";
   os << indent << "RepresentativeIterations: " << this->RepresentativeIterations << "\n";
   os << indent << "FlipEdges: " << (this->FlipEdges ? "On" : "Off") << "\n";
+  os << indent << "CenterOnInput: " << (this->CenterOnInput ? "On" : "Off") << "\n";
   os << indent << "BoundaryWeight: " << this->BoundaryWeight << "\n";
   os << indent << "ComputeNormals: " << (this->ComputeNormals ? "On" : "Off") << "\n";
   os << indent << "MeasureLevelErrors: " << (this->MeasureLevelErrors ? "On" : "Off") << "\n";

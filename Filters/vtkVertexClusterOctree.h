@@ -302,6 +302,24 @@ public:
 
   ///@{
   /**
+   * Move every coarse level onto the middle of the input surface (Core/LevelCentering.h):
+   * representatives minimising a quadric lie on a curved surface's outer side, and each
+   * changed interior point of a level with at most a quarter of the input's triangles moves
+   * along its normal by the area-weighted mean signed distance of the input around it, as far
+   * as the largest deviation around the point does not grow and at most a quarter of its
+   * shortest edge. On the metaballs isosurface (154k triangles) this lowered the RMS distance
+   * by 8% at 10% of the triangles and 21% at 1%, the Hausdorff distance by 16% and 13%. Not
+   * moved: boundary and non-manifold points, creases and corners, planar facets, and clusters
+   * that stay the same between two levels. Clusters, counts and MorphTargetId are those of the
+   * run without it (a baked texture follows the moved points). Default on.
+   */
+  vtkSetMacro(CenterOnInput, bool);
+  vtkGetMacro(CenterOnInput, bool);
+  vtkBooleanMacro(CenterOnInput, bool);
+  ///@}
+
+  ///@{
+  /**
    * Recompute point normals (named "Normals", the Normals attribute) on every simplified level
    * from its triangles, replacing interpolated input normals. Default off.
    */
@@ -395,6 +413,7 @@ protected:
   int MaximumPointsPerCell = 0;
   int RepresentativeIterations = 3;
   bool FlipEdges = false;
+  bool CenterOnInput = true;
   double BoundaryWeight = 1.0;
   bool ComputeNormals = false;
   bool MeasureLevelErrors = false;
