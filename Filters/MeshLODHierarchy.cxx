@@ -368,6 +368,7 @@ LevelCentering::LevelZeroView HierarchyBuilder::GetLevelZeroView(std::vector<dou
   {
     view.Ids32 = polys->GetConnectivityArray32()->GetPointer(0);
   }
+  view.Points = static_cast<Id>(points->GetNumberOfTuples());
   view.Triangles = static_cast<Id>(polys->GetNumberOfCells());
   return view;
 }

@@ -119,11 +119,11 @@ struct PointSums
 void LevelCentering::SetLevelZero(const LevelZeroView& view)
 {
   this->Input = view;
-  this->LevelPoint.resize(view.Triangles);
-  vtkSMPTools::For(0, view.Triangles, [&](Id begin, Id end) {
-    for (Id t = begin; t < end; ++t)
+  this->LevelPoint.resize(view.Points);
+  vtkSMPTools::For(0, view.Points, [&](Id begin, Id end) {
+    for (Id v = begin; v < end; ++v)
     {
-      this->LevelPoint[t] = this->InputId(t, 0);
+      this->LevelPoint[v] = v;
     }
   });
   this->Shifts.clear();
@@ -141,9 +141,8 @@ void LevelCentering::Apply(TriangleMesh& level,
   const Id samplePoints = this->Input.Triangles;
   this->MovedPoints = 0;
 
-  // The correspondence from level 0 (each sample's point: that of its triangle's first
-  // corner), one level further.
-  vtkSMPTools::For(0, samplePoints, [&](Id begin, Id end) {
+  // The correspondence from level 0, one level further.
+  vtkSMPTools::For(0, this->Input.Points, [&](Id begin, Id end) {
     for (Id i = begin; i < end; ++i)
     {
       this->LevelPoint[i] = target[this->LevelPoint[i]];
@@ -191,7 +190,7 @@ void LevelCentering::Apply(TriangleMesh& level,
   std::vector<Id> sampleOffsets = FreshVector<Id>(static_cast<size_t>(points) + 1, 0);
   for (Id i = 0; i < samplePoints; i += stride)
   {
-    ++sampleOffsets[this->LevelPoint[i] + 1];
+    ++sampleOffsets[this->SamplePoint(i) + 1];
   }
   for (Id p = 0; p < points; ++p)
   {
@@ -202,7 +201,7 @@ void LevelCentering::Apply(TriangleMesh& level,
     std::vector<Id> next(sampleOffsets.begin(), sampleOffsets.end() - 1);
     for (Id i = 0; i < samplePoints; i += stride)
     {
-      samples[next[this->LevelPoint[i]]++] = i;
+      samples[next[this->SamplePoint(i)]++] = i;
     }
   }
 
