@@ -29,6 +29,8 @@ constexpr double SmoothCosine = 0.82;
 // A projection counts as near a corner from this barycentric weight up: the surface there moves
 // with the corner's shift.
 constexpr double NearWeight = 1.0 / 3.0;
+// Every second input triangle at most: its neighbours' centroids tell about as much.
+constexpr Id MinimumStride = 2;
 // Samples projected in one go (bounds the memory of the projections).
 constexpr Id BlockSamples = 8192;
 
@@ -186,7 +188,7 @@ void LevelCentering::Apply(TriangleMesh& level,
 
   // The samples of each point (every stride-th input triangle, grouped by the point its first
   // corner became, in input order).
-  const Id stride = std::max<Id>(1, samplePoints / std::max<Id>(1, SamplesPerPoint * points));
+  const Id stride = std::max<Id>(MinimumStride, samplePoints / std::max<Id>(1, SamplesPerPoint * points));
   std::vector<Id> sampleOffsets = FreshVector<Id>(static_cast<size_t>(points) + 1, 0);
   for (Id i = 0; i < samplePoints; i += stride)
   {

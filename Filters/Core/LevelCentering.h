@@ -8,8 +8,8 @@
 // vtkQuadricDecimation's output as for ours). A level centred on the input has a smaller mean
 // squared distance to it.
 //
-// For a level, the input triangles' centroids (every stride-th: SamplesPerPoint per point of
-// the level on average) are projected onto the triangles around the point the triangle's first
+// For a level, the input triangles' centroids (every stride-th: every second, or fewer so that
+// there are SamplesPerPoint per point of the level on average) are projected onto the triangles around the point the triangle's first
 // corner became (the chained MorphTargetId correspondence), into the first one whose interior
 // they project into. Each signed distance, weighted by the input triangle's area, is spread over
 // that triangle's corners with the barycentric weights of the projection; each point's weighted
@@ -30,7 +30,7 @@
 // 60 degrees are undone around it, until none does.
 //
 // Cost: per level a pass over the input points' correspondence, and for a centred level the
-// projection of at most max(input triangles, 8 x points) centroids, in parallel over the
+// projection of at most max(input triangles / 2, 8 x points) centroids, in parallel over the
 // points, with the sums in a fixed order, so the result does not depend on the thread count
 // (about a tenth of vtkTriangleCollapseDecimation's time on the benchmark isosurfaces). Memory:
 // one id per input point for the whole run, and per level arrays of the level's size (the input
@@ -52,7 +52,8 @@ class VTKFILTERSMESHLOD_EXPORT LevelCentering
 {
 public:
   /// Input triangles (their centroids) sampled per point of a level, on average, when the
-  /// level has fewer than an eighth as many points as the input has triangles (all otherwise).
+  /// level has fewer than a sixteenth as many points as the input has triangles (every second
+  /// triangle otherwise).
   static constexpr Id SamplesPerPoint = 8;
   /// Levels with more than this fraction of the input's triangles are not moved: on the
   /// metaballs isosurface centring lowered the RMS distance of its levels of 56% and 32% of the
