@@ -141,7 +141,6 @@ void LevelCentering::Apply(TriangleMesh& level,
   const Id points = level.GetNumberOfPoints();
   const Id triangles = level.GetNumberOfTriangles();
   const Id samplePoints = this->Input.Triangles;
-  this->MovedPoints = 0;
 
   // The correspondence from level 0, one level further.
   vtkSMPTools::For(0, this->Input.Points, [&](Id begin, Id end) {
@@ -329,17 +328,20 @@ void LevelCentering::Apply(TriangleMesh& level,
       {
         continue;
       }
+      // (A closed disc has at most MaximumValence triangles.)
+      const Id count = around.Count(p);
+      double areas[MaximumValence][3];
       double normal[3] = { 0.0, 0.0, 0.0 };
       double shortest = std::numeric_limits<double>::infinity();
-      for (const Id* t = around.Of(p); t != around.Of(p) + around.Count(p); ++t)
+      for (Id k = 0; k < count; ++k)
       {
-        double n[3];
-        level.AreaVector(*t, n);
+        const Id t = around.Of(p)[k];
+        level.AreaVector(t, areas[k]);
         for (int c = 0; c < 3; ++c)
         {
-          normal[c] += n[c];
+          normal[c] += areas[k][c];
         }
-        const Id* tri = level.Triangle(*t);
+        const Id* tri = level.Triangle(t);
         for (int c = 0; c < 3; ++c)
         {
           if (tri[c] != p)
@@ -350,11 +352,10 @@ void LevelCentering::Apply(TriangleMesh& level,
       }
       const double length = std::sqrt(Dot(normal, normal));
       bool smooth = length > 0.0;
-      for (const Id* t = around.Of(p); t != around.Of(p) + around.Count(p) && smooth; ++t)
+      for (Id k = 0; k < count && smooth; ++k)
       {
-        double n[3];
-        level.AreaVector(*t, n);
-        smooth = Dot(n, normal) >= SmoothCosine * std::sqrt(Dot(n, n)) * length;
+        smooth =
+          Dot(areas[k], normal) >= SmoothCosine * std::sqrt(Dot(areas[k], areas[k])) * length;
       }
       shortest = std::sqrt(shortest);
       // The mean minimises the squared distances; the largest distance near the point (where
@@ -425,7 +426,6 @@ void LevelCentering::Apply(TriangleMesh& level,
 
   // The changed points' shifts, kept in single precision and added in one rounding, as the
   // points that keep them will be at the next level.
-  Id movedPoints = 0;
   for (Id p = 0; p < points; ++p)
   {
     if (own[3 * p] != 0.0f || own[3 * p + 1] != 0.0f || own[3 * p + 2] != 0.0f)
@@ -435,11 +435,9 @@ void LevelCentering::Apply(TriangleMesh& level,
         shifts[3 * p + c] = own[3 * p + c];
         level.Points[3 * p + c] += static_cast<double>(shifts[3 * p + c]);
       }
-      ++movedPoints;
     }
   }
   this->Shifts = std::move(shifts);
-  this->MovedPoints = movedPoints;
 }
 
 } // namespace meshlod

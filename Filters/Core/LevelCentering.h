@@ -39,6 +39,7 @@
 #define meshlod_LevelCentering_h
 
 #include "TriangleMesh.h"
+#include "Vector3.h"
 #include "vtkFiltersMeshLODModule.h"
 #include "vtkType.h"
 
@@ -89,9 +90,6 @@ public:
     const std::vector<Id>& sourceParents,
     const std::vector<float>& sourceWeights);
 
-  /// Points moved by the last Apply (not counting those that kept an earlier shift).
-  Id GetMovedPoints() const { return this->MovedPoints; }
-
 private:
   Id InputId(Id t, int k) const
   {
@@ -111,17 +109,13 @@ private:
                                       : static_cast<double>(this->Input.Floats[i + k]);
       }
     }
-    double u[3], v[3], n[3];
+    double n[3];
+    Normal(p[0], p[1], p[2], n);
     for (int k = 0; k < 3; ++k)
     {
       centroid[k] = (p[0][k] + p[1][k] + p[2][k]) / 3.0;
-      u[k] = p[1][k] - p[0][k];
-      v[k] = p[2][k] - p[0][k];
     }
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double length = std::sqrt(Dot(n, n));
     for (int k = 0; k < 3; ++k)
     {
       unit[k] = length > 0.0 ? n[k] / length : 0.0;
@@ -136,7 +130,6 @@ private:
   // corner.
   Id SamplePoint(Id i) const { return this->LevelPoint[this->InputId(i, 0)]; }
   std::vector<float> Shifts; // last level's points: x, y, z of their shift
-  Id MovedPoints = 0;
 };
 
 } // namespace meshlod
