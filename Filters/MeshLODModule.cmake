@@ -22,6 +22,7 @@ set(meshlod_private_headers
   Filters/Core/Collapser.h
   Filters/Core/EdgeMerge.h
   Filters/Core/FreshMemory.h
+  Filters/Core/GroupByKey.h
   Filters/Core/IndexedHeap.h
   Filters/Core/LevelCentering.h
   Filters/Core/LevelData.h

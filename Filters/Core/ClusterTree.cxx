@@ -2,6 +2,7 @@
 
 #include "CacheHint.h"
 #include "FreshMemory.h"
+#include "GroupByKey.h"
 
 #include "vtkSMPTools.h"
 
@@ -809,26 +810,22 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   // Vertices bucketed by their cell at TierDepth (stable: each cell lists its vertices by id).
   const int shift = MaxDepth - TierDepth;
   const Id numberOfKeys = Id(1) << TierDepth;
-  std::vector<Id> keyOffsets(static_cast<size_t>(numberOfKeys) + 1, 0);
-  for (Id v = 0; v < nv; ++v)
-  {
-    ++keyOffsets[(this->Codes[v] >> shift) + 1];
-  }
+  std::vector<Id> keyOffsets, cellVertices;
+  GroupByKey(
+    static_cast<size_t>(numberOfKeys),
+    [&](auto&& emit) {
+      for (Id v = 0; v < nv; ++v)
+      {
+        emit(static_cast<size_t>(this->Codes[v] >> shift), v);
+      }
+    },
+    keyOffsets, cellVertices);
   std::vector<Id> cells;
   for (Id key = 0; key < numberOfKeys; ++key)
   {
-    if (keyOffsets[key + 1] > 0)
+    if (keyOffsets[key + 1] > keyOffsets[key])
     {
       cells.push_back(key);
-    }
-    keyOffsets[key + 1] += keyOffsets[key];
-  }
-  std::vector<Id> cellVertices = FreshVector<Id>(nv);
-  {
-    std::vector<Id> cursor = FreshCopy(keyOffsets.begin(), keyOffsets.end() - 1);
-    for (Id v = 0; v < nv; ++v)
-    {
-      cellVertices[cursor[this->Codes[v] >> shift]++] = v;
     }
   }
 

@@ -1,6 +1,7 @@
 #include "LevelCentering.h"
 
 #include "FreshMemory.h"
+#include "GroupByKey.h"
 #include "Vector3.h"
 
 #include "vtkSMPTools.h"
@@ -188,23 +189,16 @@ void LevelCentering::Apply(TriangleMesh& level,
   // The samples of each point (every stride-th input triangle, grouped by the point its first
   // corner became, in input order).
   const Id stride = std::max<Id>(MinimumStride, samplePoints / std::max<Id>(1, SamplesPerPoint * points));
-  std::vector<Id> sampleOffsets = FreshVector<Id>(static_cast<size_t>(points) + 1, 0);
-  for (Id i = 0; i < samplePoints; i += stride)
-  {
-    ++sampleOffsets[this->SamplePoint(i) + 1];
-  }
-  for (Id p = 0; p < points; ++p)
-  {
-    sampleOffsets[p + 1] += sampleOffsets[p];
-  }
-  std::vector<Id> samples = FreshVector<Id>(static_cast<size_t>(sampleOffsets[points]));
-  {
-    std::vector<Id> next(sampleOffsets.begin(), sampleOffsets.end() - 1);
-    for (Id i = 0; i < samplePoints; i += stride)
-    {
-      samples[next[this->SamplePoint(i)]++] = i;
-    }
-  }
+  std::vector<Id> sampleOffsets, samples;
+  GroupByKey(
+    static_cast<size_t>(points),
+    [&](auto&& emit) {
+      for (Id i = 0; i < samplePoints; i += stride)
+      {
+        emit(this->SamplePoint(i), i);
+      }
+    },
+    sampleOffsets, samples);
 
   // Each sample projected into a triangle around its point (the first such; on a smooth fan
   // projections fall into one triangle, or two that share the edge they lie on), its distance

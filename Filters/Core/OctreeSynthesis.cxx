@@ -1,5 +1,6 @@
 // Octree clustering: a level from a cut of the cluster tree (see OctreeClusteringInternals.h).
 #include "FreshMemory.h"
+#include "GroupByKey.h"
 #include "OctreeClusteringInternals.h"
 #include "TriangulationFlips.h"
 
@@ -182,23 +183,16 @@ void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
   const std::vector<Id>& tris = s.Triangles;
   auto smallest = [&](Id j)
   { return std::min(tris[3 * j], std::min(tris[3 * j + 1], tris[3 * j + 2])); };
-  std::vector<Id> offsets = FreshVector<Id>(static_cast<size_t>(clusters) + 1, 0);
-  for (Id j = 0; j < kept; ++j)
-  {
-    ++offsets[smallest(j) + 1];
-  }
-  for (Id k = 0; k < clusters; ++k)
-  {
-    offsets[k + 1] += offsets[k];
-  }
-  std::vector<Id> grouped = FreshVector<Id>(kept);
-  {
-    std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
-    for (Id j = 0; j < kept; ++j)
-    {
-      grouped[cursor[smallest(j)]++] = j;
-    }
-  }
+  std::vector<Id> offsets, grouped;
+  GroupByKey(
+    static_cast<size_t>(clusters),
+    [&](auto&& emit) {
+      for (Id j = 0; j < kept; ++j)
+      {
+        emit(smallest(j), j);
+      }
+    },
+    offsets, grouped);
   AssignFresh(s.Duplicate, kept, 0);
   vtkSMPTools::For(0,
     clusters,
@@ -467,29 +461,19 @@ Id OctreeClustering::Internals::MarkPinchedVertices(Synthesis& s)
   const Id kept = static_cast<Id>(s.From.size());
   const Id clusters = static_cast<Id>(s.Cut.size());
   // The kept triangles around each cluster (counting sort by cluster).
-  std::vector<Id> offsets = FreshVector<Id>(static_cast<size_t>(clusters) + 1, 0);
-  for (Id j = 0; j < kept; ++j)
-  {
-    for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
-    {
-      ++offsets[s.Triangles[3 * j + c] + 1];
-    }
-  }
-  for (Id k = 0; k < clusters; ++k)
-  {
-    offsets[k + 1] += offsets[k];
-  }
-  std::vector<Id> around = FreshVector<Id>(offsets[clusters]);
-  {
-    std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
-    for (Id j = 0; j < kept; ++j)
-    {
-      for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
+  std::vector<Id> offsets, around;
+  GroupByKey(
+    static_cast<size_t>(clusters),
+    [&](auto&& emit) {
+      for (Id j = 0; j < kept; ++j)
       {
-        around[cursor[s.Triangles[3 * j + c]]++] = j;
+        for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
+        {
+          emit(s.Triangles[3 * j + c], j);
+        }
       }
-    }
-  }
+    },
+    offsets, around);
   std::vector<unsigned char> pinched = FreshVector<unsigned char>(clusters, 0);
   struct LinkScratch
   {
@@ -643,34 +627,25 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
 {
   const Id kept = static_cast<Id>(s.From.size());
   const Id clusters = static_cast<Id>(s.Cut.size());
-  std::vector<Id> offsets = FreshVector<Id>(static_cast<size_t>(clusters) + 1, 0);
-  auto forEachEdge = [&](auto visit)
-  {
-    for (Id j = 0; j < kept; ++j)
-    {
-      for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
-      {
-        const Id a = s.Triangles[3 * j + c], b = s.Triangles[3 * j + (c + 1) % 3];
-        visit(std::min(a, b), std::max(a, b), j);
-      }
-    }
-  };
-  forEachEdge([&](Id low, Id, Id) { ++offsets[low + 1]; });
-  for (Id k = 0; k < clusters; ++k)
-  {
-    offsets[k + 1] += offsets[k];
-  }
   // Each entry packs the larger cluster (high bits) and the triangle, so that sorting a
   // cluster's entries brings the triangles of each of its edges together (n log n even around a
   // vertex with very many triangles).
-  std::vector<std::uint64_t> entries = FreshVector<std::uint64_t>(offsets[clusters]);
-  {
-    std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
-    forEachEdge([&](Id low, Id other, Id j) {
-      entries[cursor[low]++] =
-        (static_cast<std::uint64_t>(other) << 32) | static_cast<std::uint32_t>(j);
-    });
-  }
+  std::vector<Id> offsets;
+  std::vector<std::uint64_t> entries;
+  GroupByKey(
+    static_cast<size_t>(clusters),
+    [&](auto&& emit) {
+      for (Id j = 0; j < kept; ++j)
+      {
+        for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
+        {
+          const Id a = s.Triangles[3 * j + c], b = s.Triangles[3 * j + (c + 1) % 3];
+          emit(std::min(a, b),
+            (static_cast<std::uint64_t>(std::max(a, b)) << 32) | static_cast<std::uint32_t>(j));
+        }
+      }
+    },
+    offsets, entries);
   auto triangleOf = [&](std::size_t x) { return static_cast<Id>(entries[x] & 0xffffffffu); };
   std::vector<Id> marks; // the clusters of the triangles on pinched edges, and shrunk curves
   const std::vector<CurveEdge> curveEdges = this->CurveEdgesOf(marks);
@@ -906,30 +881,27 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
   level.ChangedClusters = static_cast<Id>(ranked.size());
 
   // Sources: the previous points of each cluster, weighted by the input vertices they stand for.
-  AssignFresh(level.SourceOffsets, static_cast<size_t>(points) + 1, 0);
-  for (Id p = 0; p < previousPoints; ++p)
-  {
-    const Id j = newId[s.PointCluster[p]];
-    if (j != InvalidId)
-    {
-      ++level.SourceOffsets[j + 1];
-    }
-  }
+  GroupByKey(
+    static_cast<size_t>(points),
+    [&](auto&& emit) {
+      for (Id p = 0; p < previousPoints; ++p)
+      {
+        const Id j = newId[s.PointCluster[p]];
+        if (j != InvalidId)
+        {
+          emit(j, p);
+        }
+      }
+    },
+    level.SourceOffsets, level.SourceParents);
+  ResizeFresh(level.SourceWeights, level.SourceParents.size());
   for (Id j = 0; j < points; ++j)
   {
-    level.SourceOffsets[j + 1] += level.SourceOffsets[j];
-  }
-  ResizeFresh(level.SourceParents, level.SourceOffsets[points]);
-  ResizeFresh(level.SourceWeights, level.SourceOffsets[points]);
-  std::vector<Id> cursor(level.SourceOffsets.begin(), level.SourceOffsets.end() - 1);
-  for (Id p = 0; p < previousPoints; ++p)
-  {
-    const Id j = newId[s.PointCluster[p]];
-    if (j != InvalidId)
+    for (Id x = level.SourceOffsets[j]; x < level.SourceOffsets[j + 1]; ++x)
     {
-      level.SourceParents[cursor[j]] = p;
-      level.SourceWeights[cursor[j]++] = static_cast<float>(
-        static_cast<double>(this->VertexCountOfPoint(p)) / level.PointVertexCount[j]);
+      level.SourceWeights[x] = static_cast<float>(
+        static_cast<double>(this->VertexCountOfPoint(level.SourceParents[x])) /
+        level.PointVertexCount[j]);
     }
   }
 }
