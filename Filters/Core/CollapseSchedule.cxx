@@ -1,4 +1,5 @@
 #include "CollapseSchedule.h"
+#include "GroupByKey.h"
 #include "Vector3.h"
 
 #include "vtkSMPTools.h"
@@ -18,27 +19,6 @@ constexpr size_t TestBudget = 16384;
 // A triangle faces a direction m when its normal n has n . m > FacingTolerance |m|^2 (both are
 // twice-area vectors): three corners on a line up to rounding do not.
 constexpr double FacingTolerance = 1e-12;
-
-// Points of each target, as compressed rows (counting sort, rows in increasing point id).
-void GroupByTarget(const Id* target, Id numberOfPoints, Id numberOfTargets,
-  std::vector<Id>& offsets, std::vector<Id>& points)
-{
-  offsets.assign(static_cast<size_t>(numberOfTargets) + 1, 0);
-  for (Id p = 0; p < numberOfPoints; ++p)
-  {
-    ++offsets[target[p] + 1];
-  }
-  for (Id t = 0; t < numberOfTargets; ++t)
-  {
-    offsets[t + 1] += offsets[t];
-  }
-  points.resize(numberOfPoints);
-  std::vector<Id> cursor(offsets.begin(), offsets.end() - 1);
-  for (Id p = 0; p < numberOfPoints; ++p)
-  {
-    points[cursor[target[p]]++] = p;
-  }
-}
 
 // Union-find over points, for the points settled on one target (they are one vertex then).
 Id Find(std::vector<Id>& parent, Id p)
@@ -333,8 +313,16 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   {
     numberOfTargets = std::max(numberOfTargets, target[p] + 1);
   }
-  std::vector<Id> targetOffsets, targetPoints;
-  GroupByTarget(target, numberOfPoints, numberOfTargets, targetOffsets, targetPoints);
+  std::vector<Id> targetOffsets, targetPoints; // the points of each target, in increasing id
+  GroupByKey(
+    static_cast<size_t>(numberOfTargets),
+    [&](auto&& emit) {
+      for (Id p = 0; p < numberOfPoints; ++p)
+      {
+        emit(target[p], p);
+      }
+    },
+    targetOffsets, targetPoints);
   VertexTriangleAdjacency adjacency;
   adjacency.Build(triangles, numberOfTriangles, numberOfPoints);
 
