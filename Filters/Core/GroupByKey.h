@@ -1,6 +1,9 @@
-// MeshLOD core: items grouped by a small integer key (a stable counting sort), the compressed
-// rows that the octree's synthesis and the level centring build many times over: the triangles
-// around each cluster, the edges of each cluster, the samples of each point.
+// MeshLOD core: items grouped by a small integer key (a stable counting sort) into compressed
+// rows, as the octree's synthesis (the triangles and edges of each cluster, the sources of each
+// point), the cluster tree's bottom tier (the vertices of each cell), the collapse schedule (the
+// points of each target) and the level centring (the samples of each point) build them.
+// (VertexTriangleAdjacency::Build fills its rows in parallel, and the cluster tree's children
+// come in depth-first order from a walk: each keeps a sort of its own.)
 #ifndef meshlod_GroupByKey_h
 #define meshlod_GroupByKey_h
 
