@@ -54,6 +54,45 @@ vtkIdType FirstNonFinitePoint(const std::vector<double>& xyz)
   return first == std::numeric_limits<vtkIdType>::max() ? -1 : first;
 }
 
+// A point with a NaN or infinite coordinate that no triangle uses is dropped with the other
+// unused points (CompactMesh); until then it takes the coordinates of a used point, so that the
+// bounding box and the seam search see finite numbers only. Returns the first non-finite point
+// a triangle uses (nothing is changed then), or -1.
+vtkIdType SettleUnusedNonFinitePoints(TriangleMesh& mesh)
+{
+  const Id nv = mesh.GetNumberOfPoints();
+  std::vector<unsigned char> used(nv, 0);
+  for (const Id v : mesh.Triangles)
+  {
+    used[v] = 1;
+  }
+  auto finite = [&](Id v) {
+    const double* x = mesh.Point(v);
+    return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+  };
+  for (Id v = 0; v < nv; ++v)
+  {
+    if (used[v] && !finite(v))
+    {
+      return v;
+    }
+  }
+  if (mesh.Triangles.empty())
+  {
+    return -1;
+  }
+  const std::array<double, 3> stand = { mesh.Point(mesh.Triangles[0])[0],
+    mesh.Point(mesh.Triangles[0])[1], mesh.Point(mesh.Triangles[0])[2] };
+  for (Id v = 0; v < nv; ++v)
+  {
+    if (!finite(v))
+    {
+      std::copy(stand.begin(), stand.end(), mesh.Points.begin() + 3 * static_cast<std::size_t>(v));
+    }
+  }
+  return -1;
+}
+
 // Points as doubles: straight from the array's memory for float and double points (the usual
 // case; a virtual GetTuple per point costs more than the copy), through GetTuple otherwise.
 template <typename ValueT>
@@ -551,17 +590,6 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   TriangleMesh& mesh = result.Mesh;
   ResizeFresh(mesh.Points, 3 * static_cast<size_t>(numberOfPoints));
   CopyPoints(result.Source->GetPoints()->GetData(), mesh.Points);
-  const vtkIdType bad = FirstNonFinitePoint(mesh.Points);
-  if (bad >= 0)
-  {
-    vtkErrorWithObjectMacro(caller,
-      "Point " << bad << " has a NaN or infinite coordinate (" << mesh.Points[3 * bad] << ", "
-               << mesh.Points[3 * bad + 1] << ", " << mesh.Points[3 * bad + 2]
-               << "); no output is produced. Remove or fix such points first.");
-    result = InputMesh();
-    return InputStatus::Invalid;
-  }
-
   if (polys->IsStorage64Bit())
   {
     CopyTriangles(polys->GetConnectivityArray64(), mesh.Triangles);
@@ -569,6 +597,19 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   else
   {
     CopyTriangles(polys->GetConnectivityArray32(), mesh.Triangles);
+  }
+  if (FirstNonFinitePoint(mesh.Points) >= 0)
+  {
+    const vtkIdType bad = SettleUnusedNonFinitePoints(mesh);
+    if (bad >= 0)
+    {
+      vtkErrorWithObjectMacro(caller,
+        "Point " << bad << " has a NaN or infinite coordinate (" << mesh.Points[3 * bad] << ", "
+                 << mesh.Points[3 * bad + 1] << ", " << mesh.Points[3 * bad + 2]
+                 << "); no output is produced. Remove or fix such points first.");
+      result = InputMesh();
+      return InputStatus::Invalid;
+    }
   }
   ResizeFresh(result.SourceCellIds, numberOfTriangles);
   std::iota(result.SourceCellIds.begin(), result.SourceCellIds.end(), firstPolyCellId);

@@ -153,7 +153,8 @@
  *
  * Input: triangles (polygons and strips are triangulated first; vertices and lines are
  * ignored with a warning). Empty input gives a hierarchy of one empty level, without error.
- * NaN or infinite coordinates, point ids out of range and a bounding-box diagonal above 1e30 or
+ * NaN or infinite coordinates (of points that triangles use: unused points are dropped), point
+ * ids out of range and a bounding-box diagonal above 1e30 or
  * below 1e-30 but not 0 (the collapse costs hold squared areas) are an error (all points at one
  * place, a diagonal of 0, are simplified like any other mesh: every collapse is free); point- or
  * cell-data

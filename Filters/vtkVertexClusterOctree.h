@@ -102,7 +102,8 @@
  *
  * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input gives
  * a hierarchy of one empty level, without error; polygons and strips are triangulated; vertex and
- * line cells are ignored with a warning; NaN or infinite points and point ids out of range are an
+ * line cells are ignored with a warning; NaN or infinite points that triangles use (unused points
+ * are dropped) and point ids out of range are an
  * error (no output), and so is a bounding-box diagonal above 1e30 or below 1e-30 but not 0
  * (cluster errors are kept in single precision; with all points at one place, a diagonal of 0,
  * every cluster merges at any epsilon, so level 1 would keep no triangle and the hierarchy is

@@ -161,6 +161,29 @@ void TestNonFiniteRefused(Reader& reader)
   MESHLOD_CHECK(reader.Observer->GetErrorMessage().find("Point 5") != std::string::npos);
 }
 
+// A non-finite point that no triangle uses is dropped with the unused points: the octahedron
+// comes through whole, its box (and so the seam tolerance) from its own six points.
+void TestUnusedNonFinitePointDropped(Reader& reader)
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeOctahedron();
+  InputMesh plain;
+  MESHLOD_CHECK(reader.Read(mesh, plain) == InputStatus::Valid);
+  mesh->GetPoints()->InsertPoint(6, std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0);
+  mesh->GetPoints()->InsertPoint(7, 0.0, -std::numeric_limits<double>::infinity(), 1e300);
+  InputMesh result;
+  MESHLOD_CHECK(reader.Read(mesh, result) == InputStatus::Valid);
+  MESHLOD_CHECK(!reader.Observer->GetError());
+  MESHLOD_CHECK_EQ(result.UnusedPoints, 2);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfPoints(), 6);
+  MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 8);
+  MESHLOD_CHECK_EQ(result.Mesh.BoundingDiagonal(), plain.Mesh.BoundingDiagonal());
+  MESHLOD_CHECK_EQ(result.SourcePointIds.size(), 6u);
+  for (Id v = 0; v < static_cast<Id>(result.SourcePointIds.size()); ++v)
+  {
+    MESHLOD_CHECK_EQ(result.SourcePointIds[v], v);
+  }
+}
+
 void TestTriangleSoupIsStitched(Reader& reader)
 {
   // The octahedron with three private points per triangle, as an STL file would store it.
@@ -428,6 +451,7 @@ int TestInputValidation(int, char*[])
   TestQuadsAndStripsAreTriangulated(reader);
   TestVertsAndLinesIgnored(reader);
   TestNonFiniteRefused(reader);
+  TestUnusedNonFinitePointDropped(reader);
   TestBadPointIdsRefused(reader);
   TestMismatchedArraysIgnored(reader);
   TestAttributeSeamKept(reader);

@@ -399,5 +399,20 @@ bool SameMesh(vtkPolyData* a, vtkPolyData* b)
   return Triangles(a) == Triangles(b);
 }
 
+std::int64_t CountDifferingLevels(vtkMultiBlockDataSet* a, vtkMultiBlockDataSet* b)
+{
+  const unsigned int na = a->GetNumberOfBlocks(), nb = b->GetNumberOfBlocks();
+  std::int64_t differing = std::max(na, nb) - std::min(na, nb);
+  for (unsigned int i = 0; i < std::min(na, nb); ++i)
+  {
+    if (!SameMesh(Level(a, i), Level(b, i)))
+    {
+      ++differing;
+      std::cerr << "level " << i << " differs\n";
+    }
+  }
+  return differing;
+}
+
 } // namespace testing
 } // namespace meshlod

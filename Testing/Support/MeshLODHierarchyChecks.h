@@ -55,6 +55,10 @@ bool SameMesh(vtkPolyData* a, vtkPolyData* b);
 /// Block i of a hierarchy as a polydata (null when it is not one).
 vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, unsigned int i);
 
+/// Levels that are not the same mesh (SameMesh) in both hierarchies, counting every level one
+/// of them lacks.
+std::int64_t CountDifferingLevels(vtkMultiBlockDataSet* a, vtkMultiBlockDataSet* b);
+
 /// The triangles of a mesh's polygons, in cell order (other polygons skipped).
 using TriangleIds = std::array<vtkIdType, 3>;
 std::vector<TriangleIds> Triangles(vtkPolyData* mesh);
