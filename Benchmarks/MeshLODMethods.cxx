@@ -108,6 +108,13 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     [](vtkTriangleCollapseDecimation* d) { d->PartitionedGreedyOff(); });
   strict.Parallel = false;
   methods.push_back(strict);
+  Method placement = TriangleCollapse("vtkTriangleCollapseDecimation paper placement",
+    "as vtkTriangleCollapseDecimation, with Placement PAPER_CANDIDATES (paper 002: the "
+    "quadric's minimiser where its system is solvable, else the best of centroid, vertices and "
+    "edge midpoints); one-thread row only",
+    [](vtkTriangleCollapseDecimation* d) { d->SetPlacementToPaperCandidates(); });
+  placement.Parallel = false;
+  methods.push_back(placement);
   methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation independent sets",
     "quadric method, IndependentSets schedule (LevelFraction 0.025), triangles and edges, 8 levels",
     [](vtkTriangleCollapseDecimation* d) { d->SetScheduleToIndependentSets(); }));

@@ -72,6 +72,11 @@ const char* vtkTriangleCollapseDecimation::GetScheduleAsString() const
   return this->Schedule == GREEDY ? "Greedy" : "IndependentSets";
 }
 
+const char* vtkTriangleCollapseDecimation::GetPlacementAsString() const
+{
+  return this->Placement == PAPER_CANDIDATES ? "PaperCandidates" : "Regularized";
+}
+
 void vtkTriangleCollapseDecimation::AddLevelReduction(double reduction)
 {
   this->LevelReductions.push_back(reduction);
@@ -170,6 +175,9 @@ int vtkTriangleCollapseDecimation::RequestData(
                                               : meshlod::CollapseSchedule::IndependentSets;
   options.Operator = this->Operator == TRIANGLES ? meshlod::CollapseOperator::Triangles
                                                  : meshlod::CollapseOperator::TrianglesAndEdges;
+  options.Placement = this->Placement == PAPER_CANDIDATES
+    ? meshlod::CollapsePlacement::PaperCandidates
+    : meshlod::CollapsePlacement::Regularized;
   options.PartitionedGreedy = this->PartitionedGreedy;
   options.TriangleCostFactor = this->TriangleCostFactor;
   options.MaximumError = this->MaximumError;
@@ -350,6 +358,7 @@ void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Method: " << this->GetMethodAsString() << "\n";
   os << indent << "Schedule: " << this->GetScheduleAsString() << "\n";
   os << indent << "Operator: " << this->GetOperatorAsString() << "\n";
+  os << indent << "Placement: " << this->GetPlacementAsString() << "\n";
   os << indent << "PartitionedGreedy: " << (this->PartitionedGreedy ? "On" : "Off") << "\n";
   os << indent << "TriangleCostFactor: " << this->TriangleCostFactor << "\n";
   os << indent << "TargetReduction: " << this->TargetReduction << "\n";

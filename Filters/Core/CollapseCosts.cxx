@@ -190,7 +190,7 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   }
   if (this->Options.Method == CollapseMethod::Quadric)
   {
-    q.MinimizeRegularized(centroid, c.Position);
+    this->Place(q, p, 3, centroid, c.Position);
     c.Cost = q.Evaluate(c.Position);
     c.Error = q.Weight() > 0.0 ? std::sqrt(c.Cost / q.Weight()) : 0.0;
     if (this->Options.Operator == CollapseOperator::TrianglesAndEdges)
@@ -260,6 +260,20 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   }
   c.Error = q.RmsDistance(c.Position);
   return true;
+}
+
+//------------------------------------------------------------------------------
+void CollapseCostModel::Place(const Quadric& q, const double* const* points, int count,
+  const double origin[3], double position[3]) const
+{
+  if (this->Options.Placement == CollapsePlacement::PaperCandidates)
+  {
+    PlaceByCandidates(q, points, count, PaperSolvableTolerance, position);
+  }
+  else
+  {
+    q.MinimizeRegularized(origin, position);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -335,7 +349,8 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
   }
   const Quadric q = this->State.Quadrics[a] + this->State.Quadrics[b];
   const double middle[3] = { 0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]) };
-  q.MinimizeRegularized(middle, e.Position);
+  const double* ends[2] = { pa, pb };
+  this->Place(q, ends, 2, middle, e.Position);
   e.Cost = q.Evaluate(e.Position);
   e.Weight = q.Weight();
   e.Other = other;

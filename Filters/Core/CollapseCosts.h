@@ -4,6 +4,7 @@
 
 #include "TriangleCollapse.h"
 #include "LocalSurfaceFit.h"
+#include "Quadric.h"
 #include "TriangleMesh.h"
 
 #include <cmath>
@@ -24,6 +25,11 @@ constexpr int TriangleChoice = 3;
 /// fan read by every fit, and re-fitted after every collapse next to it, the work grew with
 /// the cube of the valence (a fan of 2,000 triangles took 88 s).
 constexpr Id FanTriangleLimit = 64;
+
+/// CollapsePlacement::PaperCandidates: the 3x3 system counts as solvable when every eigenvalue
+/// of A exceeds this times the largest (the regularised solve's epsilon, relative to the trace,
+/// is of the same size).
+constexpr double PaperSolvableTolerance = 1e-6;
 
 /// The evaluation of one triangle collapse.
 struct CollapseCandidate
@@ -160,6 +166,10 @@ private:
   bool EvaluateTriangleOrCreaseEdge(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const;
   // The cheapest edge of the triangle into c; returns its cost and the dearest edge's in worst.
   double BestEdge(const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const;
+  // Quadric method: where the merged `count` points (2 or 3) collapse to, by the option's
+  // placement (`origin`: their centroid).
+  void Place(const Quadric& q, const double* const* points, int count, const double origin[3],
+    double position[3]) const;
   // The collapse of edge (a, b), from the scratch's spokes when it is one of them.
   void SolveEdge(Id a, Id b, EdgeSolution& solution, CostScratch* scratch) const;
   // Edge k of the triangle into c; returns its cost.

@@ -99,7 +99,7 @@ void Quadric::MinimizeRegularized(const double origin[3],
 }
 
 //------------------------------------------------------------------------------
-void MinimizeQuadric(const Quadric& quadric,
+int MinimizeQuadric(const Quadric& quadric,
   const double centre[3],
   double relativeTolerance,
   double result[3])
@@ -110,7 +110,7 @@ void MinimizeQuadric(const Quadric& quadric,
   result[2] = centre[2];
   if (!(quadric.Weight() > 0.0))
   {
-    return;
+    return 3;
   }
   Eigen::Matrix3d a;
   a << q[0], q[1], q[2], q[1], q[3], q[4], q[2], q[4], q[5];
@@ -123,9 +123,10 @@ void MinimizeQuadric(const Quadric& quadric,
   const double largest = values[2];
   if (!(largest > 0.0))
   {
-    return;
+    return 3;
   }
   Eigen::Vector3d step = Eigen::Vector3d::Zero();
+  int leftOut = 0;
   for (int i = 0; i < 3; ++i)
   {
     if (values[i] > relativeTolerance * largest)
@@ -133,11 +134,62 @@ void MinimizeQuadric(const Quadric& quadric,
       const Eigen::Vector3d u = eigen.eigenvectors().col(i);
       step += u * (u.dot(residual) / values[i]);
     }
+    else
+    {
+      ++leftOut;
+    }
   }
   for (int i = 0; i < 3; ++i)
   {
     result[i] = centre[i] + step[i];
   }
+  return leftOut;
+}
+
+//------------------------------------------------------------------------------
+bool PlaceByCandidates(const Quadric& quadric,
+  const double* const* points,
+  int count,
+  double relativeTolerance,
+  double result[3])
+{
+  double centroid[3] = { 0.0, 0.0, 0.0 };
+  for (int m = 0; m < count; ++m)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      centroid[i] += points[m][i] / count;
+    }
+  }
+  if (MinimizeQuadric(quadric, centroid, relativeTolerance, result) == 0)
+  {
+    return true; // solvable: the minimiser itself
+  }
+  // The candidates in order (ties: the first): the centroid, the points, the pairs' midpoints.
+  std::copy_n(centroid, 3, result);
+  double best = quadric.Evaluate(centroid);
+  auto consider = [&](const double x[3]) {
+    const double cost = quadric.Evaluate(x);
+    if (cost < best)
+    {
+      best = cost;
+      std::copy_n(x, 3, result);
+    }
+  };
+  for (int m = 0; m < count; ++m)
+  {
+    consider(points[m]);
+  }
+  for (int m = 0; m < count; ++m)
+  {
+    for (int n = m + 1; n < count; ++n)
+    {
+      const double middle[3] = { 0.5 * (points[m][0] + points[n][0]),
+        0.5 * (points[m][1] + points[n][1]), 0.5 * (points[m][2] + points[n][2]) };
+      consider(middle);
+    }
+  }
+  return false;
 }
 
 //------------------------------------------------------------------------------

@@ -87,9 +87,21 @@ struct VTKFILTERSMESHLOD_EXPORT Quadric
 /// The point minimising the quadric in its well-determined directions: starting from `centre`,
 /// it moves only along eigenvectors of A whose eigenvalue exceeds `relativeTolerance` times the
 /// largest one, and stays at `centre` along the others (a pseudo-inverse solve). A quadric of
-/// zero weight gives `centre`.
-VTKFILTERSMESHLOD_EXPORT void MinimizeQuadric(const Quadric& q,
+/// zero weight gives `centre`. Returns the number of directions left out (0: the exact
+/// minimiser, 3 for a quadric of zero weight).
+VTKFILTERSMESHLOD_EXPORT int MinimizeQuadric(const Quadric& q,
   const double centre[3],
+  double relativeTolerance,
+  double result[3]);
+
+/// Paper 002's placement of a collapse of `count` (2 or 3) points: the quadric's minimiser when
+/// its 3x3 system is solvable (every eigenvalue of A above `relativeTolerance` times the
+/// largest; returns true), otherwise the cheapest of the candidates the paper lists for a
+/// triangle: the centroid, the points themselves and the midpoints of each pair (for an edge:
+/// its midpoint and its two ends). Ties go to the first in that order.
+VTKFILTERSMESHLOD_EXPORT bool PlaceByCandidates(const Quadric& q,
+  const double* const* points,
+  int count,
   double relativeTolerance,
   double result[3]);
 

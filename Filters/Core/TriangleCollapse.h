@@ -52,6 +52,16 @@ enum class CollapseSchedule
   Greedy = 1,
 };
 
+/// Quadric method: where a collapse goes. Regularized: the merged quadric's minimiser in its
+/// well-determined directions, the centroid along the others (Quadric::MinimizeRegularized).
+/// PaperCandidates (paper 002): the minimiser when the 3x3 system is solvable, else the
+/// cheapest of the centroid, the merging vertices and their midpoints (PlaceByCandidates).
+enum class CollapsePlacement
+{
+  Regularized,
+  PaperCandidates
+};
+
 struct TriangleCollapseOptions
 {
   CollapseMethod Method = CollapseMethod::Quadric;
@@ -61,6 +71,8 @@ struct TriangleCollapseOptions
   /// (PartitionedGreedy.cxx) rather than strictly one collapse after the other (the curvature
   /// method ranked by Weight always takes the strict order).
   bool PartitionedGreedy = true;
+  /// Quadric method: where a collapse goes (see CollapsePlacement).
+  CollapsePlacement Placement = CollapsePlacement::Regularized;
   /// TrianglesAndEdges: a triangle collapses whole when that costs at most this many times its
   /// cheapest edge collapse (>= 1).
   double TriangleCostFactor = 1.5;
