@@ -736,18 +736,16 @@ void TestErrorsAndAbort()
     // A NaN point that no triangle uses is dropped like any unused point: every level is the
     // same as without it.
     observer->Clear();
-    vtkSmartPointer<vtkPolyData> stray = testing::MakeIcosphere(3);
-    stray->GetPoints()->InsertNextPoint(std::numeric_limits<double>::quiet_NaN(), 0, 0);
-    vtkNew<vtkTriangleCollapseDecimation> plain, withStray;
-    plain->SetInputData(testing::MakeIcosphere(3));
-    plain->Update();
-    withStray->AddObserver(vtkCommand::ErrorEvent, observer);
-    withStray->SetInputData(stray);
-    withStray->Update();
+    const auto run = [&](vtkPolyData* input) {
+      vtkNew<vtkTriangleCollapseDecimation> filter;
+      filter->AddObserver(vtkCommand::ErrorEvent, observer);
+      filter->SetInputData(input);
+      filter->Update();
+      MESHLOD_CHECK_GT(filter->GetHierarchy()->GetNumberOfBlocks(), 4u);
+      return vtkSmartPointer<vtkMultiBlockDataSet>(filter->GetHierarchy());
+    };
+    MESHLOD_CHECK_EQ(testing::CountLevelsChangedByUnusedNaNPoint(run), 0);
     MESHLOD_CHECK(!observer->GetError());
-    MESHLOD_CHECK_GT(withStray->GetHierarchy()->GetNumberOfBlocks(), 4u);
-    MESHLOD_CHECK_EQ(
-      testing::CountDifferingLevels(plain->GetHierarchy(), withStray->GetHierarchy()), 0);
   }
   {
     observer->Clear();

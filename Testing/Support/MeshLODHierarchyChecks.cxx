@@ -1,4 +1,5 @@
 #include "MeshLODHierarchyChecks.h"
+#include "MeshLODTestMeshes.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -17,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -412,6 +414,16 @@ std::int64_t CountDifferingLevels(vtkMultiBlockDataSet* a, vtkMultiBlockDataSet*
     }
   }
   return differing;
+}
+
+std::int64_t CountLevelsChangedByUnusedNaNPoint(
+  const std::function<vtkSmartPointer<vtkMultiBlockDataSet>(vtkPolyData*)>& run)
+{
+  vtkSmartPointer<vtkPolyData> stray = MakeIcosphere(3);
+  stray->GetPoints()->InsertNextPoint(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  const vtkSmartPointer<vtkMultiBlockDataSet> plain = run(MakeIcosphere(3));
+  const vtkSmartPointer<vtkMultiBlockDataSet> withStray = run(stray);
+  return CountDifferingLevels(plain, withStray);
 }
 
 } // namespace testing

@@ -59,6 +59,12 @@ vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, unsigned int i);
 /// of them lacks.
 std::int64_t CountDifferingLevels(vtkMultiBlockDataSet* a, vtkMultiBlockDataSet* b);
 
+/// `run` (a filter with its defaults, returning its hierarchy) on an icosphere and on the same
+/// icosphere with one more point, NaN and used by no triangle: the levels that differ (every
+/// level, when the second run failed).
+std::int64_t CountLevelsChangedByUnusedNaNPoint(
+  const std::function<vtkSmartPointer<vtkMultiBlockDataSet>(vtkPolyData*)>& run);
+
 /// The triangles of a mesh's polygons, in cell order (other polygons skipped).
 using TriangleIds = std::array<vtkIdType, 3>;
 std::vector<TriangleIds> Triangles(vtkPolyData* mesh);
