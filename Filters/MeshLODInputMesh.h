@@ -7,8 +7,9 @@
 //   vtkTriangleFilter (cell data is copied to each resulting triangle).
 // - Vertices and lines are ignored, with a warning.
 // - NaN or infinite coordinates of a point a triangle uses: an error naming the first such
-//   point, no output (an unused point, finite or not, is dropped like any unused point). A point id
-//   outside [0, number of points) in a polygon or strip: an error naming the cell, no output.
+//   point, no output (an unused point, finite or not, is dropped like any unused point).
+// - A point id outside [0, number of points) in a polygon or strip: an error naming the cell,
+//   no output.
 // - Point- or cell-data arrays whose tuple count is not the number of points or cells are
 //   ignored, with a warning naming them (reading past their end would give garbage).
 // - More than 2^31 - 1 points or triangles: an error (the core uses 32-bit ids).

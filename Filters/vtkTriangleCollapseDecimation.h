@@ -106,10 +106,12 @@
  *   are marked for re-fitting at the end of the round, and a fit reads only its own cell's
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its
- *   whole hierarchy the curvature method takes 1.2-2.3x the time vtkQuadricDecimation needs
- *   for one 10% target on one thread, and 1.7-2.1x less on two (the quadric method: 0.22-0.41x
- *   over the last three runs, Benchmarks/RESULTS.md; the ratios move with the machine's load,
- *   vtkQuadricDecimation's own time on the same mesh varying by up to half between runs).
+ *   whole hierarchy the curvature method takes 1.5-2.9x the time vtkQuadricDecimation needs
+ *   for one 10% target on one thread, and 1.7-1.9x less on two (the quadric method: 0.29-0.54x
+ *   over the last three runs, Benchmarks/RESULTS.md, and 1.6-1.8x less on two; the ratios move
+ *   with the machine's load and with what ran before in the same process: the 154k mesh's
+ *   0.54 was 0.41 in the next run of the same build, vtkQuadricDecimation's own time on one
+ *   mesh varying by up to half between runs).
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
@@ -307,11 +309,12 @@ public:
    * the minimiser when the quadric's 3x3 system is solvable (every eigenvalue above 1e-6 times
    * the largest), otherwise the cheapest of the triangle's centroid, its three vertices and its
    * three edge midpoints (for an edge collapse: the midpoint and the two ends; ties go to the
-   * centroid, then the vertices). Measured on the metaballs (154k triangles) and the gyroid
-   * (611k), one thread: the same RMS distance to within 1% and the same Hausdorff distance at
-   * 10% of the triangles; at 1% the candidates' Hausdorff distance was 2% and 6% higher (a
+   * centroid, then the vertices). On the benchmark isosurfaces (Benchmarks/RESULTS.md, the
+   * "paper placement" rows, one thread): the same RMS distance to within 1% and the same
+   * Hausdorff distance at 10% of the triangles; at 1% the candidates' Hausdorff distance was
+   * 0.97, 1.07 and 1.00x vtkQuadricDecimation's against the default's 0.95, 1.02 and 0.85x (a
    * vertex or midpoint taken where the system is singular moves the surface more than a point
-   * off the merging vertices would), and the whole hierarchy took 1.4 times as long (an
+   * off the merging vertices would), and the whole hierarchy took 1.4-1.5 times as long (an
    * eigendecomposition per solve, against one L D L^T factorisation). On faceted solids both
    * keep the faces exactly. Curvature method: not used (its collapse point comes from the fit).
    */
@@ -414,8 +417,8 @@ public:
    * WEIGHT is paper 000's weight W = A (wk kappa + wa alpha + wv V) from the three weights
    * above, at the collapse point described in the class docs. The fit and the legality rules
    * are the same for both. On the benchmark isosurfaces FIT_DEVIATION's Hausdorff distance
-   * is 0.91-1.40x and its RMS distance 1.12-1.21x vtkQuadricDecimation's, against 6.1-8.9x
-   * and 2.6-3.4x for WEIGHT (Benchmarks/RESULTS.md): the paper's weight is dominated by the
+   * is 0.91-1.40x and its RMS distance 0.94-1.21x vtkQuadricDecimation's, against 5.8-8.9x
+   * and 2.4-3.4x for WEIGHT (Benchmarks/RESULTS.md): the paper's weight is dominated by the
    * area, so it evens out the triangles' sizes instead of keeping small ones where the surface
    * bends. On the other meshes of the benchmark (a torus, noisy spheres, Boy's surface, a
    * superquadric, a faceted cylinder and the surfaces of a segmented volume, with the default

@@ -266,7 +266,8 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
 void CollapseCostModel::Place(const Quadric& q, const double* const* points, int count,
   const double origin[3], double position[3]) const
 {
-  if (this->Options.Placement == CollapsePlacement::PaperCandidates)
+  if (this->Options.Placement == CollapsePlacement::PaperCandidates &&
+    this->Options.Method == CollapseMethod::Quadric)
   {
     PlaceByCandidates(q, points, count, PaperSolvableTolerance, position);
   }

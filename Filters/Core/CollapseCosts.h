@@ -166,8 +166,9 @@ private:
   bool EvaluateTriangleOrCreaseEdge(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const;
   // The cheapest edge of the triangle into c; returns its cost and the dearest edge's in worst.
   double BestEdge(const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const;
-  // Quadric method: where the merged `count` points (2 or 3) collapse to, by the option's
-  // placement (`origin`: their centroid).
+  // Where the merged `count` points (2 or 3) collapse to by the merged quadric alone: by the
+  // option's placement for the quadric method, regularised for the curvature method's edges
+  // (`origin`: the points' centroid).
   void Place(const Quadric& q, const double* const* points, int count, const double origin[3],
     double position[3]) const;
   // The collapse of edge (a, b), from the scratch's spokes when it is one of them.
