@@ -172,6 +172,16 @@ check(curvature.GetCurvatureCost() == curvature.FIT_DEVIATION, "CurvatureCost se
 # At the last level, 64 triangles for three spheres, the curvature method's Hausdorff distance
 # is 0.089 here, as the quadric method's (0.095); paper 000's weight gives 0.21.
 test_hierarchy(contour, curvature, 0.13)
+
+# Paper 002's placement through the wrapping: the same checks on every level.
+paper = meshlod.vtkTriangleCollapseDecimation()
+paper.SetInputConnection(contour.GetOutputPort())
+paper.SetNumberOfLevels(LEVELS)
+paper.ComputeLevelErrorOn()
+check(paper.GetPlacementAsString() == "Regularized", "Placement default")
+paper.SetPlacementToPaperCandidates()
+check(paper.GetPlacement() == paper.PAPER_CANDIDATES, "Placement setter")
+test_hierarchy(contour, paper)
 if failures:
     print(len(failures), "check(s) failed")
     sys.exit(1)
