@@ -30,6 +30,11 @@ namespace
 {
 constexpr vtkIdType MaximumCount = std::numeric_limits<Id>::max();
 
+bool IsFinitePoint(const double* x)
+{
+  return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+}
+
 // Index of the first point with a NaN or infinite coordinate, or -1.
 vtkIdType FirstNonFinitePoint(const std::vector<double>& xyz)
 {
@@ -39,8 +44,7 @@ vtkIdType FirstNonFinitePoint(const std::vector<double>& xyz)
     vtkIdType& local = firstBad.Local();
     for (vtkIdType i = begin; i < end && i < local; ++i)
     {
-      if (!std::isfinite(xyz[3 * i]) || !std::isfinite(xyz[3 * i + 1]) ||
-        !std::isfinite(xyz[3 * i + 2]))
+      if (!IsFinitePoint(xyz.data() + 3 * i))
       {
         local = i;
       }
@@ -66,13 +70,9 @@ vtkIdType SettleUnusedNonFinitePoints(TriangleMesh& mesh)
   {
     used[v] = 1;
   }
-  auto finite = [&](Id v) {
-    const double* x = mesh.Point(v);
-    return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
-  };
   for (Id v = 0; v < nv; ++v)
   {
-    if (used[v] && !finite(v))
+    if (used[v] && !IsFinitePoint(mesh.Point(v)))
     {
       return v;
     }
@@ -81,13 +81,13 @@ vtkIdType SettleUnusedNonFinitePoints(TriangleMesh& mesh)
   {
     return -1;
   }
-  const std::array<double, 3> stand = { mesh.Point(mesh.Triangles[0])[0],
-    mesh.Point(mesh.Triangles[0])[1], mesh.Point(mesh.Triangles[0])[2] };
+  // A used point: finite (checked above), so it is never itself overwritten.
+  const double* stand = mesh.Point(mesh.Triangles[0]);
   for (Id v = 0; v < nv; ++v)
   {
-    if (!finite(v))
+    if (!IsFinitePoint(mesh.Point(v)))
     {
-      std::copy(stand.begin(), stand.end(), mesh.Points.begin() + 3 * static_cast<std::size_t>(v));
+      std::copy_n(stand, 3, mesh.Points.begin() + 3 * static_cast<std::size_t>(v));
     }
   }
   return -1;
