@@ -383,22 +383,13 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     return sheetsOf[t];
   };
   std::vector<Id> members, from, to, joined;
-  // Whether the points settled on target t (and `extra`, when given) form one vertex with one
-  // fan; `extra` must already point at the class root.
   std::vector<Id> around;
   std::vector<std::pair<Id, Id>> directed;
-  auto hasOneFan = [&](Id t, Id extra) {
-    members.clear();
-    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
-    {
-      const Id q = targetPoints[i];
-      if (q == extra || this->Step[q] != Unassigned)
-      {
-        members.push_back(q);
-      }
-    }
-    if (HasOneFan(
-          triangles, adjacency, parent, members, Find(parent, settledOn[t]), from, to))
+  // Whether `members` of target t, merged into class `root` of `classes`, form one vertex with
+  // one fan (or the fan of a curve point where sheets meet, or of a surface without
+  // consistent orientation).
+  auto fanIsValid = [&](std::vector<Id>& classes, Id t, Id root) {
+    if (HasOneFan(triangles, adjacency, classes, members, root, from, to))
     {
       return true;
     }
@@ -412,6 +403,44 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     // orientation test sorts the whole star.)
     return (LinkHasShape(from, to, 1, 2) || LinkHasShape(from, to, 2, 0)) &&
       HasRepeatedDirectedEdge(triangles, adjacency, members, around, directed);
+  };
+  // Whether target t's vertex in the next level (every point merged) passes that test. A
+  // level with non-manifold vertices (vertex clustering with PreserveTopology off) has
+  // targets that no step can give one fan: they are not held against a step, or every step
+  // after the first to reach one could not be stopped at. Asked only when a step fails, and
+  // cached: on a manifold level it is never asked.
+  std::vector<Id> merged;                                 // built on the first need
+  std::vector<std::uint8_t> nextLevelValid(numberOfTargets, 0); // 0: not asked, 1 yes, 2 no
+  auto validInNextLevel = [&](Id t) {
+    if (nextLevelValid[t] == 0)
+    {
+      if (merged.empty())
+      {
+        merged.resize(numberOfPoints);
+        for (Id p = 0; p < numberOfPoints; ++p)
+        {
+          merged[p] = targetPoints[targetOffsets[target[p]]];
+        }
+      }
+      members.assign(targetPoints.begin() + targetOffsets[t],
+        targetPoints.begin() + targetOffsets[t + 1]);
+      nextLevelValid[t] = fanIsValid(merged, t, targetPoints[targetOffsets[t]]) ? 1 : 2;
+    }
+    return nextLevelValid[t] == 1;
+  };
+  // Whether the points settled on target t (and `extra`, when given) form one vertex with one
+  // fan; `extra` must already point at the class root.
+  auto hasOneFan = [&](Id t, Id extra) {
+    members.clear();
+    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
+    {
+      const Id q = targetPoints[i];
+      if (q == extra || this->Step[q] != Unassigned)
+      {
+        members.push_back(q);
+      }
+    }
+    return fanIsValid(parent, t, Find(parent, settledOn[t])) || !validInNextLevel(t);
   };
   // Whether settling p now leaves a valid mesh (p's target keeps one fan).
   auto validWith = [&](Id p) {

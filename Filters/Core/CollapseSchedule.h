@@ -31,6 +31,10 @@
 //   a point next to it are tried again and made as soon as they are valid. Those still waiting
 //   at the end need each other: they are made last, by groups of neighbours one group after
 //   the other, so that the steps between groups can be stopped at.
+// - Both rules apply only to targets that have one fan in the next level (every point merged).
+//   A level with non-manifold vertices (vertex clustering with PreserveTopology off) has
+//   targets that no step can give one: they neither wait nor hold later steps up, so the steps
+//   through them are stops like any other (the meshes there are no worse than the next level).
 #ifndef meshlod_CollapseSchedule_h
 #define meshlod_CollapseSchedule_h
 
