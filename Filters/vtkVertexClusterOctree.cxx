@@ -262,10 +262,14 @@ void vtkVertexClusterOctree::WarnIfCountMissed(
   {
     vtkWarningMacro("Level " << level << ": asked for " << asked << " triangles, reached "
                              << reached
-                             << ": the epsilon search found none that keeps fewer (clusters that "
-                                "would flip triangles, pinch edges or break a thin part are "
-                                "split again, which on a rough or noisy surface adds many "
-                                "triangles back; curves of "
+                             << ": the epsilon search found none that keeps fewer ("
+                             << (this->PreserveTopology
+                                    ? "clusters that would flip triangles, pinch edges or break "
+                                      "a thin part are split again, which on a rough or noisy "
+                                      "surface adds many triangles back: PreserveTopology off "
+                                      "lifts that; "
+                                    : "")
+                             << "curves of "
                                 "non-manifold edges shorten only so far, and the vertices where "
                                 "they meet or end, bow ties and separate components do not "
                                 "merge), or none that keeps fewer at an error near that of this "
@@ -500,6 +504,7 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   options.MaximumPointsPerCell = this->MaximumPointsPerCell;
   options.RepresentativeIterations = this->RepresentativeIterations;
   options.FlipEdges = this->FlipEdges;
+  options.PreserveTopology = this->PreserveTopology;
   options.BoundaryWeight = this->BoundaryWeight;
   // The clustering asks the topology only which edges are boundaries.
   in.Topology.KeepBoundaryFlagsOnly();
@@ -685,6 +690,7 @@ void vtkVertexClusterOctree::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumCellSize: " << this->MaximumCellSize << "\n";
   os << indent << "MaximumPointsPerCell: " << this->MaximumPointsPerCell << "\n";
   os << indent << "RepresentativeIterations: " << this->RepresentativeIterations << "\n";
+  os << indent << "PreserveTopology: " << (this->PreserveTopology ? "On" : "Off") << "\n";
   os << indent << "FlipEdges: " << (this->FlipEdges ? "On" : "Off") << "\n";
   os << indent << "CenterOnInput: " << (this->CenterOnInput ? "On" : "Off") << "\n";
   os << indent << "BoundaryWeight: " << this->BoundaryWeight << "\n";

@@ -91,6 +91,13 @@ struct VTKFILTERSMESHLOD_EXPORT OctreeClusteringOptions
   /// such clusters back into the previous level's points, which cannot fold or pinch, so a
   /// level never keeps either.
   int FlipPasses = 64;
+  /// Keep each level's topology and orientation: a trial level that folds a triangle against
+  /// the surface around it, folds a thin part onto itself, pinches an edge or a vertex or
+  /// breaks a connected piece is cut again below the clusters concerned (FlipPasses). Off: the
+  /// paper's conditions alone (connected vertices of a cell, epsilon, the flip test of the
+  /// related triangle set when a node is evaluated), so levels may change topology as vertex
+  /// clustering does, and reach counts that those repairs keep far above on rough surfaces.
+  bool PreserveTopology = true;
   /// Flip edges of each committed level towards the input (see TriangulationFlips.h): the same
   /// points, counts and clusters, closer triangles, but no longer the images of the previous
   /// level's triangles.

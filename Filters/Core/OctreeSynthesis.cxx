@@ -174,8 +174,9 @@ Id OctreeClustering::Internals::ReindexTriangles(Synthesis& s) const
 }
 
 //------------------------------------------------------------------------------
-// Triangles with the same three clusters as an earlier one (either orientation), grouped by
-// their smallest cluster with the triangle order kept inside each group.
+// Triangles with the same three clusters as an earlier one, grouped by their smallest cluster
+// with the triangle order kept inside each group: SameDuplicate when an earlier one has the
+// same orientation, else OppositeDuplicate (the first of its orientation).
 void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
 {
   const Id kept = static_cast<Id>(s.From.size());
@@ -214,7 +215,10 @@ void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
               const bool same = (a[0] == b[0] && a[1] == b[1]) ||
                 (a[0] == b[1] && a[1] == b[2]) || (a[0] == b[2] && a[1] == b[0]);
               s.Duplicate[grouped[x]] = same ? SameDuplicate : OppositeDuplicate;
-              break;
+              if (same)
+              {
+                break; // an opposite one stays the first of its orientation unless one follows
+              }
             }
           }
         }
@@ -719,11 +723,16 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
   const Id previousPoints = this->PreviousPoints();
   const Id previousTriangles = this->PreviousTriangles();
   const Id* prev = this->PreviousTriangleData();
+  // Without the topology repairs two triangles on the same clusters in opposite orders (a
+  // thin part folded flat) both stay: each is the image of its finer triangles, so MorphTargetId
+  // keeps every triangle's orientation (dropping one left finer triangles mapped onto the
+  // reverse of a kept one).
+  const bool free = !this->Options.PreserveTopology;
   std::vector<Id> final;
   ResizeFresh(final, s.From.size());
   const Id count = ParallelCompact(
     static_cast<Id>(s.From.size()),
-    [&](Id j) { return s.Duplicate[j] == 0; },
+    [&](Id j) { return s.Duplicate[j] == 0 || (free && s.Duplicate[j] == OppositeDuplicate); },
     [&](Id j, Id slot) { final[slot] = j; });
   final.resize(count);
   if (count == 0)
@@ -920,6 +929,10 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
     this->AssignClusters(s);
     this->ReindexTriangles(s);
     this->MarkDuplicates(s);
+    if (!this->Options.PreserveTopology)
+    {
+      break; // the paper's vertex clustering: whatever the cut makes
+    }
     // After FlipPasses, a cluster that folds or pinches goes back to the previous level's
     // points at once: each pass then leaves fewer changed clusters, so the loop ends. (A noisy
     // terrain kept 40 non-manifold edges when the passes simply stopped after 16; it needs 31

@@ -248,6 +248,50 @@ void PerturbRadially(vtkPolyData* mesh, double amplitude, int seed)
   }
 }
 
+vtkSmartPointer<vtkPolyData> MakeNoisyIsosurface(int resolution, double noise, int seed)
+{
+  const double step = 2.0 / (resolution - 1);
+  const double radius = 0.7;
+  const double amplitude = noise * step / radius; // the field changes by step / radius per step
+  vtkNew<vtkImageData> volume;
+  volume->SetDimensions(resolution, resolution, resolution);
+  volume->SetSpacing(step, step, step);
+  volume->SetOrigin(-1.0, -1.0, -1.0);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("Field");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(resolution) * resolution * resolution);
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(seed);
+  vtkIdType i = 0;
+  for (int k = 0; k < resolution; ++k)
+  {
+    for (int j = 0; j < resolution; ++j)
+    {
+      for (int l = 0; l < resolution; ++l, ++i)
+      {
+        const double x = -1.0 + l * step, y = -1.0 + j * step, z = -1.0 + k * step;
+        const double smooth = 1.0 - std::sqrt(x * x + y * y + z * z) / radius +
+          0.15 * std::sin(5.0 * x) * std::sin(4.0 * y) * std::sin(3.0 * z);
+        values->SetValue(i, smooth + amplitude * (2.0 * random->GetValue() - 1.0));
+        random->Next();
+      }
+    }
+  }
+  volume->GetPointData()->SetScalars(values);
+  vtkNew<vtkFlyingEdges3D> contour;
+  contour->SetInputData(volume);
+  contour->SetValue(0, 0.0);
+  contour->ComputeNormalsOff();
+  contour->ComputeGradientsOff();
+  contour->ComputeScalarsOff();
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputConnection(contour->GetOutputPort());
+  clean->Update();
+  auto surface = vtkSmartPointer<vtkPolyData>::New();
+  surface->ShallowCopy(clean->GetOutput());
+  return surface;
+}
+
 vtkSmartPointer<vtkPolyData> TriangulateAndClean(vtkAlgorithm* source)
 {
   vtkNew<vtkTriangleFilter> triangles;

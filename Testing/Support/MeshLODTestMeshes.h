@@ -70,6 +70,15 @@ vtkSmartPointer<vtkPolyData> MakeFan(int n);
 /// centred at the origin).
 void PerturbRadially(vtkPolyData* mesh, double amplitude, int seed);
 
+/// The isosurface of a noisy volume, like a CT scan's: a sphere of radius 0.7 with smooth
+/// bumps (the field 1 - r / 0.7 + 0.15 sin 5x sin 4y sin 3z) sampled on a resolution^3 grid
+/// over [-1, 1]^3, each sample plus uniform noise of up to `noise` times the field's change
+/// over one grid step (vtkMinimalStandardRandomSequence with `seed`), contoured at 0 by
+/// vtkFlyingEdges3D and cleaned (coincident points merged, degenerate triangles dropped). From
+/// a noise of about 1 the surface is rough at the scale of its edges, with small handles,
+/// tunnels and separate specks, as isosurfaces of real scans are.
+vtkSmartPointer<vtkPolyData> MakeNoisyIsosurface(int resolution, double noise, int seed);
+
 /// Every point of `mesh` multiplied by `scale` (in place).
 void Scale(vtkPolyData* mesh, double scale);
 

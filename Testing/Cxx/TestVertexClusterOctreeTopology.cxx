@@ -1,0 +1,163 @@
+// vtkVertexClusterOctree's PreserveTopology on the isosurface of a noisy volume (a CT-like
+// surface, rough at the scale of its edges): with it off the levels reach their target counts
+// within the filter's tolerance and stay close to the input, nest, and do not depend on the
+// thread count; with it on they keep the input's topology. The geomorph's exact counts reach
+// the counts between the free levels.
+#include "MeshLODHierarchyChecks.h"
+#include "MeshLODSurfaceDistance.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestMeshes.h"
+#include "vtkLODGeomorph.h"
+#include "vtkVertexClusterOctree.h"
+
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkTestErrorObserver.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+namespace
+{
+using namespace meshlod;
+using testing::Level;
+
+// Triangles listed twice in the same orientation (InspectMesh counts either orientation).
+std::int64_t SameOrientationDuplicates(vtkPolyData* mesh)
+{
+  std::set<testing::TriangleIds> seen;
+  std::int64_t duplicates = 0;
+  for (const testing::TriangleIds& t : testing::Triangles(mesh))
+  {
+    const int first = static_cast<int>(std::min_element(t.begin(), t.end()) - t.begin());
+    duplicates += seen.insert({ t[first], t[(first + 1) % 3], t[(first + 2) % 3] }).second ? 0 : 1;
+  }
+  return duplicates;
+}
+
+// Levels at 10% and 1% of the input's triangles.
+vtkSmartPointer<vtkMultiBlockDataSet> TenthAndHundredth(vtkPolyData* mesh, bool preserveTopology)
+{
+  vtkNew<vtkVertexClusterOctree> cluster;
+  cluster->SetInputData(mesh);
+  cluster->SetPreserveTopology(preserveTopology);
+  cluster->SetLevelModeToTargetTriangleCounts();
+  cluster->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 10);
+  cluster->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 100);
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  cluster->AddObserver(vtkCommand::WarningEvent, warnings);
+  cluster->Update();
+  if (!preserveTopology)
+  {
+    MESHLOD_CHECK(!warnings->GetWarning()); // no count missed
+  }
+  return cluster->GetHierarchy();
+}
+
+void TestFreeLevelsReachTheirCounts(vtkPolyData* mesh)
+{
+  vtkSmartPointer<vtkMultiBlockDataSet> h = TenthAndHundredth(mesh, false);
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
+  if (h->GetNumberOfBlocks() != 3)
+  {
+    return;
+  }
+  const vtkIdType input = mesh->GetNumberOfPolys();
+  std::int64_t nonManifold = 0;
+  for (unsigned int i = 1; i < 3; ++i)
+  {
+    const vtkIdType target = input / (i == 1 ? 10 : 100);
+    const testing::MeshReport r = testing::InspectMesh(Level(h, i));
+    const SurfaceDistance d = MeasureSurfaceDistance(mesh, Level(h, i));
+    std::cerr << "free topology, target " << target << ": " << r.Triangles << " triangles, "
+              << r.NonManifoldEdges << " non-manifold edges, Hausdorff " << d.HausdorffPercent()
+              << "%, RMS " << d.RmsPercent() << "%\n";
+    // The filter's own tolerance (a miss beyond it is warned about). Measured: 2,534 for 2,534
+    // and 254 for 253; with PreserveTopology on, 3,508 and 712.
+    MESHLOD_CHECK_LE(std::abs(r.Triangles - target), std::max<vtkIdType>(2, target / 50));
+    MESHLOD_CHECK_EQ(r.DegenerateTriangles, 0);
+    // A thin part folded flat keeps both its sides, one triangle in each orientation.
+    MESHLOD_CHECK_EQ(SameOrientationDuplicates(Level(h, i)), 0);
+    // Measured: Hausdorff 2.00% and 2.59%, RMS 0.31% and 0.53% of the diagonal, 1.02 and 0.99
+    // times vtkQuadricClustering's Hausdorff distance at those counts (the Benchmarks' grid
+    // search); with PreserveTopology on, the 712 triangles were at 10.8% (5.4 times).
+    MESHLOD_CHECK_LT(d.HausdorffPercent(), i == 1 ? 2.6 : 3.4);
+    MESHLOD_CHECK_LT(d.RmsPercent(), i == 1 ? 0.4 : 0.7);
+    nonManifold += r.NonManifoldEdges;
+  }
+  // The repairs are lifted: some edges of the free levels have three or more triangles
+  // (measured 42 and 5), as vtkQuadricClustering's output has.
+  MESHLOD_CHECK_GT(nonManifold, 0);
+  // Levels still nest, every triangle the image of a finer one.
+  MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
+
+  // The same levels for any thread count.
+  const auto both = testing::RunWithBothBackends(
+    [&]() -> vtkSmartPointer<vtkPolyData>
+    { return Level(TenthAndHundredth(mesh, false), 2); });
+  MESHLOD_CHECK(testing::SameMesh(both.first, both.second));
+
+  // The geomorph between the free levels: half-way, and exact counts swept over both
+  // transitions. The free levels have non-manifold vertices, which no step of a transition
+  // can repair; waiting for that made the steps after the first such vertex unstoppable (3 of
+  // these 38 counts missed, by up to 1,140 triangles; now none).
+  vtkNew<vtkLODGeomorph> morph;
+  morph->SetInputData(h);
+  morph->SetLevelOfDetail(1.5);
+  morph->Update();
+  MESHLOD_CHECK_EQ(morph->GetOutput()->GetNumberOfPolys(), Level(h, 1)->GetNumberOfPolys());
+  int missed = 0;
+  for (unsigned int i = 0; i < 2; ++i)
+  {
+    const vtkIdType fine = Level(h, i)->GetNumberOfPolys();
+    const vtkIdType coarse = Level(h, i + 1)->GetNumberOfPolys();
+    for (int k = 1; k < 20; ++k)
+    {
+      const vtkIdType count = coarse + k * (fine - coarse) / 20;
+      morph->SetTargetNumberOfTriangles(count);
+      morph->Update();
+      missed += std::abs(morph->GetOutput()->GetNumberOfPolys() - count) > 2 ? 1 : 0;
+    }
+  }
+  MESHLOD_CHECK_LE(missed, 1);
+}
+
+void TestPreservedLevelsKeepTopology(vtkPolyData* mesh)
+{
+  vtkSmartPointer<vtkMultiBlockDataSet> h = TenthAndHundredth(mesh, true);
+  for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+  {
+    const testing::MeshReport r = testing::InspectMesh(Level(h, i));
+    MESHLOD_CHECK_EQ(r.NonManifoldEdges, 0);
+    MESHLOD_CHECK_EQ(r.NonManifoldVertices, 0);
+    MESHLOD_CHECK_EQ(r.BoundaryEdges, 0);
+    MESHLOD_CHECK(r.ConsistentlyOriented);
+  }
+  MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
+}
+
+void TestSetting()
+{
+  vtkNew<vtkVertexClusterOctree> cluster;
+  MESHLOD_CHECK(cluster->GetPreserveTopology());
+  cluster->PreserveTopologyOff();
+  std::ostringstream printed;
+  cluster->Print(printed);
+  MESHLOD_CHECK(printed.str().find("PreserveTopology: Off") != std::string::npos);
+}
+} // namespace
+
+int TestVertexClusterOctreeTopology(int, char*[])
+{
+  // 25,344 triangles, closed, noise of one grid step.
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeNoisyIsosurface(60, 1.0, 5);
+  MESHLOD_CHECK_EQ(testing::InspectMesh(mesh).BoundaryEdges, 0);
+  TestFreeLevelsReachTheirCounts(mesh);
+  TestPreservedLevelsKeepTopology(mesh);
+  TestSetting();
+  return meshlod::testing::Result();
+}
