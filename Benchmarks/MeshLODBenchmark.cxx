@@ -636,7 +636,8 @@ std::string Benchmark::TargetSummary() const
     { "vtkTriangleCollapseDecimation curvature", "vtkQuadricDecimation" },
     { "vtkTriangleCollapseDecimation curvature paper weight", "vtkQuadricDecimation" },
     { "vtkVertexClusterOctree", "vtkQuadricClustering" },
-    { "vtkVertexClusterOctree flipped edges", "vtkQuadricClustering" } };
+    { "vtkVertexClusterOctree flipped edges", "vtkQuadricClustering" },
+    { "vtkVertexClusterOctree free topology", "vtkQuadricClustering" } };
   if (this->Opts.Targets.empty())
   {
     return std::string();

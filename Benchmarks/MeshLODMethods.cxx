@@ -75,14 +75,15 @@ Method TriangleCollapse(const std::string& name, const std::string& settings,
   return method;
 }
 
-Method VertexCluster(const std::string& name, const std::string& settings, bool flipEdges)
+Method VertexCluster(const std::string& name, const std::string& settings,
+  void (*configure)(vtkVertexClusterOctree*))
 {
   Method method = ThreadedMethod(name, settings);
-  method.Hierarchy = [flipEdges](vtkPolyData* input, const std::vector<vtkIdType>& targets) {
+  method.Hierarchy = [configure](vtkPolyData* input, const std::vector<vtkIdType>& targets) {
     vtkNew<vtkVertexClusterOctree> cluster;
     cluster->SetInputData(input);
     cluster->SetLevelModeToTargetTriangleCounts();
-    cluster->SetFlipEdges(flipEdges);
+    configure(cluster);
     std::vector<vtkIdType> sorted(targets);
     std::sort(sorted.rbegin(), sorted.rend());
     for (const vtkIdType target : sorted)
@@ -153,11 +154,18 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
   // The octree clustering is compared with vtkQuadricClustering: one level per target, epsilon
   // searched by the filter inside the timed run.
   methods.push_back(VertexCluster("vtkVertexClusterOctree",
-    "TargetTriangleCounts level mode, one level per target, defaults otherwise", false));
+    "TargetTriangleCounts level mode, one level per target, defaults otherwise",
+    [](vtkVertexClusterOctree*) {}));
   methods.push_back(VertexCluster("vtkVertexClusterOctree flipped edges",
     "as vtkVertexClusterOctree, with FlipEdges on (each level's edges flipped towards the input; "
     "for discrete levels, see the class docs)",
-    true));
+    [](vtkVertexClusterOctree* cluster) { cluster->FlipEdgesOn(); }));
+  Method free = VertexCluster("vtkVertexClusterOctree free topology",
+    "as vtkVertexClusterOctree, with PreserveTopology off (the paper's conditions only: no "
+    "repair of folds, pinches or breaks, so levels may change topology); one-thread row only",
+    [](vtkVertexClusterOctree* cluster) { cluster->PreserveTopologyOff(); });
+  free.Parallel = false;
+  methods.push_back(free);
 }
 
 } // namespace benchmark
