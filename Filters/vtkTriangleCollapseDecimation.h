@@ -134,7 +134,14 @@
  * instead. Targets that round to the same count, or that one collapse passes together (more
  * levels than a small mesh has collapses to spread them over), give one level. MaximumError
  * (world units) stops early when the next collapse's estimated error exceeds it; the coarsest
- * mesh reached is then the last level. A warning reports a coarsest level short of its target,
+ * mesh reached is then the last level. Every connected piece stays, each at least a
+ * tetrahedron, with its genus: on the isosurface of a noisy volume (103,940 triangles, 328
+ * specks of 8 triangles around single noisy samples besides the main surface) the levels
+ * stopped at 2,072 triangles for a target of 1,039, most of them specks, and that level was 4
+ * times as far from the input (Hausdorff distance) as vtkQuadricDecimation's output of the same
+ * count, which drops the specks (Benchmarks/RESULTS.md, "Beyond isosurfaces"; remove small
+ * pieces first, e.g. with vtkPolyDataConnectivityFilter, or use vtkVertexClusterOctree with
+ * PreserveTopology off). A warning reports a coarsest level short of its target,
  * and a level whose estimated error jumps far beyond what the fall in its triangle count
  * explains (more than 8 times, from level 2 on): on a broken input, such as a seam left open
  * and locked, the last collapses forced by the count can distort it.
