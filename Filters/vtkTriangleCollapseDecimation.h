@@ -106,12 +106,13 @@
  *   are marked for re-fitting at the end of the round, and a fit reads only its own cell's
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its
- *   whole hierarchy the curvature method takes 1.5-2.9x the time vtkQuadricDecimation needs
- *   for one 10% target on one thread, and 1.7-1.9x less on two (the quadric method: 0.29-0.54x
- *   over the last three runs, Benchmarks/RESULTS.md, and 1.6-1.8x less on two; the ratios move
+ *   whole hierarchy the curvature method takes 1.4-2.9x the time vtkQuadricDecimation needs
+ *   for one 10% target on one thread, and 1.7-2.0x less on two (the quadric method: 0.29-0.54x
+ *   over the last four runs, Benchmarks/RESULTS.md, and 1.6-1.8x less on two; the ratios move
  *   with the machine's load and with what ran before in the same process: the 154k mesh's
  *   0.54 was 0.41 in the next run of the same build, vtkQuadricDecimation's own time on one
- *   mesh varying by up to half between runs).
+ *   mesh varying by up to half between runs, and in the latest run the same build's one-thread
+ *   time on the 2.3M mesh was 10.4 s against 6.6 s before, 2.5x its two-thread time).
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
@@ -137,7 +138,7 @@
  * mesh reached is then the last level. Every connected piece stays, each at least a
  * tetrahedron, with its genus: on the isosurface of a noisy volume (103,940 triangles, 328
  * specks of 8 triangles around single noisy samples besides the main surface) the levels
- * stopped at 2,072 triangles for a target of 1,039, most of them specks, and that level was 4
+ * stopped at 2,072 triangles for a target of 1,039, most of them specks, and that level was 3.5
  * times as far from the input (Hausdorff distance) as vtkQuadricDecimation's output of the same
  * count, which drops the specks (Benchmarks/RESULTS.md, "Beyond isosurfaces"; remove small
  * pieces first, e.g. with vtkPolyDataConnectivityFilter, or use vtkVertexClusterOctree with

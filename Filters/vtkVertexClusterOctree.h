@@ -25,7 +25,7 @@
  * these two, a noisy sphere (vertex noise a third of its edge length) asked for 1% of its
  * triangles kept 8,442 instead of 782 and a noisy height field 14,265 instead of 1,555 (now 877
  * and 1,938). A cluster whose triangles form two or more fans joined at it alone (a thin part
- * pinched there) is split again like one that folds.
+ * pinched there) is split again like one that folds (with PreserveTopology on, the default).
  *
  * The representative minimises the quadric e = e1 + e2 of §3: e1 sums the squared distances to
  * the planes of every triangle touching the cluster, plus planes through the boundary edges
@@ -118,7 +118,8 @@
  * one open piece of one curve, with the curve going on outside it at both ends, and every level
  * keeps each curve with k triangles on each of its edges: the curves shorten, no sheet or curve
  * vanishes and no two are joined (a trial level where one would is cut again below the clusters
- * concerned, as for folds). The other non-manifold vertices, where curves meet or end and bow ties,
+ * concerned, as for folds; with PreserveTopology off a curve edge may lose sheets). The other
+ * non-manifold vertices, where curves meet or end and bow ties,
  * are locked: they never move or merge.
  * Optional input (port 1): a vtkImageData texture (unsigned char RGB or RGBA scalars) for an
  * input with texture coordinates.
@@ -305,14 +306,15 @@ public:
    * meant to work: a level may close holes and handles, join or drop thin parts and small
    * pieces, have non-manifold edges and vertices, and have triangles facing against their
    * surroundings, as vtkQuadricClustering's output does; a thin part folded flat keeps both
-   * its sides (two triangles on the same points in opposite orders). The rules for curves
-   * where sheets meet and for locked vertices stay. On that isosurface: 10,379 and 1,037
+   * its sides (two triangles on the same points in opposite orders). The clusters' own rules
+   * for curves where sheets meet (one open piece of one curve each) and for locked vertices
+   * stay, but a curve edge may lose sheets. On that isosurface: 10,379 and 1,037
    * triangles, at 1.02 and 1.29 times vtkQuadricClustering's Hausdorff distance and 0.95 and
    * 0.96 times its RMS distance, in a quarter of the time; on smooth isosurfaces, counts and
    * distances as with it on. Noise far above the edge length is beyond it: a sphere whose
    * radii moved by up to 2.5 edges got its 10% level, but its 1% level crumpled (about 5 times
    * vtkQuadricClustering's Hausdorff distance and 10 times its RMS distance), where the
-   * repairs keep 85% of its triangles at both targets. Levels still nest, and MorphTargetId
+   * repairs keep 87% of its triangles at both targets. Levels still nest, and MorphTargetId
    * maps every triangle onto one of the next level with its orientation.
    */
   vtkSetMacro(PreserveTopology, bool);

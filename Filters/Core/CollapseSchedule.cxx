@@ -408,7 +408,9 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   // level with non-manifold vertices (vertex clustering with PreserveTopology off) has
   // targets that no step can give one fan: they are not held against a step, or every step
   // after the first to reach one could not be stopped at. Asked only when a step fails, and
-  // cached: on a manifold level it is never asked.
+  // cached; on a manifold level the answer is yes, except where two triangles of this level
+  // become the same triangle of the next (which keeps one of them): such a target is let
+  // through as well, with the doubled triangle until its transition ends.
   std::vector<Id> merged;                                 // built on the first need
   std::vector<std::uint8_t> nextLevelValid(numberOfTargets, 0); // 0: not asked, 1 yes, 2 no
   auto validInNextLevel = [&](Id t) {

@@ -34,7 +34,8 @@
 // - Both rules apply only to targets that have one fan in the next level (every point merged).
 //   A level with non-manifold vertices (vertex clustering with PreserveTopology off) has
 //   targets that no step can give one: they neither wait nor hold later steps up, so the steps
-//   through them are stops like any other (the meshes there are no worse than the next level).
+//   through them are stops like any other (each step still checks its own target; a target
+//   passed through this way may be in a state the next level does not have).
 #ifndef meshlod_CollapseSchedule_h
 #define meshlod_CollapseSchedule_h
 

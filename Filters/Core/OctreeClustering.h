@@ -54,6 +54,8 @@
 // against the previous level's triangle it comes from (the surface normal at a curve sums
 // every sheet's), for a curve edge left with fewer triangles than its curve has sheets, and for
 // a closed curve down to two clusters; an edge the curve's k triangles share is not a pinch.
+// (All of these repairs only with PreserveTopology; without it the cut stands, and of two
+// triangles on the same clusters in opposite orders both stay.)
 // A target triangle count is met by a search over epsilon on the count
 // estimate (input triangles minus those that degenerate in collapsed nodes), corrected by what
 // a trial level actually keeps; the trial closest to the target in ratio is kept. Nodes refused

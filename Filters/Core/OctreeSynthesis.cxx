@@ -217,7 +217,7 @@ void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
               s.Duplicate[grouped[x]] = same ? SameDuplicate : OppositeDuplicate;
               if (same)
               {
-                break; // an opposite one stays the first of its orientation unless one follows
+                break; // else keep looking: Opposite only if no earlier one has x's orientation
               }
             }
           }

@@ -48,7 +48,7 @@ def levels_at(sphere, targets, preserve_topology):
     octree.SetLevelModeToTargetTriangleCounts()
     for target in targets:
         octree.AddTargetTriangleCount(target)
-    octree.GlobalWarningDisplayOff()  # the counts missed with PreserveTopology on
+    octree.GlobalWarningDisplayOff()  # (for every object) the counts missed with it on
     octree.Update()
     hierarchy = octree.GetHierarchy()
     return [hierarchy.GetBlock(i) for i in range(hierarchy.GetNumberOfBlocks())]

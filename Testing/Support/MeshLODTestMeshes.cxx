@@ -286,6 +286,7 @@ vtkSmartPointer<vtkPolyData> MakeNoisyIsosurface(int resolution, double noise, i
   contour->ComputeScalarsOff();
   vtkNew<vtkCleanPolyData> clean;
   clean->SetInputConnection(contour->GetOutputPort());
+  clean->ConvertPolysToLinesOff(); // a triangle that degenerates goes, rather than becoming a line
   clean->Update();
   auto surface = vtkSmartPointer<vtkPolyData>::New();
   surface->ShallowCopy(clean->GetOutput());
