@@ -58,9 +58,13 @@ struct Pieces
 
 //------------------------------------------------------------------------------
 // The connected pieces of the current level (the previous one for the next trial), once per
-// committed level.
+// committed level; only MarkBreaks reads them, which runs with PreserveTopology alone.
 void OctreeClustering::Internals::LabelPreviousPieces()
 {
+  if (!this->Options.PreserveTopology)
+  {
+    return;
+  }
   const Id points = this->PreviousPoints();
   const Id triangles = this->PreviousTriangles();
   const Id* tri = this->PreviousTriangleData();

@@ -70,7 +70,7 @@ MeshReport InspectMesh(vtkPolyData* mesh)
   const std::vector<Triangle> triangles = Triangles(mesh);
   report.Triangles = static_cast<std::int64_t>(triangles.size());
   std::map<std::pair<vtkIdType, vtkIdType>, std::vector<int>> edges; // sorted edge -> directions
-  std::set<Triangle> seen;
+  std::set<Triangle> seen, seenOriented;
   std::vector<std::vector<vtkIdType>> fans(mesh->GetNumberOfPoints());
   double bounds[6];
   mesh->GetBounds(bounds);
@@ -82,6 +82,7 @@ MeshReport InspectMesh(vtkPolyData* mesh)
     Triangle sorted = t;
     std::sort(sorted.begin(), sorted.end());
     report.DuplicateTriangles += seen.insert(sorted).second ? 0 : 1;
+    report.SameOrientationDuplicates += seenOriented.insert(Canonical(t)).second ? 0 : 1;
     double n[3];
     Normal(mesh, t, n);
     report.DegenerateTriangles += vtkMath::Norm(n) <= 1e-14 * diagonal2 ? 1 : 0;

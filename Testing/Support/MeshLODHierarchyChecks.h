@@ -22,7 +22,7 @@ namespace testing
 {
 /// Topology of one mesh: counts of non-manifold edges and vertices, boundary edges, whether
 /// the orientation is consistent, the Euler characteristic, degenerate (zero-area) triangles
-/// and triangles listed twice.
+/// and triangles listed twice (in either orientation, and in the same orientation).
 struct MeshReport
 {
   std::int64_t Triangles = 0;
@@ -31,6 +31,7 @@ struct MeshReport
   std::int64_t BoundaryEdges = 0;
   std::int64_t DegenerateTriangles = 0;
   std::int64_t DuplicateTriangles = 0;
+  std::int64_t SameOrientationDuplicates = 0;
   std::int64_t EulerCharacteristic = 0;
   bool ConsistentlyOriented = true;
 };
