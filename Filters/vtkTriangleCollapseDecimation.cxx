@@ -190,6 +190,7 @@ int vtkTriangleCollapseDecimation::RequestData(
     : meshlod::CurvatureCost::Weight;
   options.BoundaryWeight = this->BoundaryWeight;
   options.MaximumNormalDeviation = this->MaximumNormalDeviation;
+  options.PreserveTopology = this->PreserveTopology;
   options.MaximumFitPoints = this->MaximumFitPoints;
   // The curvature method's fits read the original points from the input itself (alive until
   // the run ends) instead of a copy of them; the engine copies them when they are stored
@@ -313,7 +314,11 @@ int vtkTriangleCollapseDecimation::RequestData(
     }
     vtkWarningMacro(<< levels.str() << " has " << result.FinalTriangles
                     << " triangles, short of its target of " << coarsestTarget << " ("
-                    << (result.ErrorLimited ? "MaximumError reached" : "no legal collapse left")
+                    << (result.ErrorLimited ? "MaximumError reached"
+                         : this->PreserveTopology
+                         ? "no legal collapse left; every connected piece keeps at least 4 "
+                           "triangles while PreserveTopology is on"
+                         : "no legal collapse left")
                     << ").");
   }
   if (jumpLevel > 0)
@@ -377,6 +382,7 @@ void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CurvatureCost: " << this->GetCurvatureCostAsString() << "\n";
   os << indent << "BoundaryWeight: " << this->BoundaryWeight << "\n";
   os << indent << "MaximumNormalDeviation: " << this->MaximumNormalDeviation << "\n";
+  os << indent << "PreserveTopology: " << (this->PreserveTopology ? "On" : "Off") << "\n";
   os << indent << "MaximumFitPoints: " << this->MaximumFitPoints << "\n";
   os << indent << "CenterOnInput: " << (this->CenterOnInput ? "On" : "Off") << "\n";
   os << indent << "ComputeLevelError: " << (this->ComputeLevelError ? "On" : "Off") << "\n";

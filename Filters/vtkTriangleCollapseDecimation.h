@@ -135,14 +135,14 @@
  * instead. Targets that round to the same count, or that one collapse passes together (more
  * levels than a small mesh has collapses to spread them over), give one level. MaximumError
  * (world units) stops early when the next collapse's estimated error exceeds it; the coarsest
- * mesh reached is then the last level. Every connected piece stays, each at least a
- * tetrahedron, with its genus: on the isosurface of a noisy volume (103,940 triangles, 328
+ * mesh reached is then the last level. By default every connected piece stays, each at least
+ * a tetrahedron, with its genus: on the isosurface of a noisy volume (103,940 triangles, 328
  * specks of 8 triangles around single noisy samples besides the main surface) the levels
  * stopped at 2,072 triangles for a target of 1,039, most of them specks, and that level was 3.5
  * times as far from the input (Hausdorff distance) as vtkQuadricDecimation's output of the same
- * count, which drops the specks (Benchmarks/RESULTS.md, "Beyond isosurfaces"; remove small
- * pieces first, e.g. with vtkPolyDataConnectivityFilter, or use vtkVertexClusterOctree with
- * PreserveTopology off). A warning reports a coarsest level short of its target,
+ * count, which drops the specks. With PreserveTopology off small closed pieces vanish and the
+ * levels reach their counts (Benchmarks/RESULTS.md, "Beyond isosurfaces"). A warning reports a
+ * coarsest level short of its target,
  * and a level whose estimated error jumps far beyond what the fall in its triangle count
  * explains (more than 8 times, from level 2 on): on a broken input, such as a seam left open
  * and locked, the last collapses forced by the count can distort it.
@@ -475,6 +475,32 @@ public:
 
   ///@{
   /**
+   * Whether every connected piece of the input stays to the coarsest level. Default on: each
+   * piece keeps at least a tetrahedron (four triangles; no collapse that keeps a closed
+   * manifold makes it smaller), and every level has the input's Euler characteristic. Off: a
+   * closed piece of genus 0 with at most 12 triangles left (a tetrahedron, or the octahedron
+   * the triangle-collapse schedules stop at, under paper 000's valence rule) vanishes when its
+   * cost comes up in the order of the collapses: its points merge into one at the minimiser of
+   * their merged quadric, at that quadric's cost. That point stays in this and every later
+   * level as a point of no cell, so that MorphTargetId still maps the piece's points (a
+   * geomorph shrinks the piece to it); its point data are the mean of theirs, and its error
+   * (the RMS distance to the piece's planes) counts in EstimatedError. The input's largest
+   * piece never vanishes, so no level is empty. Genus is kept either way, and so is every
+   * piece with a handle. Where a vanishing removes more triangles than
+   * are left to a level's count, the level lands below it by fewer than the piece had (specks
+   * are cheap, so they mostly vanish long before the coarse levels). For the isosurface of a noisy volume, as of a scan,
+   * whose specks around single noisy samples otherwise fill the coarse levels: on one of
+   * 103,940 triangles with 328 specks, asked for 1%, 1,038 triangles at 1.3 times
+   * vtkQuadricDecimation's Hausdorff distance instead of 2,072 at 3.5 times. Costs 4 bytes
+   * per input point.
+   */
+  vtkSetMacro(PreserveTopology, bool);
+  vtkGetMacro(PreserveTopology, bool);
+  vtkBooleanMacro(PreserveTopology, bool);
+  ///@}
+
+  ///@{
+  /**
    * Curvature method: at most this many ancestral points per surface fit, in [6, 100000].
    * Default 48.
    */
@@ -549,6 +575,7 @@ protected:
   double BoundaryWeight = 0.3;
   double MaximumNormalDeviation = 90.0;
   int MaximumFitPoints = 48;
+  bool PreserveTopology = true;
   bool ComputeLevelError = false;
   bool CenterOnInput = true;
   int NumberOfLevelsProduced = 0;

@@ -165,6 +165,30 @@ bool CollapseCostModel::EvaluateChoice(
 }
 
 //------------------------------------------------------------------------------
+void CollapseCostModel::EvaluateVanish(const Id* members, int count, CollapseCandidate& c) const
+{
+  Quadric q;
+  double centroid[3] = { 0.0, 0.0, 0.0 };
+  for (int k = 0; k < count; ++k)
+  {
+    q += this->State.Quadrics[members[k]];
+    const double* p = this->State.Mesh.Point(members[k]);
+    for (int i = 0; i < 3; ++i)
+    {
+      centroid[i] += p[i] / count;
+    }
+  }
+  std::copy_n(members, count, c.Members);
+  c.MemberCount = count;
+  c.Choice = VanishChoice;
+  c.Swapped = false;
+  c.Area = 0.0;
+  q.MinimizeRegularized(centroid, c.Position);
+  c.Cost = q.Evaluate(c.Position);
+  c.Error = q.Weight() > 0.0 ? std::sqrt(c.Cost / q.Weight()) : 0.0;
+}
+
+//------------------------------------------------------------------------------
 bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, CostScratch& scratch) const
 {
   const double* p[3];

@@ -2,6 +2,7 @@
 #ifndef meshlod_CollapseCosts_h
 #define meshlod_CollapseCosts_h
 
+#include "CollapseMesh.h"
 #include "TriangleCollapse.h"
 #include "LocalSurfaceFit.h"
 #include "Quadric.h"
@@ -16,8 +17,10 @@ namespace meshlod
 class CollapseMesh;
 class LevelTracker;
 
-/// CollapseCandidate::Choice for a collapse of the whole triangle.
+/// CollapseCandidate::Choice for a collapse of the whole triangle ...
 constexpr int TriangleChoice = 3;
+/// ... and for the vanishing of the small closed piece it belongs to (see EvaluateVanish).
+constexpr int VanishChoice = 4;
 
 /// Curvature method: around a vertex where more triangles than this meet (a fan, a cone's tip,
 /// a UV sphere's pole) a fit reads every k-th of them only, k the least that keeps at most this
@@ -38,7 +41,8 @@ struct CollapseCandidate
   double Error = 0.0; // RMS distance of the collapse point to the original planes merged into it
   double Position[3] = { 0, 0, 0 };
   double Normal[3] = { 0, 0, 1 }; // unit normal of the collapsing triangle
-  Id Members[3] = { InvalidId, InvalidId, InvalidId }; // the merging vertices: 3, or 2 for an edge
+  // The merging vertices: 3, 2 for an edge, more for a vanishing piece.
+  Id Members[VanishingPieceVertices] = { InvalidId, InvalidId, InvalidId };
   int MemberCount = 0;
   int Choice = TriangleChoice; // edge k (0, 1, 2) of the evaluated triangle, or the triangle
   bool Swapped = false; // the members are the path left by an edge swap, not a triangle
@@ -140,6 +144,12 @@ public:
   /// Evaluate again the collapse an earlier Evaluate(t) chose (candidate.Choice), when nothing
   /// around t changed since: one solve instead of four.
   bool EvaluateChoice(Id t, int choice, CollapseCandidate& candidate, CostScratch& scratch) const;
+
+  /// The merge of a small closed piece's vertices (CollapseMesh::SmallClosedPiece) into one
+  /// point without triangles, by either method: at the minimiser of their merged quadric
+  /// (regularised about their centroid), at the cost of that quadric there (the error of
+  /// standing for the piece's original planes by one point).
+  void EvaluateVanish(const Id* members, int count, CollapseCandidate& candidate) const;
 
   /// Quadric method: evaluate the cheapest of the triangle's three edge collapses.
   bool EvaluateBestEdge(const Id* triangle, CollapseCandidate& candidate) const;

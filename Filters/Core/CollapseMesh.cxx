@@ -300,12 +300,129 @@ bool CollapseMesh::GatherStar(const Id* members, int count, Star& star) const
   {
     curve = curve || this->IsCurve(star.Members[m]);
   }
-  if (curve && count == 3)
+  if (curve && count >= 3)
   {
     return false; // only edge collapses touch such a curve
   }
+  if (count > 3) // a vanishing piece: all of its triangles die
+  {
+    return !star.Foreign && !star.Dying.empty() && star.Ring.empty();
+  }
   const std::size_t most = count == 3 ? 4 : 2;
   return !star.Foreign && !star.Dying.empty() && (curve || star.Dying.size() <= most);
+}
+
+//------------------------------------------------------------------------------
+void CollapseMesh::TrackPieces()
+{
+  // Union-find over the triangles' edges, then pieces numbered by their lowest vertex.
+  const Id nv = this->Mesh.GetNumberOfPoints();
+  const Id nt = this->Mesh.GetNumberOfTriangles();
+  std::vector<Id>& parent = this->PieceOf;
+  ResizeFresh(parent, nv);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](Id v) {
+    while (parent[v] != v)
+    {
+      v = parent[v] = parent[parent[v]];
+    }
+    return v;
+  };
+  for (Id t = 0; t < nt; ++t)
+  {
+    if (!this->IsAlive(t))
+    {
+      continue;
+    }
+    const Id* tri = this->Mesh.Triangle(t);
+    for (int k = 1; k < 3; ++k)
+    {
+      const Id a = root(tri[0]), b = root(tri[k]);
+      parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  Id pieces = 0;
+  std::vector<Id> label(nv);
+  for (Id v = 0; v < nv; ++v) // a root is the lowest vertex of its piece: labelled first
+  {
+    const Id r = root(v);
+    label[v] = r == v ? pieces++ : label[r];
+  }
+  parent.swap(label);
+  this->PieceTriangles.reset(new std::atomic<Id>[static_cast<std::size_t>(pieces)]);
+  std::vector<Id> triangles(static_cast<std::size_t>(pieces), 0);
+  for (Id t = 0; t < nt; ++t)
+  {
+    if (this->IsAlive(t))
+    {
+      ++triangles[parent[this->Mesh.Triangle(t)[0]]];
+    }
+  }
+  this->LargestPiece = InvalidId;
+  for (Id p = 0; p < pieces; ++p)
+  {
+    this->PieceTriangles[p].store(triangles[p], std::memory_order_relaxed);
+    if (this->LargestPiece == InvalidId || triangles[p] > triangles[this->LargestPiece])
+    {
+      this->LargestPiece = p;
+    }
+  }
+}
+
+bool CollapseMesh::SmallClosedPiece(
+  Id t, const std::uint32_t* owner, std::uint32_t block, Id* members, int& count) const
+{
+  const Id* tri = this->Mesh.Triangle(t);
+  if (this->PieceOf.empty())
+  {
+    return false;
+  }
+  const Id piece = this->PieceOf[tri[0]];
+  const Id triangles = this->PieceTriangles[piece].load(std::memory_order_relaxed);
+  if (triangles > VanishingPieceTriangles || piece == this->LargestPiece)
+  {
+    return false;
+  }
+  // Its vertices, from t's corners outwards; a closed surface of genus 0 has V = 2 + F / 2
+  // (Euler: V - E + F = 2 with E = 3 F / 2).
+  count = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    members[count++] = tri[k];
+  }
+  Id corners = 0; // the triangles' corners seen from their vertices: 3 F
+  bool valid = true;
+  for (int m = 0; m < count && valid; ++m)
+  {
+    const Id v = members[m];
+    if ((this->Flags[v] & (FlagLocked | FlagCurve | FlagBoundary)) != 0 ||
+      (owner != nullptr && owner[v] != block))
+    {
+      return false;
+    }
+    corners += this->TriangleCount(v);
+    this->ForEachTriangle(v, [&](Id s) {
+      const Id* st = this->Mesh.Triangle(s);
+      for (int k = 0; k < 3 && valid; ++k)
+      {
+        if (std::find(members, members + count, st[k]) != members + count)
+        {
+          continue;
+        }
+        valid = count < VanishingPieceVertices;
+        if (valid)
+        {
+          members[count++] = st[k];
+        }
+      }
+    });
+  }
+  if (!valid || corners != 3 * triangles || 2 * count != 4 + triangles)
+  {
+    return false;
+  }
+  std::sort(members, members + count);
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -708,6 +825,15 @@ Id CollapseMesh::Apply(const Star& star, const double x[3])
     this->TriangleCounts[v] = 0;
     this->ChainNext[this->ChainTail[survivor]] = v;
     this->ChainTail[survivor] = this->ChainTail[v];
+  }
+  if (!this->PieceOf.empty())
+  {
+    this->PieceTriangles[this->PieceOf[survivor]].fetch_sub(
+      static_cast<Id>(star.Dying.size()), std::memory_order_relaxed);
+  }
+  if (this->TriangleCounts[survivor] == 0)
+  {
+    this->Flags[survivor] |= FlagVanished; // a closed piece merged whole
   }
   return survivor;
 }

@@ -21,7 +21,9 @@
 #include "Quadric.h"
 #include "TriangleMesh.h"
 
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -39,7 +41,18 @@ enum VertexFlag : std::uint8_t
   // neighbour along the curve or with a neighbour inside one of the sheets, by edge collapses
   // only (CollapseMesh::IsLegal); the curve keeps its sheets.
   FlagCurve = 4,
+  // What is left of a closed piece that vanished (TriangleCollapseOptions::PreserveTopology
+  // off): a live vertex without triangles, kept in every later level as a point of no cell, so
+  // that MorphTargetId maps the piece's points somewhere.
+  FlagVanished = 8,
 };
+
+/// The largest connected piece that may vanish (TriangleCollapseOptions::PreserveTopology
+/// off): a closed surface of genus 0 with at most this many triangles (a tetrahedron, 4, is the
+/// smallest; the triangle-collapse schedules, which keep paper 000's valence rule, leave specks
+/// as octahedra, 8) and so at most VanishingPieceVertices vertices.
+constexpr int VanishingPieceTriangles = 12;
+constexpr int VanishingPieceVertices = 2 + VanishingPieceTriangles / 2;
 
 /// Geometric and topological rules a collapse must pass.
 struct CollapseRules
@@ -93,7 +106,7 @@ enum class Legality
 /// The triangles around a set of merging vertices (scratch storage reused between calls).
 struct Star
 {
-  Id Members[3] = { InvalidId, InvalidId, InvalidId };
+  Id Members[VanishingPieceVertices] = { InvalidId, InvalidId, InvalidId }; // > 3: a piece
   int MemberCount = 0;
   std::vector<Id> Dying;      // triangles with two or three members
   std::vector<Id> Ring;       // triangles with exactly one member
@@ -206,10 +219,27 @@ public:
   /// Number of distinct neighbours of v.
   int Valence(Id v, std::vector<Id>& scratch) const;
 
-  /// Collect dying and ring triangles for merging `members`; false when a member is locked or
-  /// the configuration is not a manifold edge/triangle neighbourhood, or (star.Foreign) when a
-  /// triangle of the star has a corner owned by another block.
+  /// Collect dying and ring triangles for merging `members` (2: an edge, 3: a triangle or a path
+  /// of two edges, more: the vertices of a SmallClosedPiece, whose triangles all die); false
+  /// when a member is locked or the configuration is not a manifold edge/triangle
+  /// neighbourhood, or (star.Foreign) when a triangle of the star has a corner owned by another
+  /// block.
   bool GatherStar(const Id* members, int count, Star& star) const;
+
+  /// Label the connected pieces and count their live triangles (Apply keeps the counts), for
+  /// SmallClosedPiece. 4 bytes per vertex.
+  void TrackPieces();
+
+  /// With TrackPieces: whether live triangle t belongs to a connected piece of at most
+  /// VanishingPieceTriangles triangles that is a closed surface of genus 0 (no vertex on a
+  /// boundary or a curve, or locked) and not the piece that had the most triangles at the
+  /// start (the first of them), which stays so that no level is empty; then `members` gets its
+  /// vertices, increasing, and `count` their number. Such a piece may vanish whole (TriangleCollapseOptions::PreserveTopology
+  /// off); the smallest, a tetrahedron, cannot lose a triangle otherwise. With `owner`, a
+  /// piece reaching a vertex whose owner is not `block` is refused (another block may change
+  /// it). O(1) for a triangle of a larger piece.
+  bool SmallClosedPiece(
+    Id t, const std::uint32_t* owner, std::uint32_t block, Id* members, int& count) const;
 
   /// Whether merging the star's members at x keeps a manifold mesh of the same topology with no
   /// flipped triangle (see CollapseRules); with a FlagCurve member, whether it keeps the same
@@ -239,6 +269,10 @@ private:
   void ResetChains();
 
   VertexTriangleAdjacency Rows; // as of the last rebuild
+  std::vector<Id> PieceOf;      // per vertex, its connected piece (TrackPieces), or empty
+  // Per piece, its live triangles; collapses in parallel blocks may share a piece.
+  std::unique_ptr<std::atomic<Id>[]> PieceTriangles;
+  Id LargestPiece = InvalidId; // never vanishes
   std::vector<Id> TriangleCounts; // per vertex, live triangles around it
   std::vector<Id> ChainNext;
   std::vector<Id> ChainTail;

@@ -67,6 +67,10 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   // per unit length at every input resolution (see TriangleCollapseOptions::BoundaryWeight).
   this->State.Initialize(std::move(mesh), std::move(topology), options.BoundaryWeight,
     diagonal > 0.0 ? diagonal : 1.0);
+  if (!options.PreserveTopology)
+  {
+    this->State.TrackPieces();
+  }
   this->Rules.MinimumNormalCosine =
     std::cos(std::min(180.0, std::max(0.0, options.MaximumNormalDeviation)) * M_PI / 180.0);
   this->Rules.ForbidValenceThreeForEdges = options.Schedule == CollapseSchedule::IndependentSets;
@@ -82,7 +86,11 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
 double Collapser::EvaluateCost(Id t, CostScratch& scratch)
 {
   CollapseCandidate c;
-  if (!this->State.IsAlive(t) || !this->Model.Evaluate(t, c, scratch))
+  if (!this->State.IsAlive(t))
+  {
+    return InfiniteCost;
+  }
+  if (!this->Vanishes(t, scratch.Owner, scratch.Block, c) && !this->Model.Evaluate(t, c, scratch))
   {
     return InfiniteCost;
   }
@@ -145,7 +153,20 @@ void Collapser::EvaluateAll()
 Legality Collapser::CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const
 {
   c.MemberCount = 0;
-  if (!this->State.IsAlive(t) || !this->Model.EvaluateChoice(t, this->Choices[t], c, scratch))
+  if (!this->State.IsAlive(t))
+  {
+    return Legality::Illegal;
+  }
+  if (this->Vanishes(t, star.Owner, star.Block, c))
+  {
+    // Its vanishing changes nothing around it, so it is legal where its star is gathered.
+    if (!this->State.GatherStar(c.Members, c.MemberCount, star))
+    {
+      return star.Foreign ? Legality::Foreign : Legality::Illegal;
+    }
+    return Legality::Legal;
+  }
+  if (!this->Model.EvaluateChoice(t, this->Choices[t], c, scratch))
   {
     return Legality::Illegal;
   }
@@ -314,13 +335,20 @@ void Collapser::PrefetchRing(const Star& star) const
 int Collapser::Collapse(const Star& star, CollapseCandidate& c, std::int64_t sequence)
 {
   this->PrefetchRing(star);
-  const double* points[3];
-  for (int m = 0; m < star.MemberCount; ++m)
+  double weights[VanishingPieceVertices];
+  if (star.MemberCount > 3)
   {
-    points[m] = this->State.Mesh.Point(star.Members[m]);
+    std::fill_n(weights, star.MemberCount, 1.0 / star.MemberCount); // a vanishing piece
   }
-  double weights[3];
-  CollapseWeights(points, star.MemberCount, c.Position, weights);
+  else
+  {
+    const double* points[3];
+    for (int m = 0; m < star.MemberCount; ++m)
+    {
+      points[m] = this->State.Mesh.Point(star.Members[m]);
+    }
+    CollapseWeights(points, star.MemberCount, c.Position, weights);
+  }
   this->Tracker.Merge(star.Members, weights, star.MemberCount, sequence);
   this->State.Apply(star, c.Position);
   c.Dying = static_cast<int>(star.Dying.size());

@@ -255,6 +255,22 @@ private:
     }
   }
 
+  // Whether live triangle t belongs to a small closed piece that may vanish (PreserveTopology
+  // off; see CollapseMesh::SmallClosedPiece): then c is that vanishing, whose cost and check
+  // stand for the triangle's. With `owner`, only a piece whose vertices `block` owns.
+  bool Vanishes(Id t, const std::uint32_t* owner, std::uint32_t block, CollapseCandidate& c) const
+  {
+    Id members[VanishingPieceVertices];
+    int count = 0;
+    if (this->Options.PreserveTopology ||
+      !this->State.SmallClosedPiece(t, owner, block, members, count))
+    {
+      return false;
+    }
+    this->Model.EvaluateVanish(members, count, c);
+    return true;
+  }
+
   // Evaluate every live triangle (in parallel); for the curvature method, normalise kappa by
   // the largest curvature found.
   void EvaluateAll();

@@ -163,7 +163,19 @@ TriangleCollapseResult Collapser::RunIndependentSets()
         }
         const Id* tri = this->State.Mesh.Triangle(t);
         neighbourhood.clear();
+        // A vanishing piece may reach beyond the triangles around t's corners: all of it.
+        Id piece[VanishingPieceVertices];
+        int pieceCount = 0;
+        if (this->Choices[t] == VanishChoice &&
+          this->State.SmallClosedPiece(t, nullptr, 0, piece, pieceCount))
+        {
+          neighbourhood.insert(neighbourhood.end(), piece, piece + pieceCount);
+        }
         bool blocked = false;
+        for (int m = 0; m < pieceCount; ++m)
+        {
+          blocked = blocked || owner[piece[m]];
+        }
         for (int k = 0; k < 3 && !blocked; ++k)
         {
           this->State.ForEachTriangle(tri[k], [&](Id n) {
@@ -188,7 +200,7 @@ TriangleCollapseResult Collapser::RunIndependentSets()
             owned.push_back(v);
           }
         }
-        estimate += this->Choices[t] == TriangleChoice ? 4 : 2; // at most
+        estimate += this->Choices[t] >= TriangleChoice ? 4 : 2; // at most
       }
       first = last;
     }

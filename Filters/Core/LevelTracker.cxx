@@ -83,13 +83,15 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   const Id nv = mesh.GetNumberOfPoints();
   const Id nt = mesh.GetNumberOfTriangles();
 
-  // Live vertices (a live vertex has live triangles) and triangles, numbered in increasing id
-  // order. Only the last level's vertices are looked at (nothing comes alive again), and the
-  // listed triangles: at the coarse levels a small part of the mesh.
+  // Live vertices (a live vertex has live triangles, or is what is left of a vanished piece)
+  // and triangles, numbered in increasing id order. Only the last level's vertices are looked
+  // at (nothing comes alive again), and the listed triangles: at the coarse levels a small part
+  // of the mesh.
   const std::vector<Id>& candidates = this->PreviousVertices;
   const auto liveVertex = [&](Id i) {
     const Id v = candidates[i];
-    return state.Survivor[v] == v && state.TriangleCount(v) > 0;
+    return state.Survivor[v] == v &&
+      (state.TriangleCount(v) > 0 || (state.Flags[v] & FlagVanished) != 0);
   };
   const ParallelCompaction liveVertices(static_cast<Id>(candidates.size()), liveVertex);
   const Id count = liveVertices.Count();

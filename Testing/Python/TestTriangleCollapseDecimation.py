@@ -23,11 +23,13 @@ def check(condition, what):
         print("CHECK failed:", what)
 
 
-def three_blobs(resolution):
-    """A closed genus-0 isosurface: the union of three overlapping spheres."""
+def three_blobs(resolution, speck=False):
+    """A closed genus-0 isosurface: the union of three overlapping spheres (and, with `speck`,
+    a small separate one)."""
     union = vtkImplicitBoolean()
     union.SetOperationTypeToUnion()
-    for center, radius in (((-0.45, 0, 0), 0.4), ((0.1, 0.15, 0), 0.35), ((0.5, -0.1, 0.1), 0.3)):
+    spheres = [((-0.45, 0, 0), 0.4), ((0.1, 0.15, 0), 0.35), ((0.5, -0.1, 0.1), 0.3)]
+    for center, radius in spheres + ([((0.0, 0.7, 0.6), 0.06)] if speck else []):
         sphere = vtkSphere()
         sphere.SetCenter(*center)
         sphere.SetRadius(radius)
@@ -182,6 +184,25 @@ check(paper.GetPlacementAsString() == "Regularized", "Placement default")
 paper.SetPlacementToPaperCandidates()
 check(paper.GetPlacement() == paper.PAPER_CANDIDATES, "Placement setter")
 test_hierarchy(contour, paper)
+
+def unused_points(poly):
+    return poly.GetNumberOfPoints() - len(set(triangles_of(poly)))
+
+
+# PreserveTopology: by default the speck stays to the coarsest level; off, it vanishes into one
+# point of no cell, which its points' MorphTargetId chains end at.
+with_speck = three_blobs(48, speck=True)
+for preserve in (True, False):
+    pieces = meshlod.vtkTriangleCollapseDecimation()
+    pieces.SetInputConnection(with_speck.GetOutputPort())
+    check(pieces.GetPreserveTopology(), "PreserveTopology default")
+    pieces.SetPreserveTopology(preserve)
+    pieces.Update()
+    levels = pieces.GetHierarchy()
+    coarsest = levels.GetBlock(levels.GetNumberOfBlocks() - 1)
+    check(unused_points(coarsest) == (0 if preserve else 1),
+          "PreserveTopology %s: %d points of no cell" % (preserve, unused_points(coarsest)))
+
 if failures:
     print(len(failures), "check(s) failed")
     sys.exit(1)
