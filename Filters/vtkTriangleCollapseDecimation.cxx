@@ -312,14 +312,24 @@ int vtkTriangleCollapseDecimation::RequestData(
     {
       levels << "The coarsest level";
     }
+    std::ostringstream why;
+    if (result.ErrorLimited)
+    {
+      why << "MaximumError reached";
+    }
+    else
+    {
+      why << "no legal collapse left";
+      if (this->PreserveTopology && result.FinalPieces > 1)
+      {
+        why << "; each of its " << result.FinalPieces
+            << " connected pieces keeps at least a tetrahedron, or a triangle if open, while "
+               "PreserveTopology is on";
+      }
+    }
     vtkWarningMacro(<< levels.str() << " has " << result.FinalTriangles
                     << " triangles, short of its target of " << coarsestTarget << " ("
-                    << (result.ErrorLimited ? "MaximumError reached"
-                         : this->PreserveTopology
-                         ? "no legal collapse left; every connected piece keeps at least 4 "
-                           "triangles while PreserveTopology is on"
-                         : "no legal collapse left")
-                    << ").");
+                    << why.str() << ").");
   }
   if (jumpLevel > 0)
   {

@@ -19,7 +19,7 @@ class LevelTracker;
 
 /// CollapseCandidate::Choice for a collapse of the whole triangle ...
 constexpr int TriangleChoice = 3;
-/// ... and for the vanishing of the small closed piece it belongs to (see EvaluateVanish).
+/// ... and for the vanishing of the small piece it belongs to (see EvaluateVanish).
 constexpr int VanishChoice = 4;
 
 /// Curvature method: around a vertex where more triangles than this meet (a fan, a cone's tip,
@@ -145,7 +145,7 @@ public:
   /// around t changed since: one solve instead of four.
   bool EvaluateChoice(Id t, int choice, CollapseCandidate& candidate, CostScratch& scratch) const;
 
-  /// The merge of a small closed piece's vertices (CollapseMesh::SmallClosedPiece) into one
+  /// The merge of a small piece's vertices (CollapseMesh::SmallPiece) into one
   /// point without triangles, by either method: at the minimiser of their merged quadric
   /// (regularised about their centroid), at the cost of that quadric there (the error of
   /// standing for the piece's original planes by one point).

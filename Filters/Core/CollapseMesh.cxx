@@ -350,6 +350,7 @@ void CollapseMesh::TrackPieces()
   }
   parent.swap(label);
   this->PieceTriangles.reset(new std::atomic<Id>[static_cast<std::size_t>(pieces)]);
+  this->Pieces = pieces;
   std::vector<Id> triangles(static_cast<std::size_t>(pieces), 0);
   for (Id t = 0; t < nt; ++t)
   {
@@ -369,60 +370,101 @@ void CollapseMesh::TrackPieces()
   }
 }
 
-bool CollapseMesh::SmallClosedPiece(
+Id CollapseMesh::CountLivePieces() const
+{
+  Id live = 0;
+  for (Id p = 0; p < this->Pieces; ++p)
+  {
+    live += this->PieceTriangles[p].load(std::memory_order_relaxed) > 0 ? 1 : 0;
+  }
+  return live;
+}
+
+PieceKind CollapseMesh::SmallPiece(
   Id t, const std::uint32_t* owner, std::uint32_t block, Id* members, int& count) const
 {
   const Id* tri = this->Mesh.Triangle(t);
   if (this->PieceOf.empty())
   {
-    return false;
+    return PieceKind::Other;
   }
   const Id piece = this->PieceOf[tri[0]];
   const Id triangles = this->PieceTriangles[piece].load(std::memory_order_relaxed);
   if (triangles > VanishingPieceTriangles || piece == this->LargestPiece)
   {
-    return false;
+    return PieceKind::Other;
   }
-  // Its vertices, from t's corners outwards; a closed surface of genus 0 has V = 2 + F / 2
-  // (Euler: V - E + F = 2 with E = 3 F / 2).
+  // Its vertices and triangles, from t's corners outwards (another block's vertex stops the
+  // walk before anything of it is read: that block may be changing it).
   count = 0;
   for (int k = 0; k < 3; ++k)
   {
     members[count++] = tri[k];
   }
-  Id corners = 0; // the triangles' corners seen from their vertices: 3 F
-  bool valid = true;
-  for (int m = 0; m < count && valid; ++m)
+  Id faces[VanishingPieceTriangles];
+  int faceCount = 0;
+  bool small = true;
+  for (int m = 0; m < count && small; ++m)
   {
     const Id v = members[m];
-    if ((this->Flags[v] & (FlagLocked | FlagCurve | FlagBoundary)) != 0 ||
-      (owner != nullptr && owner[v] != block))
+    if (owner != nullptr && owner[v] != block)
     {
-      return false;
+      return PieceKind::Foreign;
     }
-    corners += this->TriangleCount(v);
+    if ((this->Flags[v] & (FlagLocked | FlagCurve)) != 0)
+    {
+      return PieceKind::Other;
+    }
     this->ForEachTriangle(v, [&](Id s) {
-      const Id* st = this->Mesh.Triangle(s);
-      for (int k = 0; k < 3 && valid; ++k)
+      if (!small || std::find(faces, faces + faceCount, s) != faces + faceCount)
       {
-        if (std::find(members, members + count, st[k]) != members + count)
+        return;
+      }
+      small = faceCount < VanishingPieceTriangles;
+      if (small)
+      {
+        faces[faceCount++] = s;
+      }
+      const Id* st = this->Mesh.Triangle(s);
+      for (int k = 0; k < 3 && small; ++k)
+      {
+        if (std::find(members, members + count, st[k]) == members + count)
         {
-          continue;
-        }
-        valid = count < VanishingPieceVertices;
-        if (valid)
-        {
-          members[count++] = st[k];
+          small = count < VanishingPieceVertices;
+          if (small)
+          {
+            members[count++] = st[k];
+          }
         }
       }
     });
   }
-  if (!valid || corners != 3 * triangles || 2 * count != 4 + triangles)
+  if (!small || faceCount != triangles)
   {
-    return false;
+    return PieceKind::Other;
+  }
+  // Genus 0: a closed surface (Euler characteristic V - E + F = 2, no boundary edge) or a disk
+  // (1, with boundary edges: one boundary loop).
+  std::pair<Id, Id> edges[3 * VanishingPieceTriangles];
+  int edgeCount = 0;
+  for (int f = 0; f < faceCount; ++f)
+  {
+    const Id* ft = this->Mesh.Triangle(faces[f]);
+    for (int k = 0; k < 3; ++k)
+    {
+      edges[edgeCount++] = std::minmax(ft[k], ft[(k + 1) % 3]);
+    }
+  }
+  std::sort(edges, edges + edgeCount);
+  const int distinct = static_cast<int>(std::unique(edges, edges + edgeCount) - edges);
+  const int euler = count - distinct + faceCount;
+  const int boundaryEdges = 2 * distinct - 3 * faceCount;
+  if (!((euler == 2 && boundaryEdges == 0) || (euler == 1 && boundaryEdges > 0)))
+  {
+    return PieceKind::Other;
   }
   std::sort(members, members + count);
-  return true;
+  return PieceKind::Vanishing;
 }
 
 //------------------------------------------------------------------------------

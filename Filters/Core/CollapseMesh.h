@@ -41,18 +41,27 @@ enum VertexFlag : std::uint8_t
   // neighbour along the curve or with a neighbour inside one of the sheets, by edge collapses
   // only (CollapseMesh::IsLegal); the curve keeps its sheets.
   FlagCurve = 4,
-  // What is left of a closed piece that vanished (TriangleCollapseOptions::PreserveTopology
+  // What is left of a small piece that vanished (TriangleCollapseOptions::PreserveTopology
   // off): a live vertex without triangles, kept in every later level as a point of no cell, so
   // that MorphTargetId maps the piece's points somewhere.
   FlagVanished = 8,
 };
 
 /// The largest connected piece that may vanish (TriangleCollapseOptions::PreserveTopology
-/// off): a closed surface of genus 0 with at most this many triangles (a tetrahedron, 4, is the
-/// smallest; the triangle-collapse schedules, which keep paper 000's valence rule, leave specks
-/// as octahedra, 8) and so at most VanishingPieceVertices vertices.
+/// off): a closed surface of genus 0 or a disk with at most this many triangles (a closed piece
+/// cannot shrink below a tetrahedron, 4, and the triangle-collapse schedules, which keep paper
+/// 000's valence rule, leave specks as octahedra, 8; a disk cannot shrink below one triangle)
+/// and at most VanishingPieceVertices vertices (a closed one of 12 triangles has 8).
 constexpr int VanishingPieceTriangles = 12;
-constexpr int VanishingPieceVertices = 2 + VanishingPieceTriangles / 2;
+constexpr int VanishingPieceVertices = 8;
+
+/// What CollapseMesh::SmallPiece finds.
+enum class PieceKind
+{
+  Other,    // a larger piece, or one that may not vanish
+  Vanishing, // a piece that may vanish
+  Foreign,  // it reaches a vertex another block owns: not known
+};
 
 /// Geometric and topological rules a collapse must pass.
 struct CollapseRules
@@ -220,25 +229,30 @@ public:
   int Valence(Id v, std::vector<Id>& scratch) const;
 
   /// Collect dying and ring triangles for merging `members` (2: an edge, 3: a triangle or a path
-  /// of two edges, more: the vertices of a SmallClosedPiece, whose triangles all die); false
+  /// of two edges, more: the vertices of a SmallPiece, whose triangles all die); false
   /// when a member is locked or the configuration is not a manifold edge/triangle
   /// neighbourhood, or (star.Foreign) when a triangle of the star has a corner owned by another
   /// block.
   bool GatherStar(const Id* members, int count, Star& star) const;
 
   /// Label the connected pieces and count their live triangles (Apply keeps the counts), for
-  /// SmallClosedPiece. 4 bytes per vertex.
+  /// SmallPiece. 4 bytes per vertex (8 while labelling), and 4 per piece.
   void TrackPieces();
 
   /// With TrackPieces: whether live triangle t belongs to a connected piece of at most
-  /// VanishingPieceTriangles triangles that is a closed surface of genus 0 (no vertex on a
-  /// boundary or a curve, or locked) and not the piece that had the most triangles at the
-  /// start (the first of them), which stays so that no level is empty; then `members` gets its
-  /// vertices, increasing, and `count` their number. Such a piece may vanish whole (TriangleCollapseOptions::PreserveTopology
-  /// off); the smallest, a tetrahedron, cannot lose a triangle otherwise. With `owner`, a
-  /// piece reaching a vertex whose owner is not `block` is refused (another block may change
-  /// it). O(1) for a triangle of a larger piece.
-  bool SmallClosedPiece(
+  /// VanishingPieceTriangles triangles and VanishingPieceVertices vertices that is a closed
+  /// surface of genus 0 or a disk (no vertex locked or on a curve), and not the piece that had
+  /// the most triangles at the start (the first of them), which stays so that no level is
+  /// empty: then (Vanishing) `members` gets its vertices, increasing, and `count` their number.
+  /// Such a piece may vanish whole (TriangleCollapseOptions::PreserveTopology off); the
+  /// smallest, a tetrahedron or a lone triangle, cannot lose a triangle otherwise. With
+  /// `owner`, a piece reaching a vertex whose owner is not `block` is Foreign (another block
+  /// may be changing it). O(1) for a triangle of a larger piece.
+  /// With TrackPieces: the number of pieces that have live triangles.
+  Id CountLivePieces() const;
+  bool TracksPieces() const { return !this->PieceOf.empty(); }
+
+  PieceKind SmallPiece(
     Id t, const std::uint32_t* owner, std::uint32_t block, Id* members, int& count) const;
 
   /// Whether merging the star's members at x keeps a manifold mesh of the same topology with no
@@ -273,6 +287,7 @@ private:
   // Per piece, its live triangles; collapses in parallel blocks may share a piece.
   std::unique_ptr<std::atomic<Id>[]> PieceTriangles;
   Id LargestPiece = InvalidId; // never vanishes
+  Id Pieces = 0;
   std::vector<Id> TriangleCounts; // per vertex, live triangles around it
   std::vector<Id> ChainNext;
   std::vector<Id> ChainTail;

@@ -90,7 +90,10 @@ double Collapser::EvaluateCost(Id t, CostScratch& scratch)
   {
     return InfiniteCost;
   }
-  if (!this->Vanishes(t, scratch.Owner, scratch.Block, c) && !this->Model.Evaluate(t, c, scratch))
+  // (A piece reaching another block is costed as an ordinary triangle here; a check without
+  // blocks may still find it vanishing.)
+  if (this->Vanishes(t, scratch.Owner, scratch.Block, c) != PieceKind::Vanishing &&
+    !this->Model.Evaluate(t, c, scratch))
   {
     return InfiniteCost;
   }
@@ -157,16 +160,23 @@ Legality Collapser::CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScra
   {
     return Legality::Illegal;
   }
-  if (this->Vanishes(t, star.Owner, star.Block, c))
+  switch (this->Vanishes(t, star.Owner, star.Block, c))
   {
-    // Its vanishing changes nothing around it, so it is legal where its star is gathered.
-    if (!this->State.GatherStar(c.Members, c.MemberCount, star))
-    {
-      return star.Foreign ? Legality::Foreign : Legality::Illegal;
-    }
-    return Legality::Legal;
+    case PieceKind::Vanishing:
+      // Its vanishing changes nothing around it, so it is legal where its star is gathered.
+      if (!this->State.GatherStar(c.Members, c.MemberCount, star))
+      {
+        return star.Foreign ? Legality::Foreign : Legality::Illegal;
+      }
+      return Legality::Legal;
+    case PieceKind::Foreign:
+      return Legality::Foreign;
+    case PieceKind::Other:
+      break;
   }
-  if (!this->Model.EvaluateChoice(t, this->Choices[t], c, scratch))
+  // (Never read a vanishing's choice as an edge; pieces only shrink, so it does not happen.)
+  if (this->Choices[t] == VanishChoice ||
+    !this->Model.EvaluateChoice(t, this->Choices[t], c, scratch))
   {
     return Legality::Illegal;
   }
@@ -451,6 +461,14 @@ TriangleCollapseResult Collapser::FinishRun()
   }
   this->Result.FinalTriangles = this->State.AliveTriangles;
   this->Result.ErrorLimited = this->ErrorRefused.load();
+  if (!this->Finished() && !this->Result.Aborted) // short of the last target: say why
+  {
+    if (!this->State.TracksPieces())
+    {
+      this->State.TrackPieces();
+    }
+    this->Result.FinalPieces = this->State.CountLivePieces();
+  }
   return this->Result;
 }
 

@@ -204,8 +204,8 @@ private:
   StepsEnd GreedySteps(std::int64_t until);
 
   // Partitioned greedy: one round of greedy collapses inside the cells of a grid, in
-  // parallel, removing at most `budget` triangles (and 3 more per cell); returns how many it
-  // removed.
+  // parallel, removing at most `budget` triangles (and 3 more per cell, or up to 11 for a
+  // vanishing piece); returns how many it removed.
   std::int64_t BlockRound(std::int64_t budget, int round, bool& errorLimited);
   // The cost below which about `count` of the live, unparked triangles are (sampled);
   // -infinity when none has a finite cost.
@@ -255,20 +255,23 @@ private:
     }
   }
 
-  // Whether live triangle t belongs to a small closed piece that may vanish (PreserveTopology
-  // off; see CollapseMesh::SmallClosedPiece): then c is that vanishing, whose cost and check
-  // stand for the triangle's. With `owner`, only a piece whose vertices `block` owns.
-  bool Vanishes(Id t, const std::uint32_t* owner, std::uint32_t block, CollapseCandidate& c) const
+  // Whether live triangle t belongs to a small piece that may vanish (PreserveTopology off; see
+  // CollapseMesh::SmallPiece): on Vanishing c is that vanishing, whose cost and check stand for
+  // the triangle's. With `owner`, a piece reaching beyond `block` is Foreign.
+  PieceKind Vanishes(Id t, const std::uint32_t* owner, std::uint32_t block, CollapseCandidate& c) const
   {
+    if (this->Options.PreserveTopology)
+    {
+      return PieceKind::Other;
+    }
     Id members[VanishingPieceVertices];
     int count = 0;
-    if (this->Options.PreserveTopology ||
-      !this->State.SmallClosedPiece(t, owner, block, members, count))
+    const PieceKind kind = this->State.SmallPiece(t, owner, block, members, count);
+    if (kind == PieceKind::Vanishing)
     {
-      return false;
+      this->Model.EvaluateVanish(members, count, c);
     }
-    this->Model.EvaluateVanish(members, count, c);
-    return true;
+    return kind;
   }
 
   // Evaluate every live triangle (in parallel); for the curvature method, normalise kappa by

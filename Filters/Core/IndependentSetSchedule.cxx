@@ -167,9 +167,13 @@ TriangleCollapseResult Collapser::RunIndependentSets()
         Id piece[VanishingPieceVertices];
         int pieceCount = 0;
         if (this->Choices[t] == VanishChoice &&
-          this->State.SmallClosedPiece(t, nullptr, 0, piece, pieceCount))
+          this->State.SmallPiece(t, nullptr, 0, piece, pieceCount) == PieceKind::Vanishing)
         {
           neighbourhood.insert(neighbourhood.end(), piece, piece + pieceCount);
+        }
+        else
+        {
+          pieceCount = 0;
         }
         bool blocked = false;
         for (int m = 0; m < pieceCount; ++m)

@@ -396,7 +396,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
   // 3. Every cell's greedy loop, in parallel. A cell may remove its share of the budget (in
   // proportion to its candidates), and up to 3 triangles more with its last collapse (in the
   // serial round, which lands on a level, 1 unless no edge of that last triangle may collapse:
-  // LandOnTarget).
+  // LandOnTarget), or up to VanishingPieceTriangles - 1 more when that is a piece vanishing.
   ResizeFresh(this->HeapPositions, this->State.Mesh.GetNumberOfTriangles(), InvalidId);
   const Id cellsBusy = static_cast<Id>(busy.size());
   std::vector<CellOutcome> outcomes(cellsBusy);

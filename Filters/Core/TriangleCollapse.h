@@ -93,11 +93,11 @@ struct TriangleCollapseOptions
   double BoundaryWeight = 0.3;
   /// Largest angle (degrees) a triangle's normal may turn in one collapse (see CollapseMesh).
   double MaximumNormalDeviation = 90.0;
-  /// Off: a small closed piece of genus 0 (CollapseMesh::SmallClosedPiece; a tetrahedron, the
-  /// smallest closed manifold, cannot lose a triangle otherwise) may vanish when its cost comes
-  /// up: its vertices merge into one point that keeps no triangle (CollapseMesh::FlagVanished).
-  /// The isosurface of a noisy volume has hundreds of specks that otherwise stay to the
-  /// coarsest level. Genus is kept either way.
+  /// Off: a small piece, closed of genus 0 or a disk (CollapseMesh::SmallPiece; a tetrahedron
+  /// or a lone triangle cannot lose a triangle otherwise), may vanish when its cost comes up:
+  /// its vertices merge into one point that keeps no triangle (CollapseMesh::FlagVanished). The
+  /// isosurface of a noisy volume has hundreds of specks that otherwise stay to the coarsest
+  /// level, and a scan may have debris. Genus is kept either way.
   bool PreserveTopology = true;
   /// Curvature method: at most this many ancestral points per triangle fit (a strided subset).
   int MaximumFitPoints = 48;
@@ -130,6 +130,7 @@ struct TriangleCollapseResult
   std::int64_t Passes = 0;
   std::int64_t Swaps = 0; // collapses that followed an edge swap (paper 000, figure 3)
   bool ErrorLimited = false; // MaximumError refused at least one collapse
+  std::int64_t FinalPieces = 0; // connected pieces of the coarsest level, when short of its target
 };
 
 /// Run on a validated mesh (see MeshLODInputMesh.h) with its topology; both are taken over
