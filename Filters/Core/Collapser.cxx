@@ -182,7 +182,7 @@ Legality Collapser::CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScra
   }
   const Legality legality = this->Legal(star, c);
   if (legality == Legality::Legal || legality == Legality::Foreign || c.MemberCount != 3 ||
-    this->Options.Method != CollapseMethod::Quadric ||
+    (this->Options.Method != CollapseMethod::Quadric && !this->EdgesForRefusedTriangles) ||
     this->Options.Operator != CollapseOperator::TrianglesAndEdges)
   {
     return legality;

@@ -301,20 +301,40 @@ private:
 
   // A run that finds nothing legal before its last target relaxes the star-shape test once
   // (CollapseRules::LetWrongSideStay) and gives every refused triangle to release(t) again;
-  // false when it was relaxed already, or there is nothing to relax (the test is off, or it
-  // judges sides only: CollapseRules::StarShapedBySide): the run is stuck.
+  // when that is done or there is nothing to relax (the test is off, or it judges sides only:
+  // CollapseRules::StarShapedBySide), the curvature method with TrianglesAndEdges lets a
+  // refused triangle take its cheapest legal edge instead (as the quadric method always does:
+  // on a rough surface triangle collapses run out long before edge collapses do), once. False
+  // when nothing is left to relax: the run is stuck.
   template <typename F>
   bool RelaxForStall(F&& release)
   {
-    if (this->Rules.LetWrongSideStay || !this->Rules.RequireStarShaped ||
-      this->Rules.StarShapedBySide || this->Finished())
+    if (this->Finished())
     {
       return false;
     }
-    this->Rules.LetWrongSideStay = true;
+    if (!this->Rules.LetWrongSideStay && this->Rules.RequireStarShaped &&
+      !this->Rules.StarShapedBySide)
+    {
+      this->Rules.LetWrongSideStay = true;
+    }
+    else if (!this->EdgesForRefusedTriangles &&
+      this->Options.Method == CollapseMethod::Curvature &&
+      this->Options.Operator == CollapseOperator::TrianglesAndEdges)
+    {
+      this->EdgesForRefusedTriangles = true;
+    }
+    else
+    {
+      return false;
+    }
     this->Lot.ReleaseAll(this->State, release);
     return true;
   }
+  // Whether a refused triangle collapse may fall back to the triangle's cheapest legal edge:
+  // always for the quadric method with TrianglesAndEdges, for the curvature method once a run
+  // has stalled (RelaxForStall).
+  bool EdgesForRefusedTriangles = false;
 
   // Emit levels whose target is reached; returns false on abort.
   bool AfterProgress();
