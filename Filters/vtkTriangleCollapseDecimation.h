@@ -79,11 +79,12 @@
  *   nothing about it). On other meshes a run that finds no legal collapse left before its
  *   last target relaxes this test once: a ring triangle already on the wrong side may stay
  *   there (on noisy or rough input the strict test stops the curvature method far short of
- *   its target; runs that reach their targets under it are unchanged). If that run stalls
- *   again, the curvature method with TRIANGLES_AND_EDGES then lets a refused triangle collapse
- *   its cheapest legal edge instead, as the quadric method always does (on the isosurface of a
- *   noisy volume, 25,344 triangles with PreserveTopology off, it had stopped at 542 triangles
- *   asked for 253; now 252, at 2.1 times vtkQuadricDecimation's Hausdorff distance);
+ *   its target; runs that reach their targets under it are unchanged). When a run stalls with
+ *   this test relaxed (or with nothing to relax), the curvature method with FIT_DEVIATION and
+ *   TRIANGLES_AND_EDGES lets a refused triangle collapse its cheapest legal edge instead, as
+ *   the quadric method always does (on the isosurface of a noisy volume, 25,344 triangles with
+ *   PreserveTopology off, it had stopped at 542 triangles asked for 253; now 252, at 2.1 times
+ *   vtkQuadricDecimation's Hausdorff distance);
  * - no triangle's normal turns by more than MaximumNormalDeviation, unless it ends within that
  *   angle of the input surface's facing (collapses that smooth a noisy scan turn its triangles
  *   towards the surface);
@@ -482,24 +483,26 @@ public:
    * Whether every connected piece of the input stays to the coarsest level. Default on: each
    * closed piece keeps at least a tetrahedron (four triangles; no collapse that keeps a closed
    * manifold makes it smaller), each open one at least a triangle, and every level has the
-   * input's Euler characteristic. Off: a piece of genus 0, closed or a disk, with at most 12
-   * triangles and 8 points left (a tetrahedron, the octahedron the triangle-collapse schedules
-   * stop at under paper 000's valence rule, a few triangles of debris) vanishes when its cost
-   * comes up in the order of the collapses: its points merge into one at the minimiser of
-   * their merged quadric (boundary planes included), at that quadric's cost. That point stays
-   * in this and every later level as a point of no cell, so that MorphTargetId still maps the
-   * piece's points (a geomorph shrinks the piece to it); its point data are the mean of
+   * input's Euler characteristic. Off: a closed piece of genus 0 with at most 12 triangles left
+   * (a tetrahedron, or the octahedron the triangle-collapse schedules stop at under paper 000's
+   * valence rule) vanishes when its cost comes up in the order of the collapses: its points
+   * merge into one at the minimiser of their merged quadric, at that quadric's cost. That point
+   * stays in this and every later level as a point of no cell, so that MorphTargetId still maps
+   * the piece's points (a geomorph shrinks the piece to it); its point data are the mean of
    * theirs, and its error (the RMS distance to the piece's planes) counts in EstimatedError.
-   * The input's largest piece never vanishes, so no level is empty. Genus is kept either way,
-   * and so is every piece with a handle. Where a vanishing removes more triangles than are
-   * left to a level's count, the level lands below it by fewer than the piece had (specks are
-   * cheap, so they mostly vanish long before the coarse levels). With CurvatureCost WEIGHT,
-   * whose weights are not distances, a vanishing still ranks by its quadric error among them.
-   * For the isosurface of a noisy volume, as of a scan, whose specks around single noisy
-   * samples otherwise fill the coarse levels: on one of 103,940 triangles with 328 specks,
-   * asked for 1%, 1,038 triangles at 1.4 times vtkQuadricDecimation's Hausdorff distance
-   * instead of 2,072 at 3.5 times (Benchmarks/RESULTS.md, "Beyond isosurfaces"). Costs 4 bytes
-   * per input point (8 while the pieces are labelled).
+   * Open pieces stay (besides debris, they may be the faces of a flat-shaded model that its
+   * normals keep apart), and so does the input's largest piece, so that no level is empty.
+   * Genus is kept either way, and so is every piece with a handle. Where a vanishing removes
+   * more triangles than are left to a level's count, the level lands below it by fewer than
+   * the piece had (specks are cheap, so they mostly vanish long before the coarse levels). With
+   * CurvatureCost WEIGHT, whose weights are not distances, a vanishing still ranks by its
+   * quadric error among them. For the isosurface of a noisy volume, as of a scan, whose specks
+   * around single noisy samples otherwise fill the coarse levels: on one of 103,940 triangles
+   * with 328 specks, asked for 1%, 1,038 triangles at 1.4 times vtkQuadricDecimation's
+   * Hausdorff distance instead of 2,072 at 3.5 times (Benchmarks/RESULTS.md, "Beyond
+   * isosurfaces"; the largest distances left are from vanished specks to the surface, for
+   * vtkQuadricDecimation's output too). Costs 4 bytes per input point and 8 per piece (8 per
+   * point while the pieces are labelled).
    */
   vtkSetMacro(PreserveTopology, bool);
   vtkGetMacro(PreserveTopology, bool);

@@ -343,9 +343,14 @@ void CollapseMesh::TrackPieces()
   }
   Id pieces = 0;
   std::vector<Id> label(nv);
+  this->PieceVertex.clear();
   for (Id v = 0; v < nv; ++v) // a root is the lowest vertex of its piece: labelled first
   {
     const Id r = root(v);
+    if (r == v)
+    {
+      this->PieceVertex.push_back(v);
+    }
     label[v] = r == v ? pieces++ : label[r];
   }
   parent.swap(label);
@@ -370,12 +375,65 @@ void CollapseMesh::TrackPieces()
   }
 }
 
-Id CollapseMesh::CountLivePieces() const
+void CollapseMesh::FreezePieceCounts()
 {
-  Id live = 0;
+  ResizeFresh(this->FrozenPieceTriangles, this->Pieces);
   for (Id p = 0; p < this->Pieces; ++p)
   {
-    live += this->PieceTriangles[p].load(std::memory_order_relaxed) > 0 ? 1 : 0;
+    this->FrozenPieceTriangles[p] = this->PieceTriangles[p].load(std::memory_order_relaxed);
+  }
+}
+
+void CollapseMesh::PiecesTurnedSmall(std::vector<Id>& vertices) const
+{
+  vertices.clear();
+  for (Id p = 0; p < static_cast<Id>(this->FrozenPieceTriangles.size()); ++p)
+  {
+    const Id now = this->PieceTriangles[p].load(std::memory_order_relaxed);
+    if (this->FrozenPieceTriangles[p] > VanishingPieceTriangles && now > 0 &&
+      now <= VanishingPieceTriangles)
+    {
+      vertices.push_back(this->PieceVertex[p]);
+    }
+  }
+}
+
+Id CollapseMesh::CountLivePieces(std::vector<Id>& parent) const
+{
+  Id live = 0;
+  if (!this->PieceOf.empty())
+  {
+    for (Id p = 0; p < this->Pieces; ++p)
+    {
+      live += this->PieceTriangles[p].load(std::memory_order_relaxed) > 0 ? 1 : 0;
+    }
+    return live;
+  }
+  const Id nv = this->Mesh.GetNumberOfPoints();
+  parent.resize(static_cast<std::size_t>(nv));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](Id v) {
+    while (parent[v] != v)
+    {
+      v = parent[v] = parent[parent[v]];
+    }
+    return v;
+  };
+  for (Id t = 0; t < this->Mesh.GetNumberOfTriangles(); ++t)
+  {
+    if (this->IsAlive(t))
+    {
+      const Id* tri = this->Mesh.Triangle(t);
+      for (int k = 1; k < 3; ++k)
+      {
+        const Id a = root(tri[0]), b = root(tri[k]);
+        parent[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  }
+  for (Id v = 0; v < nv; ++v)
+  {
+    live += this->Survivor[v] == v && this->TriangleCount(v) > 0 && root(v) == v ? 1 : 0;
   }
   return live;
 }
@@ -389,7 +447,9 @@ PieceKind CollapseMesh::SmallPiece(
     return PieceKind::Other;
   }
   const Id piece = this->PieceOf[tri[0]];
-  const Id triangles = this->PieceTriangles[piece].load(std::memory_order_relaxed);
+  const Id triangles = owner != nullptr
+    ? this->FrozenPieceTriangles[piece]
+    : this->PieceTriangles[piece].load(std::memory_order_relaxed);
   if (triangles > VanishingPieceTriangles || piece == this->LargestPiece)
   {
     return PieceKind::Other;
@@ -411,7 +471,7 @@ PieceKind CollapseMesh::SmallPiece(
     {
       return PieceKind::Foreign;
     }
-    if ((this->Flags[v] & (FlagLocked | FlagCurve)) != 0)
+    if ((this->Flags[v] & (FlagLocked | FlagCurve | FlagBoundary)) != 0)
     {
       return PieceKind::Other;
     }
@@ -443,8 +503,9 @@ PieceKind CollapseMesh::SmallPiece(
   {
     return PieceKind::Other;
   }
-  // Genus 0: a closed surface (Euler characteristic V - E + F = 2, no boundary edge) or a disk
-  // (1, with boundary edges: one boundary loop).
+  // A closed surface of genus 0: Euler characteristic V - E + F = 2, no boundary edge. (Open
+  // pieces stay: besides debris they are the faces of a flat-shaded model whose normals keep
+  // them apart.)
   std::pair<Id, Id> edges[3 * VanishingPieceTriangles];
   int edgeCount = 0;
   for (int f = 0; f < faceCount; ++f)
@@ -459,7 +520,7 @@ PieceKind CollapseMesh::SmallPiece(
   const int distinct = static_cast<int>(std::unique(edges, edges + edgeCount) - edges);
   const int euler = count - distinct + faceCount;
   const int boundaryEdges = 2 * distinct - 3 * faceCount;
-  if (!((euler == 2 && boundaryEdges == 0) || (euler == 1 && boundaryEdges > 0)))
+  if (euler != 2 || boundaryEdges != 0)
   {
     return PieceKind::Other;
   }

@@ -41,19 +41,18 @@ enum VertexFlag : std::uint8_t
   // neighbour along the curve or with a neighbour inside one of the sheets, by edge collapses
   // only (CollapseMesh::IsLegal); the curve keeps its sheets.
   FlagCurve = 4,
-  // What is left of a small piece that vanished (TriangleCollapseOptions::PreserveTopology
-  // off): a live vertex without triangles, kept in every later level as a point of no cell, so
-  // that MorphTargetId maps the piece's points somewhere.
+  // What is left of a small closed piece that vanished (TriangleCollapseOptions::
+  // PreserveTopology off): a live vertex without triangles, kept in every later level as a
+  // point of no cell, so that MorphTargetId maps the piece's points somewhere.
   FlagVanished = 8,
 };
 
 /// The largest connected piece that may vanish (TriangleCollapseOptions::PreserveTopology
-/// off): a closed surface of genus 0 or a disk with at most this many triangles (a closed piece
-/// cannot shrink below a tetrahedron, 4, and the triangle-collapse schedules, which keep paper
-/// 000's valence rule, leave specks as octahedra, 8; a disk cannot shrink below one triangle)
-/// and at most VanishingPieceVertices vertices (a closed one of 12 triangles has 8).
+/// off): a closed surface of genus 0 with at most this many triangles (it cannot shrink below
+/// a tetrahedron, 4, and the triangle-collapse schedules, which keep paper 000's valence rule,
+/// leave specks as octahedra, 8), and so at most VanishingPieceVertices vertices.
 constexpr int VanishingPieceTriangles = 12;
-constexpr int VanishingPieceVertices = 8;
+constexpr int VanishingPieceVertices = 2 + VanishingPieceTriangles / 2;
 
 /// What CollapseMesh::SmallPiece finds.
 enum class PieceKind
@@ -236,22 +235,33 @@ public:
   bool GatherStar(const Id* members, int count, Star& star) const;
 
   /// Label the connected pieces and count their live triangles (Apply keeps the counts), for
-  /// SmallPiece. 4 bytes per vertex (8 while labelling), and 4 per piece.
+  /// SmallPiece. 4 bytes per vertex (8 while labelling), and 12 per piece.
   void TrackPieces();
 
-  /// With TrackPieces: whether live triangle t belongs to a connected piece of at most
-  /// VanishingPieceTriangles triangles and VanishingPieceVertices vertices that is a closed
-  /// surface of genus 0 or a disk (no vertex locked or on a curve), and not the piece that had
-  /// the most triangles at the start (the first of them), which stays so that no level is
-  /// empty: then (Vanishing) `members` gets its vertices, increasing, and `count` their number.
-  /// Such a piece may vanish whole (TriangleCollapseOptions::PreserveTopology off); the
-  /// smallest, a tetrahedron or a lone triangle, cannot lose a triangle otherwise. With
-  /// `owner`, a piece reaching a vertex whose owner is not `block` is Foreign (another block
-  /// may be changing it). O(1) for a triangle of a larger piece.
-  /// With TrackPieces: the number of pieces that have live triangles.
-  Id CountLivePieces() const;
-  bool TracksPieces() const { return !this->PieceOf.empty(); }
+  /// The live triangles' counts of every piece as they are now, which SmallPiece reads in a
+  /// parallel round (where other blocks may be changing the live counts) instead of the live
+  /// ones: its answers then do not depend on the order in which blocks run.
+  void FreezePieceCounts();
 
+  /// After a parallel round that began with FreezePieceCounts: into `vertices`, the lowest
+  /// vertex (the survivor of every merge in its piece, so still live) of each piece that had
+  /// more than VanishingPieceTriangles triangles then and has at most that many, and some, now.
+  /// Its blocks judged it by the frozen count, and may have parked its triangles for good.
+  void PiecesTurnedSmall(std::vector<Id>& vertices) const;
+
+  /// The number of connected pieces of live triangles; without TrackPieces, found by a
+  /// union-find in `scratch` (any vector not otherwise in use: its room is reused).
+  Id CountLivePieces(std::vector<Id>& scratch) const;
+
+  /// With TrackPieces: whether live triangle t belongs to a connected piece of at most
+  /// VanishingPieceTriangles triangles that is a closed surface of genus 0 (no vertex locked,
+  /// on a curve or on a boundary), and not the piece that had the most triangles at the start
+  /// (the first of them), which stays so that no level is empty: then (Vanishing) `members`
+  /// gets its vertices, increasing, and `count` their number. Such a piece may vanish whole
+  /// (TriangleCollapseOptions::PreserveTopology off); the smallest, a tetrahedron, cannot lose
+  /// a triangle otherwise. With `owner` (a parallel round: the counts of FreezePieceCounts), a
+  /// piece reaching a vertex whose owner is not `block` is Foreign (another block may be
+  /// changing it). O(1) for a triangle of a larger piece.
   PieceKind SmallPiece(
     Id t, const std::uint32_t* owner, std::uint32_t block, Id* members, int& count) const;
 
@@ -286,6 +296,8 @@ private:
   std::vector<Id> PieceOf;      // per vertex, its connected piece (TrackPieces), or empty
   // Per piece, its live triangles; collapses in parallel blocks may share a piece.
   std::unique_ptr<std::atomic<Id>[]> PieceTriangles;
+  std::vector<Id> FrozenPieceTriangles; // FreezePieceCounts
+  std::vector<Id> PieceVertex;          // per piece, its lowest vertex
   Id LargestPiece = InvalidId; // never vanishes
   Id Pieces = 0;
   std::vector<Id> TriangleCounts; // per vertex, live triangles around it

@@ -222,7 +222,7 @@ Legality Collapser::Check(Id t, Star& star, CollapseCandidate& c, CostScratch& s
 void Collapser::LandOnTarget(Id t, std::int64_t needed, Star& star, CollapseCandidate& c) const
 {
   if (static_cast<std::int64_t>(star.Dying.size()) <= needed || c.MemberCount != 3 ||
-    c.Swapped || this->Options.Method != CollapseMethod::Quadric ||
+    c.Swapped || c.Choice == VanishChoice || this->Options.Method != CollapseMethod::Quadric ||
     this->Options.Operator != CollapseOperator::TrianglesAndEdges)
   {
     return;
@@ -346,7 +346,7 @@ int Collapser::Collapse(const Star& star, CollapseCandidate& c, std::int64_t seq
 {
   this->PrefetchRing(star);
   double weights[VanishingPieceVertices];
-  if (star.MemberCount > 3)
+  if (c.Choice == VanishChoice) // (a closed piece of 3 points too: two triangles back to back)
   {
     std::fill_n(weights, star.MemberCount, 1.0 / star.MemberCount); // a vanishing piece
   }
@@ -463,11 +463,8 @@ TriangleCollapseResult Collapser::FinishRun()
   this->Result.ErrorLimited = this->ErrorRefused.load();
   if (!this->Finished() && !this->Result.Aborted) // short of the last target: say why
   {
-    if (!this->State.TracksPieces())
-    {
-      this->State.TrackPieces();
-    }
-    this->Result.FinalPieces = this->State.CountLivePieces();
+    // (The heap's positions are not needed any more: their room serves the count.)
+    this->Result.FinalPieces = this->State.CountLivePieces(this->HeapPositions);
   }
   return this->Result;
 }

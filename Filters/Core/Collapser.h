@@ -255,10 +255,11 @@ private:
     }
   }
 
-  // Whether live triangle t belongs to a small piece that may vanish (PreserveTopology off; see
-  // CollapseMesh::SmallPiece): on Vanishing c is that vanishing, whose cost and check stand for
-  // the triangle's. With `owner`, a piece reaching beyond `block` is Foreign.
-  PieceKind Vanishes(Id t, const std::uint32_t* owner, std::uint32_t block, CollapseCandidate& c) const
+  // Whether live triangle t belongs to a small closed piece that may vanish (PreserveTopology
+  // off; see CollapseMesh::SmallPiece): on Vanishing c is that vanishing, whose cost and check
+  // stand for the triangle's. With `owner`, a piece reaching beyond `block` is Foreign.
+  PieceKind Vanishes(
+    Id t, const std::uint32_t* owner, std::uint32_t block, CollapseCandidate& c) const
   {
     if (this->Options.PreserveTopology)
     {
@@ -273,6 +274,11 @@ private:
     }
     return kind;
   }
+
+  // After a parallel round (PreserveTopology off): the triangles of every piece that became
+  // small enough to vanish during the round, which its blocks judged by its count at the start
+  // (CollapseMesh::PiecesTurnedSmall), get their cost again and leave the parking lot.
+  void WakePiecesTurnedSmall();
 
   // Evaluate every live triangle (in parallel); for the curvature method, normalise kappa by
   // the largest curvature found.
@@ -302,8 +308,9 @@ private:
   // A run that finds nothing legal before its last target relaxes the star-shape test once
   // (CollapseRules::LetWrongSideStay) and gives every refused triangle to release(t) again;
   // when that is done or there is nothing to relax (the test is off, or it judges sides only:
-  // CollapseRules::StarShapedBySide), the curvature method with TrianglesAndEdges lets a
-  // refused triangle take its cheapest legal edge instead (as the quadric method always does:
+  // CollapseRules::StarShapedBySide), the curvature method with TrianglesAndEdges (ranked by
+  // FitDeviation: the Weight ranking keeps to triangles) lets a refused triangle take its
+  // cheapest legal edge instead (as the quadric method always does:
   // on a rough surface triangle collapses run out long before edge collapses do), once. False
   // when nothing is left to relax: the run is stuck.
   template <typename F>
@@ -320,7 +327,8 @@ private:
     }
     else if (!this->EdgesForRefusedTriangles &&
       this->Options.Method == CollapseMethod::Curvature &&
-      this->Options.Operator == CollapseOperator::TrianglesAndEdges)
+      this->Options.Operator == CollapseOperator::TrianglesAndEdges &&
+      this->Options.CurvatureRanking == CurvatureCost::FitDeviation)
     {
       this->EdgesForRefusedTriangles = true;
     }

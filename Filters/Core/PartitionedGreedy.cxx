@@ -398,6 +398,10 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
   // serial round, which lands on a level, 1 unless no edge of that last triangle may collapse:
   // LandOnTarget), or up to VanishingPieceTriangles - 1 more when that is a piece vanishing.
   ResizeFresh(this->HeapPositions, this->State.Mesh.GetNumberOfTriangles(), InvalidId);
+  if (parallel && !this->Options.PreserveTopology)
+  {
+    this->State.FreezePieceCounts(); // (see CollapseMesh::SmallPiece)
+  }
   const Id cellsBusy = static_cast<Id>(busy.size());
   std::vector<CellOutcome> outcomes(cellsBusy);
   vtkSMPThreadLocal<CellScratch> scratch;
@@ -541,10 +545,38 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
     longest = std::max(longest, out.Collapses);
     this->Lot.Adopt(out.Parked);
   }
+  if (parallel && !this->Options.PreserveTopology)
+  {
+    this->WakePiecesTurnedSmall();
+  }
   this->State.AliveTriangles -= static_cast<Id>(removed);
   this->Clock += longest + 1;
   this->Sequence += (longest + 1) * cellsBusy;
   return removed;
+}
+
+//------------------------------------------------------------------------------
+void Collapser::WakePiecesTurnedSmall()
+{
+  std::vector<Id> firsts;
+  this->State.PiecesTurnedSmall(firsts);
+  CostScratch cost;
+  for (const Id v : firsts)
+  {
+    Id t = InvalidId;
+    this->State.ForEachTriangle(v, [&](Id s) { t = t == InvalidId ? s : t; });
+    Id members[VanishingPieceVertices];
+    int count = 0;
+    if (t == InvalidId ||
+      this->State.SmallPiece(t, nullptr, 0, members, count) != PieceKind::Vanishing)
+    {
+      continue;
+    }
+    for (int m = 0; m < count; ++m)
+    {
+      this->State.ForEachTriangle(members[m], [&](Id s) { this->Reweigh(s, cost); });
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

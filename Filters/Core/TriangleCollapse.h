@@ -93,11 +93,10 @@ struct TriangleCollapseOptions
   double BoundaryWeight = 0.3;
   /// Largest angle (degrees) a triangle's normal may turn in one collapse (see CollapseMesh).
   double MaximumNormalDeviation = 90.0;
-  /// Off: a small piece, closed of genus 0 or a disk (CollapseMesh::SmallPiece; a tetrahedron
-  /// or a lone triangle cannot lose a triangle otherwise), may vanish when its cost comes up:
-  /// its vertices merge into one point that keeps no triangle (CollapseMesh::FlagVanished). The
-  /// isosurface of a noisy volume has hundreds of specks that otherwise stay to the coarsest
-  /// level, and a scan may have debris. Genus is kept either way.
+  /// Off: a small closed piece of genus 0 (CollapseMesh::SmallPiece; a tetrahedron cannot lose
+  /// a triangle otherwise) may vanish when its cost comes up: its vertices merge into one point
+  /// that keeps no triangle (CollapseMesh::FlagVanished). The isosurface of a noisy volume has
+  /// hundreds of specks that otherwise stay to the coarsest level. Genus is kept either way.
   bool PreserveTopology = true;
   /// Curvature method: at most this many ancestral points per triangle fit (a strided subset).
   int MaximumFitPoints = 48;

@@ -388,10 +388,9 @@ void TestOtherSchedules()
   MESHLOD_CHECK_LT(d.RmsPercent(), 1.5);
 }
 
-// Debris above an open surface: a lone triangle, which no collapse can shrink, vanishes once
-// collapses of the terrain cost more, into a point at its incentre (in its plane, where the
-// planes through its edges, weighted by their lengths, are least far on the whole).
-void TestOpenDebris()
+// Open pieces stay with PreserveTopology off (they may be the faces of a flat-shaded model that
+// its normals keep apart): a lone triangle above a terrain is still there at 1%.
+void TestOpenPiecesStay()
 {
   vtkSmartPointer<vtkPolyData> grid = testing::MakeTerrain(20); // 800 triangles on [-1, 1]^2
   vtkSmartPointer<vtkPolyData> debris =
@@ -400,27 +399,12 @@ void TestOpenDebris()
   append->AddInputData(grid);
   append->AddInputData(debris);
   append->Update();
-  vtkPolyData* mesh = append->GetOutput();
-  const Run kept = Decimate(mesh, true, 0.9);
-  vtkPolyData* keptLast = Level(kept.Hierarchy, kept.Hierarchy->GetNumberOfBlocks() - 1);
-  MESHLOD_CHECK_EQ(UnusedPoints(keptLast), 0);
-  vtkIdType pieces = 0;
-  PieceOfPoint(keptLast, pieces);
-  MESHLOD_CHECK_EQ(pieces, 2);
-
-  const Run run = Decimate(mesh, false, 0.9);
+  const Run run = Decimate(append->GetOutput(), false, 0.99);
   vtkPolyData* last = Level(run.Hierarchy, run.Hierarchy->GetNumberOfBlocks() - 1);
-  MESHLOD_CHECK_EQ(UnusedPoints(last), 1);
+  MESHLOD_CHECK_EQ(UnusedPoints(last), 0);
+  vtkIdType pieces = 0;
   PieceOfPoint(last, pieces);
-  MESHLOD_CHECK_EQ(pieces, 1);
-  const std::vector<vtkIdType> at = ChainToCoarsest(run.Hierarchy);
-  const vtkIdType first = grid->GetNumberOfPoints();
-  MESHLOD_CHECK(at[first] == at[first + 1] && at[first] == at[first + 2]);
-  double x[3];
-  last->GetPoint(at[first], x);
-  const double inradius = (0.03 + 0.03 - std::sqrt(2.0) * 0.03) / 2.0;
-  MESHLOD_CHECK_LT(std::hypot(x[0] - inradius, x[1] - inradius, x[2] - 1.0), 1e-7);
-  MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(run.Hierarchy), 0);
+  MESHLOD_CHECK_EQ(pieces, 2);
 }
 
 void TestSetting()
@@ -440,7 +424,7 @@ int TestTriangleCollapseSpecks(int, char*[])
   TestLargestPieceStays();
   TestNoisyIsosurface();
   TestOtherSchedules();
-  TestOpenDebris();
+  TestOpenPiecesStay();
   TestSetting();
   return meshlod::testing::Result();
 }
