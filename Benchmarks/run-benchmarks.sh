@@ -48,7 +48,7 @@ VTK_SMP_BACKEND_IN_USE=Sequential "$build/bin/MeshLODBenchmark" \
   echo "topology changed (on the segmented balls vtkQuadricDecimation's outputs have boundary"
   echo "edges, which its input has none of). Then the same meshes with vtkVertexClusterOctree,"
   echo "with the curvature method of vtkTriangleCollapseDecimation, and with its PreserveTopology"
-  echo "off (small closed pieces and debris may vanish; shown where that changes a level):"
+  echo "off (small closed pieces may vanish; shown where that changes a level):"
   echo
   "$build/bin/OtherMeshesBenchmark"
 } >> "$repo/Benchmarks/RESULTS.md"

@@ -501,7 +501,7 @@ public:
    * with 328 specks, asked for 1%, 1,038 triangles at 1.4 times vtkQuadricDecimation's
    * Hausdorff distance instead of 2,072 at 3.5 times (Benchmarks/RESULTS.md, "Beyond
    * isosurfaces"; the largest distances left are from vanished specks to the surface, for
-   * vtkQuadricDecimation's output too). Costs 4 bytes per input point and 8 per piece (8 per
+   * vtkQuadricDecimation's output too). Costs 4 bytes per input point and 12 per piece (8 per
    * point while the pieces are labelled).
    */
   vtkSetMacro(PreserveTopology, bool);
