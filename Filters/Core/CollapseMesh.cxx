@@ -321,13 +321,7 @@ void CollapseMesh::TrackPieces()
   std::vector<Id>& parent = this->PieceOf;
   ResizeFresh(parent, nv);
   std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](Id v) {
-    while (parent[v] != v)
-    {
-      v = parent[v] = parent[parent[v]];
-    }
-    return v;
-  };
+  const auto root = [&](Id v) { return FindRoot(parent, v); };
   for (Id t = 0; t < nt; ++t)
   {
     if (!this->IsAlive(t))
@@ -412,13 +406,7 @@ Id CollapseMesh::CountLivePieces(std::vector<Id>& parent) const
   const Id nv = this->Mesh.GetNumberOfPoints();
   parent.resize(static_cast<std::size_t>(nv));
   std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](Id v) {
-    while (parent[v] != v)
-    {
-      v = parent[v] = parent[parent[v]];
-    }
-    return v;
-  };
+  const auto root = [&](Id v) { return FindRoot(parent, v); };
   for (Id t = 0; t < this->Mesh.GetNumberOfTriangles(); ++t)
   {
     if (this->IsAlive(t))

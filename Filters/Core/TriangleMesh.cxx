@@ -506,13 +506,7 @@ bool IsRegularCurveVertex(const TriangleMesh& mesh,
   // edges by their neighbour.
   fan.resize(static_cast<std::size_t>(count));
   std::iota(fan.begin(), fan.end(), 0);
-  const auto root = [&](Id i) {
-    while (fan[i] != i)
-    {
-      i = fan[i] = fan[fan[i]];
-    }
-    return i;
-  };
+  const auto root = [&](Id i) { return FindRoot(fan, i); };
   Id curve[2] = { InvalidId, InvalidId };
   std::size_t sheets = 0;
   int curves = 0;
