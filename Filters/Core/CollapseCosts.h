@@ -14,7 +14,6 @@
 
 namespace meshlod
 {
-class CollapseMesh;
 class LevelTracker;
 
 /// CollapseCandidate::Choice for a collapse of the whole triangle ...

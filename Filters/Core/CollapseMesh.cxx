@@ -320,32 +320,22 @@ void CollapseMesh::TrackPieces()
   const Id nt = this->Mesh.GetNumberOfTriangles();
   std::vector<Id>& parent = this->PieceOf;
   ResizeFresh(parent, nv);
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](Id v) { return FindRoot(parent, v); };
-  for (Id t = 0; t < nt; ++t)
-  {
-    if (!this->IsAlive(t))
-    {
-      continue;
-    }
-    const Id* tri = this->Mesh.Triangle(t);
-    for (int k = 1; k < 3; ++k)
-    {
-      const Id a = root(tri[0]), b = root(tri[k]);
-      parent[std::max(a, b)] = std::min(a, b);
-    }
-  }
+  this->JoinLiveTriangles(parent);
   Id pieces = 0;
   std::vector<Id> label(nv);
   this->PieceVertex.clear();
   for (Id v = 0; v < nv; ++v) // a root is the lowest vertex of its piece: labelled first
   {
-    const Id r = root(v);
+    const Id r = FindRoot(parent, v);
     if (r == v)
     {
       this->PieceVertex.push_back(v);
+      label[v] = pieces++;
     }
-    label[v] = r == v ? pieces++ : label[r];
+    else
+    {
+      label[v] = label[r];
+    }
   }
   parent.swap(label);
   this->PieceTriangles.reset(new std::atomic<Id>[static_cast<std::size_t>(pieces)]);
@@ -405,8 +395,17 @@ Id CollapseMesh::CountLivePieces(std::vector<Id>& parent) const
   }
   const Id nv = this->Mesh.GetNumberOfPoints();
   parent.resize(static_cast<std::size_t>(nv));
+  this->JoinLiveTriangles(parent);
+  for (Id v = 0; v < nv; ++v)
+  {
+    live += this->TriangleCount(v) > 0 && FindRoot(parent, v) == v ? 1 : 0;
+  }
+  return live;
+}
+
+void CollapseMesh::JoinLiveTriangles(std::vector<Id>& parent) const
+{
   std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](Id v) { return FindRoot(parent, v); };
   for (Id t = 0; t < this->Mesh.GetNumberOfTriangles(); ++t)
   {
     if (this->IsAlive(t))
@@ -414,16 +413,11 @@ Id CollapseMesh::CountLivePieces(std::vector<Id>& parent) const
       const Id* tri = this->Mesh.Triangle(t);
       for (int k = 1; k < 3; ++k)
       {
-        const Id a = root(tri[0]), b = root(tri[k]);
+        const Id a = FindRoot(parent, tri[0]), b = FindRoot(parent, tri[k]);
         parent[std::max(a, b)] = std::min(a, b);
       }
     }
   }
-  for (Id v = 0; v < nv; ++v)
-  {
-    live += this->Survivor[v] == v && this->TriangleCount(v) > 0 && root(v) == v ? 1 : 0;
-  }
-  return live;
 }
 
 PieceKind CollapseMesh::SmallPiece(

@@ -291,6 +291,9 @@ private:
   bool MergeKeepsLinks(const Star& star, bool alongCurve) const;
   /// Every vertex's chain back to its own row alone.
   void ResetChains();
+  /// `parent` as a union-find forest (FindRoot) joining the corners of every live triangle,
+  /// each root the lowest vertex of its piece.
+  void JoinLiveTriangles(std::vector<Id>& parent) const;
 
   VertexTriangleAdjacency Rows; // as of the last rebuild
   std::vector<Id> PieceOf;      // per vertex, its connected piece (TrackPieces), or empty

@@ -163,22 +163,18 @@ TriangleCollapseResult Collapser::RunIndependentSets()
         }
         const Id* tri = this->State.Mesh.Triangle(t);
         neighbourhood.clear();
+        bool blocked = false;
         // A vanishing piece may reach beyond the triangles around t's corners: all of it.
         Id piece[VanishingPieceVertices];
         int pieceCount = 0;
         if (this->Choices[t] == VanishChoice &&
           this->State.SmallPiece(t, nullptr, 0, piece, pieceCount) == PieceKind::Vanishing)
         {
-          neighbourhood.insert(neighbourhood.end(), piece, piece + pieceCount);
-        }
-        else
-        {
-          pieceCount = 0;
-        }
-        bool blocked = false;
-        for (int m = 0; m < pieceCount; ++m)
-        {
-          blocked = blocked || owner[piece[m]];
+          neighbourhood.assign(piece, piece + pieceCount);
+          for (int m = 0; m < pieceCount; ++m)
+          {
+            blocked = blocked || owner[piece[m]];
+          }
         }
         for (int k = 0; k < 3 && !blocked; ++k)
         {
