@@ -155,9 +155,7 @@ SurfaceLocator Locate(vtkPolyData* mesh, const std::vector<vtkIdType>& triangles
   vtkNew<vtkPolyData> surface;
   surface->SetPoints(mesh->GetPoints());
   surface->SetPolys(mesh->GetPolys());
-  result.Triangles = vtkSmartPointer<vtkStaticCellLocator>::New();
-  result.Triangles->SetDataSet(surface);
-  result.Triangles->BuildLocator();
+  result.Triangles = BuildCellLocator(surface);
 
   vtkNew<vtkCellArray> edges;
   for (size_t t = 0; t < triangles.size(); t += 3)
@@ -176,9 +174,7 @@ SurfaceLocator Locate(vtkPolyData* mesh, const std::vector<vtkIdType>& triangles
     vtkNew<vtkPolyData> lines;
     lines->SetPoints(mesh->GetPoints());
     lines->SetLines(edges);
-    result.DegenerateEdges = vtkSmartPointer<vtkStaticCellLocator>::New();
-    result.DegenerateEdges->SetDataSet(lines);
-    result.DegenerateEdges->BuildLocator();
+    result.DegenerateEdges = BuildCellLocator(lines);
   }
   return result;
 }
@@ -239,6 +235,16 @@ double SquaredSampleCount(const SampleSet& samples)
   return static_cast<double>(std::max<std::int64_t>(1, count));
 }
 } // namespace
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkStaticCellLocator> BuildCellLocator(vtkDataSet* cells)
+{
+  auto locator = vtkSmartPointer<vtkStaticCellLocator>::New();
+  locator->SetDataSet(cells);
+  locator->UseDiagonalLengthToleranceOn(); // Tolerance (0.001) times the diagonal
+  locator->BuildLocator();
+  return locator;
+}
 
 //------------------------------------------------------------------------------
 struct SurfaceDistanceMeter::Internals

@@ -17,11 +17,14 @@
 #define MeshLODSurfaceDistance_h
 
 #include "vtkFiltersMeshLODModule.h"
+#include "vtkSmartPointer.h"
 
 #include <cstdint>
 #include <memory>
 
+class vtkDataSet;
 class vtkPolyData;
+class vtkStaticCellLocator;
 
 namespace meshlod
 {
@@ -76,6 +79,12 @@ private:
 /// zeros except Diagonal.
 VTKFILTERSMESHLOD_EXPORT SurfaceDistance MeasureSurfaceDistance(
   vtkPolyData* a, vtkPolyData* b, const SurfaceDistanceOptions& options = SurfaceDistanceOptions());
+
+/// A vtkStaticCellLocator over `cells`, built, that pads each cell's bounds in proportion to
+/// the data's size. VTK's default pads by an absolute 0.001: on a surface a thousandth of a
+/// unit across (a part modelled in metres) every cell then lands in every bucket and building
+/// the locator runs out of memory.
+VTKFILTERSMESHLOD_EXPORT vtkSmartPointer<vtkStaticCellLocator> BuildCellLocator(vtkDataSet* cells);
 
 } // namespace meshlod
 

@@ -1,4 +1,5 @@
 #include "MeshLODTextureBaking.h"
+#include "MeshLODSurfaceDistance.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
@@ -148,9 +149,7 @@ bool TextureBaker::SetSurface(vtkPolyData* surface, std::string& error)
   {
     surface->GetPoint(p, impl.Points.data() + 3 * p);
   }
-  impl.Locator = vtkSmartPointer<vtkStaticCellLocator>::New();
-  impl.Locator->SetDataSet(impl.Surface);
-  impl.Locator->BuildLocator();
+  impl.Locator = BuildCellLocator(impl.Surface);
   return true;
 }
 

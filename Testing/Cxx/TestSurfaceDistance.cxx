@@ -3,9 +3,12 @@
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkIdList.h"
+#include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkStaticCellLocator.h"
 
 #include <cmath>
 
@@ -121,6 +124,25 @@ void TestSameForEveryBackend()
   MESHLOD_CHECK_EQ(sequential.Rms, parallel.Rms);
   MESHLOD_CHECK_GT(sequential.Hausdorff, 0.0);
 }
+// The cell locator pads cells in proportion to the data: on a sphere a millionth of a unit
+// across a small box meets a few cells, not all of them (VTK's default absolute padding of
+// 0.001 put every cell in every bucket, which ran larger meshes out of memory).
+void TestTinySurface()
+{
+  vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(4);
+  testing::Scale(sphere, 1e-6);
+  vtkSmartPointer<vtkStaticCellLocator> locator = BuildCellLocator(sphere);
+  double box[6] = { -1e-7, 1e-7, -1e-7, 1e-7, 1e-6 - 1e-7, 1e-6 + 1e-7 };
+  vtkNew<vtkIdList> cells;
+  locator->FindCellsWithinBounds(box, cells);
+  MESHLOD_CHECK_GT(cells->GetNumberOfIds(), 0);
+  MESHLOD_CHECK_LT(cells->GetNumberOfIds(), sphere->GetNumberOfPolys() / 20);
+
+  vtkSmartPointer<vtkPolyData> larger = Shifted(sphere, 0.0, 1.1);
+  const SurfaceDistance d = MeasureSurfaceDistance(sphere, larger);
+  MESHLOD_CHECK_GE(d.Hausdorff, (0.1 - 0.004) * 1e-6);
+  MESHLOD_CHECK_LE(d.Hausdorff, (0.1 + 0.004) * 1e-6);
+}
 } // namespace
 
 int TestSurfaceDistance(int, char*[])
@@ -131,5 +153,6 @@ int TestSurfaceDistance(int, char*[])
   TestOneSided();
   TestDegenerateTriangles();
   TestSameForEveryBackend();
+  TestTinySurface();
   return meshlod::testing::Result();
 }

@@ -2,6 +2,7 @@
 // colours the baked textures reproduce, from a colour array and from an input texture.
 #include "MeshLODHierarchyChecks.h"
 #include "MeshLODHierarchy.h"
+#include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
 #include "vtkLODGeomorph.h"
@@ -99,9 +100,7 @@ double MeanColorError(vtkPolyData* input,
     input->GetPoint(inputTris[t][2], c);
     cumulative[t + 1] = cumulative[t] + vtkTriangle::TriangleArea(a, b, c);
   }
-  vtkNew<vtkStaticCellLocator> locator;
-  locator->SetDataSet(level);
-  locator->BuildLocator();
+  vtkSmartPointer<vtkStaticCellLocator> locator = meshlod::BuildCellLocator(level);
   vtkNew<vtkGenericCell> cell;
   std::uint64_t state = 12345;
   auto random = [&]()

@@ -1,5 +1,6 @@
 #include "MeshLODHierarchyChecks.h"
 #include "MeshLODTestMeshes.h"
+#include "MeshLODSurfaceDistance.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -249,9 +250,7 @@ std::int64_t CountCorrespondenceViolations(vtkMultiBlockDataSet* hierarchy)
 //------------------------------------------------------------------------------
 std::int64_t CountFlippedTriangles(vtkPolyData* fine, vtkPolyData* coarse)
 {
-  vtkNew<vtkStaticCellLocator> locator;
-  locator->SetDataSet(fine);
-  locator->BuildLocator();
+  vtkSmartPointer<vtkStaticCellLocator> locator = BuildCellLocator(fine);
   vtkNew<vtkGenericCell> cell;
   std::int64_t flipped = 0;
   const std::vector<Triangle> fineTriangles = Triangles(fine);
