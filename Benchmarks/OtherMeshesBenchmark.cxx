@@ -17,8 +17,8 @@
 #include "vtkTriangleCollapseDecimation.h"
 
 #include "vtkCylinderSource.h"
-#include "vtkFlyingEdges3D.h"
 #include "vtkDiscreteFlyingEdges3D.h"
+#include "vtkFlyingEdges3D.h"
 #include "vtkImageData.h"
 #include "vtkLinearSubdivisionFilter.h"
 #include "vtkMultiBlockDataSet.h"

@@ -50,7 +50,8 @@ VTK_SMP_BACKEND_IN_USE=Sequential "$build/bin/MeshLODBenchmark" \
   echo "edges, which its input has none of; on the wavelet isosurface it closes handles, which"
   echo "our levels keep). On the georeferenced mesh vtkQuadricDecimation and vtkQuadricClustering"
   echo "lose the surface to rounding far from the origin, while both our filters give their"
-  echo "output for the same mesh at the origin, moved. Then the same meshes with vtkVertexClusterOctree,"
+  echo "output for the same mesh at the origin, moved (at 10% the main table's metaballs rows; its"
+  echo "1% targets round differently). Then the same meshes with vtkVertexClusterOctree,"
   echo "with the curvature method of vtkTriangleCollapseDecimation, and with its PreserveTopology"
   echo "off (small closed pieces may vanish; shown where that changes a level):"
   echo

@@ -163,7 +163,8 @@ vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdT
 }
 
 // Merge points that coincide up to rounding (at most SeamTolerance of the bounding diagonal
-// apart) among the vertices of boundary and non-manifold edges: a triangle soup (an STL file)
+// apart, or SeamRoundingUnits in the last place of the largest coordinate where that is more)
+// among the vertices of boundary and non-manifold edges: a triangle soup (an STL file)
 // or a duplicated seam (a parametric surface whose seam points differ in the last bits and are
 // joined by zero-area triangles) becomes one surface. Near-equal points are found as neighbours
 // in three lexicographic orders (x y z, y z x, z x y), which catches every pair that differs in
@@ -172,6 +173,7 @@ vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdT
 // (`agree` is false) stay apart; `keptApart` counts the points that coincide with a point of
 // other data and agree with none.
 constexpr double SeamTolerance = 1e-12;
+constexpr double SeamRoundingUnits = 64.0; // units in the last place of the largest coordinate
 constexpr size_t MaximumSeamGroups = 16;
 
 double Distance2(const double* a, const double* b)
@@ -199,7 +201,19 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
   {
     return 0;
   }
-  const double tolerance = SeamTolerance * mesh.BoundingDiagonal();
+  // Rounding is relative to the coordinates themselves: far from the origin (a scan in
+  // georeferenced coordinates) the last bits of a seam point are worth more than SeamTolerance of
+  // the diagonal, and the same mesh would stay open there that is stitched at the origin.
+  double largest = 0.0;
+  for (const Id v : candidates)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      largest = std::max(largest, std::abs(mesh.Point(v)[k]));
+    }
+  }
+  const double tolerance = std::max(SeamTolerance * mesh.BoundingDiagonal(),
+    SeamRoundingUnits * std::numeric_limits<double>::epsilon() * largest);
 
   const double tolerance2 = tolerance * tolerance;
   std::vector<Id> groups;           // per run: the first member of each group

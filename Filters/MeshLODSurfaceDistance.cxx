@@ -11,6 +11,7 @@
 #include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
 #include "vtkStaticCellLocator.h"
+#include "vtkVersionMacros.h"
 
 #include <algorithm>
 #include <cmath>
@@ -241,7 +242,11 @@ vtkSmartPointer<vtkStaticCellLocator> BuildCellLocator(vtkDataSet* cells)
 {
   auto locator = vtkSmartPointer<vtkStaticCellLocator>::New();
   locator->SetDataSet(cells);
-  locator->UseDiagonalLengthToleranceOn(); // Tolerance (0.001) times the diagonal
+#if VTK_VERSION_NUMBER < VTK_VERSION_CHECK(9, 2, 0)
+  // From VTK 9.2 the binning ignores the tolerance (and this setting is deprecated).
+  locator->SetTolerance(0.001);
+  locator->UseDiagonalLengthToleranceOn(); // the padding: that fraction of the diagonal
+#endif
   locator->BuildLocator();
   return locator;
 }

@@ -255,8 +255,7 @@ void vtkVertexClusterOctree::WarnIfCountMissed(
                              << reached
                              << ": the smallest epsilon that merges enough merges more at once "
                                 "(levels cut one octree, so counts move in steps of whole "
-                                "clusters; regions of zero error, such as exactly flat ones, "
-                                "merge together); a smaller MaximumCellSize keeps more.");
+                                "clusters); a smaller MaximumCellSize keeps more.");
   }
   else
   {

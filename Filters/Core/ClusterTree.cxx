@@ -391,6 +391,7 @@ void ClusterTree::ComputeFrame()
   }
   // A hair larger than the extent, so that the highest coordinate falls inside the last cell.
   this->Size = size > 0.0 ? size * (1.0 + 1e-9) : 1.0;
+  this->Extent = size;
   for (int c = 0; c < 3; ++c)
   {
     this->Corner[c] = this->Centre[c] - 0.5 * this->Size;

@@ -82,6 +82,7 @@ public:
   double Centre[3] = { 0.0, 0.0, 0.0 }; // positions in the tree are relative to this point
   double Corner[3] = { 0.0, 0.0, 0.0 }; // lowest corner of the bounding cube
   double Size = 1.0;                    // edge of the bounding cube
+  double Extent = 0.0; // the largest extent of the points (0 when all lie at one place)
 
   std::vector<ClusterNode> Nodes; // internal node NV + i is Nodes[i]
   std::vector<Id> LeafParent;     // vertex -> parent node, InvalidId for a lone vertex

@@ -125,8 +125,9 @@ void TestSameForEveryBackend()
   MESHLOD_CHECK_GT(sequential.Hausdorff, 0.0);
 }
 // The cell locator pads cells in proportion to the data: on a sphere a millionth of a unit
-// across a small box meets a few cells, not all of them (VTK's default absolute padding of
-// 0.001 put every cell in every bucket, which ran larger meshes out of memory).
+// across, a small box meets a few cells, not all of them. (VTK's default absolute padding of
+// 0.001 put every cell in every bucket: measuring the 327,680-triangle sphere below then asked
+// for tens of gigabytes and threw std::bad_alloc.)
 void TestTinySurface()
 {
   vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(4);
@@ -138,8 +139,13 @@ void TestTinySurface()
   MESHLOD_CHECK_GT(cells->GetNumberOfIds(), 0);
   MESHLOD_CHECK_LT(cells->GetNumberOfIds(), sphere->GetNumberOfPolys() / 20);
 
-  vtkSmartPointer<vtkPolyData> larger = Shifted(sphere, 0.0, 1.1);
-  const SurfaceDistance d = MeasureSurfaceDistance(sphere, larger);
+  vtkSmartPointer<vtkPolyData> fine = testing::MakeIcosphere(7);
+  testing::Scale(fine, 1e-6);
+  vtkSmartPointer<vtkPolyData> larger = Shifted(fine, 0.0, 1.1);
+  SurfaceDistanceOptions few; // the locators are what this measures
+  few.SamplesPerSurface = 2000;
+  few.MaximumVertexSamples = 2000;
+  const SurfaceDistance d = MeasureSurfaceDistance(fine, larger, few);
   MESHLOD_CHECK_GE(d.Hausdorff, (0.1 - 0.004) * 1e-6);
   MESHLOD_CHECK_LE(d.Hausdorff, (0.1 + 0.004) * 1e-6);
 }
