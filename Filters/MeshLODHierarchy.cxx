@@ -159,6 +159,14 @@ void InterpolatePointData(vtkPointData* from, const PointSources& sources, vtkId
   }
 }
 
+// The point type of every level: the input's when it is float or double, else double. Integer
+// points (VTK allows them) would truncate every collapse point and every geomorph frame.
+int LevelPointType(vtkPoints* input)
+{
+  const int type = input ? input->GetDataType() : VTK_FLOAT;
+  return type == VTK_FLOAT || type == VTK_DOUBLE ? type : VTK_DOUBLE;
+}
+
 vtkSmartPointer<vtkPoints> MakePoints(const TriangleMesh& mesh, int dataType)
 {
   auto points = vtkSmartPointer<vtkPoints>::New();
@@ -311,15 +319,18 @@ void HierarchyBuilder::SetLevelZero(const InputMesh& input)
   auto level0 = vtkSmartPointer<vtkPolyData>::New();
   vtkPolyData* source = input.Source;
   const bool cellsFirst = input.SourceCellIds.empty() || input.SourceCellIds[0] == 0;
+  const int pointType = LevelPointType(source->GetPoints());
   if (input.SameAsInput)
   {
-    level0->SetPoints(source->GetPoints());
+    level0->SetPoints(pointType == source->GetPoints()->GetDataType()
+        ? source->GetPoints()
+        : MakePoints(input.Mesh, pointType).GetPointer());
     level0->SetPolys(source->GetPolys());
     level0->GetPointData()->ShallowCopy(source->GetPointData());
   }
   else
   {
-    level0->SetPoints(MakePoints(input.Mesh, source->GetPoints()->GetDataType()));
+    level0->SetPoints(MakePoints(input.Mesh, pointType));
     level0->SetPolys(MakeTriangleCells(input.Mesh.Triangles.data(), input.Mesh.GetNumberOfTriangles()));
     CopySubset(source->GetPointData(), ToIdList(input.SourcePointIds), level0->GetPointData());
   }
@@ -382,7 +393,7 @@ void HierarchyBuilder::SetEmptyLevelZero(vtkPolyData* input)
   vtkNew<vtkPoints> points;
   if (input != nullptr && input->GetPoints() != nullptr)
   {
-    points->SetDataType(input->GetPoints()->GetDataType());
+    points->SetDataType(LevelPointType(input->GetPoints()));
   }
   level0->SetPoints(points);
   vtkNew<vtkCellArray> polys;

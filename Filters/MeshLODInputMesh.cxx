@@ -7,8 +7,11 @@
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
+#include "vtkDataObject.h"
+#include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -508,6 +511,32 @@ vtkSmartPointer<vtkCellArray> MakeTriangleCells(const Id* triangles, Id numberOf
   auto cells = vtkSmartPointer<vtkCellArray>::New();
   cells->SetData(offsets, connectivity);
   return cells;
+}
+
+//------------------------------------------------------------------------------
+int FillSurfaceInputPortInformation(vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool SurfaceInput(vtkInformationVector* port, vtkAlgorithm* caller, vtkPolyData*& input)
+{
+  vtkDataObject* data = vtkDataObject::GetData(port);
+  input = vtkPolyData::SafeDownCast(data);
+  if (auto* composite = vtkCompositeDataSet::SafeDownCast(data))
+  {
+    vtkErrorWithObjectMacro(caller,
+      "The input is composite data (a "
+        << composite->GetClassName()
+        << "): a hierarchy is made from one surface. Merge the blocks into one vtkPolyData "
+           "first (vtkAppendPolyData, or vtkMergeBlocks and vtkGeometryFilter), or run one "
+           "filter per block (vtkExtractBlock).");
+    return false;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------

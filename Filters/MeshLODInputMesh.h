@@ -19,9 +19,10 @@
 // - Triangles that repeat a point id are dropped; a triangle with the same three points as an
 //   earlier one is dropped (both with a warning giving the count).
 // - Points on boundary or non-manifold edges that coincide up to rounding (at most 1e-12 of the
-//   bounding diagonal apart) and carry the same point data (MeshLODInputArrays.h) are merged:
-//   this stitches triangle soups such as STL files and seams duplicated by rounding (as
-//   parametric sources make them). Coincident points inside
+//   bounding diagonal apart, or 64 units in the last place of the largest coordinate) and carry
+//   the same point data (MeshLODInputArrays.h) are merged: this stitches triangle soups such as
+//   STL files and seams duplicated by rounding (as parametric sources make them). Coincident
+//   points inside
 //   closed manifold regions are left alone: merging them would create a non-manifold vertex.
 //   Coincident points whose point data differ are an attribute seam and stay apart (warning):
 //   the sides of the seam then simplify separately, as with vtkQuadricDecimation; running
@@ -32,6 +33,9 @@
 //   (with a warning giving the count); a non-orientable part is left as it is.
 // - Non-manifold edges (more than two triangles) and vertices (several fans) are kept and
 //   reported in the topology; the algorithms lock them (they never move or merge).
+// - Composite data (a multiblock of surfaces) is an error naming what to do instead
+//   (SurfaceInput). Integer points are read as numbers; every level's points are double
+//   (HierarchyBuilder), float and double inputs keep their type.
 #ifndef MeshLODInputMesh_h
 #define MeshLODInputMesh_h
 
@@ -45,6 +49,8 @@
 class vtkAbstractArray;
 class vtkAlgorithm;
 class vtkCellArray;
+class vtkInformation;
+class vtkInformationVector;
 class vtkPolyData;
 
 namespace meshlod
@@ -77,6 +83,16 @@ enum class InputStatus
   Empty,
   Invalid,
 };
+
+/// Input port 0 of the hierarchy filters: a vtkPolyData, and composite data too, so that the
+/// filter sees it and says what to do (SurfaceInput) instead of the pipeline running it block by
+/// block, which nested hierarchies inside a hierarchy.
+VTKFILTERSMESHLOD_EXPORT int FillSurfaceInputPortInformation(vtkInformation* info);
+
+/// The vtkPolyData on `port`, or nullptr; false, with an error on `caller`, when it is composite
+/// data (a multiblock of surfaces: one filter simplifies one surface).
+VTKFILTERSMESHLOD_EXPORT bool SurfaceInput(
+  vtkInformationVector* port, vtkAlgorithm* caller, vtkPolyData*& input);
 
 /// Validate and convert. Errors and warnings are reported on `caller` (its observers see them
 /// like any VTK error); on Invalid the caller must produce no output.

@@ -47,6 +47,11 @@ vtkMultiBlockDataSet* vtkTriangleCollapseDecimation::GetHierarchy()
   return vtkMultiBlockDataSet::SafeDownCast(this->GetOutputDataObject(0));
 }
 
+int vtkTriangleCollapseDecimation::FillInputPortInformation(int, vtkInformation* info)
+{
+  return meshlod::FillSurfaceInputPortInformation(info);
+}
+
 int vtkTriangleCollapseDecimation::FillOutputPortInformation(int, vtkInformation* info)
 {
   return meshlod::FillHierarchyOutputPortInformation(info);
@@ -101,11 +106,15 @@ double vtkTriangleCollapseDecimation::GetLevelReduction(int i) const
 int vtkTriangleCollapseDecimation::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(outputVector);
   output->Initialize();
   this->NumberOfLevelsProduced = 0;
   this->ActualReduction = 0.0;
+  vtkPolyData* input = nullptr;
+  if (!meshlod::SurfaceInput(inputVector[0], this, input))
+  {
+    return 0;
+  }
 
   // Settings first.
   if (!meshlod::SettingsAreNumbers(this,

@@ -170,6 +170,8 @@
  *
  * Input: triangles (polygons and strips are triangulated first; vertices and lines are
  * ignored with a warning). Empty input gives a hierarchy of one empty level, without error.
+ * Composite data (a multiblock of surfaces) is an error: merge its blocks first, or run one
+ * filter per block. Integer points give levels in double.
  * NaN or infinite coordinates (of points that triangles use: unused points are dropped), point
  * ids out of range and a bounding-box diagonal above 1e30 or
  * below 1e-30 but not 0 (the collapse costs hold squared areas) are an error (all points at one
@@ -565,6 +567,7 @@ protected:
   vtkTriangleCollapseDecimation();
   ~vtkTriangleCollapseDecimation() override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 

@@ -310,7 +310,7 @@ int vtkVertexClusterOctree::FillInputPortInformation(int port, vtkInformation* i
     info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
     return 1;
   }
-  return this->Superclass::FillInputPortInformation(port, info);
+  return meshlod::FillSurfaceInputPortInformation(info);
 }
 
 int vtkVertexClusterOctree::FillOutputPortInformation(int, vtkInformation* info)
@@ -376,7 +376,6 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkImageData* texture = inputVector[1]->GetNumberOfInformationObjects() > 0
     ? vtkImageData::GetData(inputVector[1])
     : nullptr;
@@ -385,6 +384,11 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   output->Initialize();
   textures->Initialize();
   this->LevelEpsilons.clear();
+  vtkPolyData* input = nullptr;
+  if (!meshlod::SurfaceInput(inputVector[0], this, input))
+  {
+    return 0;
+  }
   if (!this->CheckSettings())
   {
     return 0;

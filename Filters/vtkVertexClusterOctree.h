@@ -104,8 +104,9 @@
  * clusters' connectivity comes from the input's and often crosses a curved quad of clusters the
  * wrong way; a flip moves no point.
  *
- * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: empty input gives
- * a hierarchy of one empty level, without error; polygons and strips are triangulated; vertex and
+ * Input (port 0): a vtkPolyData surface, validated by the shared MeshLOD policy: composite data is
+ * an error (merge the blocks first); empty input gives a hierarchy of one empty level, without
+ * error; integer points give levels in double; polygons and strips are triangulated; vertex and
  * line cells are ignored with a warning; NaN or infinite points that triangles use (unused points
  * are dropped) and point ids out of range are an
  * error (no output), and so is a bounding-box diagonal above 1e30 or below 1e-30 but not 0
