@@ -158,6 +158,12 @@ void LevelCentering::Apply(TriangleMesh& level,
     return;
   }
 
+  // Sample areas are kept in single precision in units of the diagonal squared (a power of two,
+  // so exactly): in world units they overflowed for a mesh 1e21 across and vanished for one
+  // 1e-21 across, and the centred levels strayed from the input there.
+  const double diagonal = level.BoundingDiagonal();
+  const double areaUnit = diagonal > 0.0 ? std::ldexp(1.0, -2 * std::ilogb(diagonal)) : 1.0;
+
   // Points that did not change keep their shift of the previous level, added in the same
   // rounding as there (so they land exactly where the previous level has them); the others
   // start from none.
@@ -270,7 +276,8 @@ void LevelCentering::Apply(TriangleMesh& level,
               continue;
             }
             const double d = Dot(w, f.Unit);
-            projections[s - base] = Projection{ around.Of(p)[k], static_cast<float>(area),
+            projections[s - base] = Projection{ around.Of(p)[k],
+              static_cast<float>(area * areaUnit),
               static_cast<float>(std::abs(d) <= OnSurface * f.Size ? 0.0 : d),
               static_cast<float>(std::max(0.0, lb)), static_cast<float>(std::max(0.0, lc)) };
             break;

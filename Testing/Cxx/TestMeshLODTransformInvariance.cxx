@@ -326,6 +326,10 @@ int TestMeshLODTransformInvariance(int, char*[])
     { "scaled by 2^-20", std::ldexp(1.0, -20), { 0.0, 0.0, 0.0 } },
     { "scaled by 2^-40", std::ldexp(1.0, -40), { 0.0, 0.0, 0.0 } },
     { "scaled by 2^30", std::ldexp(1.0, 30), { 0.0, 0.0, 0.0 } },
+    // Near the ends of the accepted diagonals (1e-30, 1e30): squared lengths in single
+    // precision (the centring's sample areas) overflowed or vanished there.
+    { "scaled by 2^-75", std::ldexp(1.0, -75), { 0.0, 0.0, 0.0 } },
+    { "scaled by 2^75", std::ldexp(1.0, 75), { 0.0, 0.0, 0.0 } },
     { "moved by (6e5, 4e6, 300)", 1.0, { 6.0e5, 4.0e6, 300.0 } },
   };
   TestFilter<vtkTriangleCollapseDecimation>(transforms, "vtkTriangleCollapseDecimation",
