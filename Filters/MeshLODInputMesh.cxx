@@ -166,8 +166,8 @@ vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdT
 }
 
 // Merge points that coincide up to rounding (at most SeamTolerance of the bounding diagonal
-// apart, or SeamRoundingUnits in the last place of the largest coordinate where that is more)
-// among the vertices of boundary and non-manifold edges: a triangle soup (an STL file)
+// apart, or SeamRoundingUnits double-precision epsilons of the largest coordinate where that is
+// more) among the vertices of boundary and non-manifold edges: a triangle soup (an STL file)
 // or a duplicated seam (a parametric surface whose seam points differ in the last bits and are
 // joined by zero-area triangles) becomes one surface. Near-equal points are found as neighbours
 // in three lexicographic orders (x y z, y z x, z x y), which catches every pair that differs in
@@ -176,7 +176,7 @@ vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdT
 // (`agree` is false) stay apart; `keptApart` counts the points that coincide with a point of
 // other data and agree with none.
 constexpr double SeamTolerance = 1e-12;
-constexpr double SeamRoundingUnits = 64.0; // units in the last place of the largest coordinate
+constexpr double SeamRoundingUnits = 64.0; // times DBL_EPSILON times the largest coordinate
 constexpr size_t MaximumSeamGroups = 16;
 
 double Distance2(const double* a, const double* b)

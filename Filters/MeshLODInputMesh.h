@@ -19,7 +19,7 @@
 // - Triangles that repeat a point id are dropped; a triangle with the same three points as an
 //   earlier one is dropped (both with a warning giving the count).
 // - Points on boundary or non-manifold edges that coincide up to rounding (at most 1e-12 of the
-//   bounding diagonal apart, or 64 units in the last place of the largest coordinate) and carry
+//   bounding diagonal apart, or 64 double-precision epsilons of the largest coordinate) and carry
 //   the same point data (MeshLODInputArrays.h) are merged: this stitches triangle soups such as
 //   STL files and seams duplicated by rounding (as parametric sources make them). Coincident
 //   points inside

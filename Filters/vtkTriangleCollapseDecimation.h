@@ -179,8 +179,8 @@
  * cell-data
  * arrays whose tuple count is not the number of points or cells are ignored with a warning.
  * Points on boundary or non-manifold edges that coincide up to rounding (1e-12 of the bounding
- * diagonal, or 64 units in the last place of the largest coordinate where that is more, far from
- * the origin) and carry the same point data are merged, which stitches triangle soups and
+ * diagonal, or 64 double-precision epsilons of the largest coordinate where that is more, far
+ * from the origin) and carry the same point data are merged, which stitches triangle soups and
  * duplicated seams (coincident points whose data differ, an attribute seam such as a cube's split
  * normals, stay apart, with a warning);
  * triangles wound against the rest of their connected part are flipped (each orientable part

@@ -509,6 +509,7 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   options.FlipEdges = this->FlipEdges;
   options.PreserveTopology = this->PreserveTopology;
   options.BoundaryWeight = this->BoundaryWeight;
+  options.OrderFlatClusters = this->LevelMode == TARGET_TRIANGLE_COUNTS;
   // The clustering asks the topology only which edges are boundaries.
   in.Topology.KeepBoundaryFlagsOnly();
   meshlod::OctreeClustering clustering(in.Mesh, in.Topology, options);

@@ -74,10 +74,11 @@
  *   390 at 8%, whose clusters across the edges cut the corners); a count
  *   between two that consecutive epsilons give (levels cut one cluster tree, so counts move in
  *   steps of whole clusters); a count at or above the previous level's (a level never refines).
- *   Clusters of zero error (an exactly flat region, a faceted solid's facets) merge in order of
- *   size, the smallest first, at epsilons far below any error that matters (1e-7 of a cluster's
- *   cell), so counts are met there too: a flat disk of 120,000 triangles asked for 12,000 got
- *   12,022 at no error, where they all merged at once before (4,488).
+ *   In this mode clusters of zero error (an exactly flat region, a faceted solid's facets)
+ *   merge in order of size, the smallest first, at epsilons far below any error that matters
+ *   (about 1e-7 of a cluster's cell), so counts are met there too: a flat disk of 120,000
+ *   triangles asked for 12,000 got 12,022 at no error, where they all merged at once before
+ *   (4,488). In the epsilon modes every epsilon, 0 included, merges all of them.
  * A level that keeps exactly the triangles of the level before (an epsilon that merges nothing
  * more, or a small count met within its tolerance by the same cut) is kept, the same mesh again,
  * and said in a warning.
@@ -114,8 +115,8 @@
  * every cluster merges at any epsilon, so level 1 would keep no triangle and the hierarchy is
  * level 0, with that warning); arrays whose tuple count is not the number of points or cells are
  * ignored with a warning; points on boundary or non-manifold edges that coincide up to rounding
- * (1e-12 of the bounding diagonal, or 64 units in the last place of the largest coordinate where
- * that is more, far from the origin) and carry the same point data are stitched (an attribute
+ * (1e-12 of the bounding diagonal, or 64 double-precision epsilons of the largest coordinate
+ * where that is more, far from the origin) and carry the same point data are stitched (an attribute
  * seam stays open, with a warning); triangles wound against the rest of their connected part are
  * flipped (each orientable part keeps its majority orientation). Where k > 2 sheets meet along a
  * curve of non-manifold edges (the surfaces between the regions of a segmented volume), a cluster

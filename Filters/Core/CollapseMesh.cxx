@@ -64,6 +64,8 @@ void CollapseMesh::Initialize(
   AssignFresh(this->Flags, nv, 0);
   AssignFresh(this->Quadrics, nv, Quadric());
   AssignFresh(this->Facing, 3 * static_cast<std::size_t>(nv), 0.0f);
+  // (boundaryScale is the diagonal, or 1 for a mesh of one point.)
+  const double areaUnit = std::ldexp(1.0, -2 * std::ilogb(boundaryScale));
   ResizeFresh(this->Survivor, nv);
   std::iota(this->Survivor.begin(), this->Survivor.end(), 0);
   this->AliveTriangles = nt;
@@ -122,7 +124,8 @@ void CollapseMesh::Initialize(
       this->Quadrics[v] = q;
       for (int i = 0; i < 3; ++i)
       {
-        this->Facing[3 * static_cast<std::size_t>(v) + i] = static_cast<float>(facing[i]);
+        this->Facing[3 * static_cast<std::size_t>(v) + i] =
+          static_cast<float>(facing[i] * areaUnit);
       }
     }
   });

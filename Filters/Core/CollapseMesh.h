@@ -138,7 +138,9 @@ public:
   TriangleMesh Mesh;             // positions and triangles; dead triangles have corner 0 invalid
   std::vector<Quadric> Quadrics; // per vertex: planes of the original triangles merged into it
   /// Per vertex (x, y, z): the summed area vectors of the original triangles merged into it (a
-  /// third of each around it), i.e. which way the original surface it stands for faces.
+  /// third of each around it), i.e. which way the original surface it stands for faces. In
+  /// units of the squared diagonal (a power of two): only directions are read, and areas in
+  /// world units overflow single precision for a mesh 1e20 across (vanish for one 1e-20).
   std::vector<float> Facing;
   std::vector<std::uint8_t> Flags;
   std::vector<Id> Survivor;      // vertex -> the vertex it merged into (itself while alive)

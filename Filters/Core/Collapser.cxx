@@ -46,6 +46,7 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   // with the square of the distance to the origin, and far from it (a mesh in world or map
   // coordinates) its evaluation cancels away the error it measures. Levels are moved back.
   const double diagonal = TranslateToCentre(mesh, this->Centre);
+  this->SpreadUnit = diagonal > 0.0 ? std::ldexp(1.0, -2 * std::ilogb(diagonal)) : 1.0;
   const bool curvature = options.Method == CollapseMethod::Curvature;
   if (curvature) // the fits use the ancestral (original) points
   {
@@ -107,7 +108,7 @@ double Collapser::EvaluateCost(Id t, CostScratch& scratch)
       spread += (p[i] - c.Position[i]) * (p[i] - c.Position[i]);
     }
   }
-  this->Spreads[t] = static_cast<float>(spread);
+  this->Spreads[t] = static_cast<float>(spread * this->SpreadUnit);
   return c.Cost;
 }
 

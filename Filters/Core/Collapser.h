@@ -377,9 +377,13 @@ private:
   ParkingLot Lot;
   std::vector<double> Costs;
   // Per triangle, how far its chosen collapse moves the merged vertices (sum of squared
-  // distances): the greedy order between equal costs. On an exactly flat region every collapse
-  // costs 0; taking the ones that move vertices least first decimates it evenly.
+  // distances, in units of SpreadUnit): the greedy order between equal costs. On an exactly flat
+  // region every collapse costs 0; taking the ones that move vertices least first decimates it
+  // evenly.
   std::vector<float> Spreads;
+  // The squared diagonal's power of two, so that Spreads stay in single precision's range
+  // whatever the mesh's size (exactly scaled: the order is the same at every scale).
+  double SpreadUnit = 1.0;
   // What the last evaluation of each triangle chose (CollapseCandidate::Choice), so that the
   // check of a chosen triangle solves for that collapse only.
   std::vector<std::uint8_t> Choices;

@@ -93,8 +93,8 @@ bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLeve
   if (targetTriangles >= impl.PreviousTriangles())
   {
     // A level never refines: asked for at least what the current level has, it is the current
-    // level again. At the input, even epsilon 0 would merge clusters of zero error (an exactly
-    // flat region): a negative epsilon merges nothing.
+    // level again. At the input, even epsilon 0 may merge clusters of zero error (an exactly
+    // flat region, without OrderFlatClusters): a negative epsilon merges nothing.
     const double epsilon = impl.AtInput() ? -1.0 : impl.CurrentEpsilon;
     if (impl.TryLevel(epsilon, level) == 0)
     {

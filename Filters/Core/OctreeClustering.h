@@ -104,6 +104,11 @@ struct VTKFILTERSMESHLOD_EXPORT OctreeClusteringOptions
   /// points, counts and clusters, closer triangles, but no longer the images of the previous
   /// level's triangles.
   bool FlipEdges = false;
+  /// Give clusters of zero error thresholds of their own, far below any error that matters
+  /// (see UpdateThreshold), so that a search for a triangle count can stop part way through a
+  /// flat region. Off, every epsilon merges them all, epsilon 0 included (a lossless reduction
+  /// of flat parts); the filter turns it on for target counts only.
+  bool OrderFlatClusters = false;
 };
 
 /// One level as produced by OctreeClustering; point ids refer to this level, "previous" ids to

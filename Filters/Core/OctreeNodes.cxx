@@ -15,6 +15,9 @@ namespace
 constexpr double CoherentNormal = 0.25;
 // The threshold of a node of zero error, relative to its cell size (see UpdateThreshold).
 constexpr double ZeroErrorOrder = 1e-7;
+// Places in [0, 1) spread evenly whatever the run of indices (the fractional parts of multiples
+// of the golden ratio's fraction).
+constexpr double GoldenFraction = 0.6180339887498949;
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -32,14 +35,17 @@ bool OctreeClustering::Internals::CheapInadmissible(Id index) const
 // values at rounding level are taken as zero (the full evaluation recomputes the quadric
 // directly and tells exact zeros, such as a flat part or a cube corner, from small errors).
 //
-// Nodes of zero error (or almost) get a threshold of their own, far below any error that
-// matters: ZeroErrorOrder times their cell size, times 1 to 1.25 by their place in the tree.
-// Without it a flat part merged whole at the first epsilon above 0, so no count between its
-// input and its fewest triangles was reachable (a flat 32 x 32 grid asked for 200 triangles got
-// 8, a disk of 120,000 asked for 12,000 got 4,488); with it the smallest cells merge first, one
-// after the other, so the search meets counts there too. A tie-break only: the factor stays
-// below the 2^(1/3) between binary depths, and it is 0 when all points lie at one place (every
-// cluster then merges at once, as before).
+// With OrderFlatClusters (target counts), nodes of zero error (or almost) get a threshold of
+// their own, far below any error that matters: ZeroErrorOrder times their cell size, times 1 to
+// 1.25 by a scrambled place in the tree (so that a count stopping part way through a depth
+// spreads its merges over a flat region instead of coarsening one end of it first). Without it
+// a flat part merged whole at the first epsilon above 0, so no count between its input and its
+// fewest triangles was reachable (a flat 32 x 32 grid asked for 200 triangles got 8, a disk of
+// 120,000 asked for 12,000 got 4,488); with it the smallest cells merge first. A tie-break
+// only: the factor stays below the 2^(1/3) between binary depths, so a parent's threshold stays
+// above its children's; it is 0 when all points lie at one place (every cluster then merges at
+// once, as before). (For a mesh under about 1e-24 across the smallest of these fall below
+// single precision's normal range and tie: flat parts there merge in larger steps again.)
 void OctreeClustering::Internals::UpdateThreshold(Id index)
 {
   float& thr = this->Thr[index];
@@ -53,10 +59,13 @@ void OctreeClustering::Internals::UpdateThreshold(Id index)
   thr = this->State[index] == NodeState::Admissible
     ? static_cast<float>(this->Slot(index)[6])
     : (node.E1 < 1e-6 * this->Tree.Size ? 0.0f : node.E1);
-  const double place = static_cast<double>(index) / this->Tree.NumberOfInternalNodes();
-  const double tieBreak =
-    ZeroErrorOrder * this->Tree.Extent * std::exp2(-node.Depth / 3.0) * (1.0 + 0.25 * place);
-  thr = std::max(thr, static_cast<float>(tieBreak));
+  if (this->Options.OrderFlatClusters)
+  {
+    const double place = std::fmod(static_cast<double>(index) * GoldenFraction, 1.0);
+    const double tieBreak =
+      ZeroErrorOrder * this->Tree.Extent * std::exp2(-node.Depth / 3.0) * (1.0 + 0.25 * place);
+    thr = std::max(thr, static_cast<float>(tieBreak));
+  }
 }
 
 //------------------------------------------------------------------------------

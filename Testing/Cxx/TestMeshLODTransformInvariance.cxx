@@ -55,12 +55,11 @@ struct Similarity
   }
 };
 
-// The metaballs isosurface with double points, a colour array (the active scalars, which the
-// octree bakes) and a float array, both functions of the untransformed position.
-vtkSmartPointer<vtkPolyData> MakeInput(const Similarity& transform)
+// `surface` (by default the metaballs isosurface) transformed, with double points, a colour
+// array (the active scalars, which the octree bakes) and a float array, both functions of the
+// untransformed position.
+vtkSmartPointer<vtkPolyData> MakeInput(const Similarity& transform, vtkPolyData* surface)
 {
-  vtkSmartPointer<vtkPolyData> surface =
-    testing::MakeIsosurface(testing::Field::Metaballs, 40);
   const vtkIdType n = surface->GetNumberOfPoints();
   vtkNew<vtkPoints> points;
   points->SetDataType(VTK_DOUBLE);
@@ -91,6 +90,11 @@ vtkSmartPointer<vtkPolyData> MakeInput(const Similarity& transform)
   mesh->GetPointData()->SetScalars(colors);
   mesh->GetPointData()->AddArray(field);
   return mesh;
+}
+
+vtkSmartPointer<vtkPolyData> MakeInput(const Similarity& transform)
+{
+  return MakeInput(transform, testing::MakeIsosurface(testing::Field::Metaballs, 40));
 }
 
 double Diagonal(vtkPolyData* mesh)
@@ -249,14 +253,18 @@ void CompareTextures(vtkMultiBlockDataSet* plain, vtkMultiBlockDataSet* moved)
 // Runs `Filter`, set up by `configure`, on the input under each transform and compares the
 // results with the untransformed run's (the first transform is the identity).
 template <typename Filter, typename Configure>
-void TestFilter(const std::vector<Similarity>& transforms, const char* name, Configure configure)
+void TestFilter(const std::vector<Similarity>& transforms, const char* name, Configure configure,
+  vtkPolyData* surface = nullptr)
 {
+  const auto input = [surface](const Similarity& transform) {
+    return surface ? MakeInput(transform, surface) : MakeInput(transform);
+  };
   vtkNew<Filter> reference;
-  configure(MakeInput(transforms.front()), reference.Get());
+  configure(input(transforms.front()), reference.Get());
   for (size_t t = 1; t < transforms.size(); ++t)
   {
     vtkNew<Filter> filter;
-    configure(MakeInput(transforms[t]), filter.Get());
+    configure(input(transforms[t]), filter.Get());
     CompareHierarchies(reference->GetHierarchy(), filter->GetHierarchy(), transforms[t], name);
     CompareGeomorphs(reference->GetHierarchy(), filter->GetHierarchy(), transforms[t]);
     if constexpr (std::is_same_v<Filter, vtkVertexClusterOctree>)
@@ -351,5 +359,29 @@ int TestMeshLODTransformInvariance(int, char*[])
       filter->Update();
     });
   TestSeamFarFromOrigin();
+
+  // Near the ends of the accepted diagonals (1e-30 to 1e30), on surfaces that reach the
+  // collapse rules the smooth metaballs do not: a noisy sphere (triangles turning against the
+  // surface's facing) and a flat grid (every collapse free, ordered by how far it moves
+  // points). Both keep squared lengths in single precision, which overflowed or vanished there.
+  const std::vector<Similarity> extremes = {
+    { "identity", 1.0, { 0.0, 0.0, 0.0 } },
+    { "scaled by 2^-95", std::ldexp(1.0, -95), { 0.0, 0.0, 0.0 } },
+    { "scaled by 2^93", std::ldexp(1.0, 93), { 0.0, 0.0, 0.0 } },
+  };
+  vtkSmartPointer<vtkPolyData> noisy = testing::MakeIcosphere(4);
+  testing::PerturbRadially(noisy, 0.05, 3);
+  vtkSmartPointer<vtkPolyData> grid = testing::MakeGrid(32, 32);
+  for (vtkPolyData* surface : { noisy.Get(), grid.Get() })
+  {
+    TestFilter<vtkTriangleCollapseDecimation>(extremes, "vtkTriangleCollapseDecimation",
+      [](vtkPolyData* input, vtkTriangleCollapseDecimation* filter) {
+        filter->SetInputData(input);
+        filter->SetNumberOfLevels(4);
+        filter->ComputeLevelErrorOn();
+        filter->Update();
+      },
+      surface);
+  }
   return testing::Result();
 }
