@@ -1,6 +1,7 @@
 #include "MeshLODInputMesh.h"
 
 #include "Core/FreshMemory.h"
+#include "Core/Vector3.h"
 #include "MeshLODInputArrays.h"
 
 #include "vtkAOSDataArrayTemplate.h"
@@ -178,12 +179,6 @@ vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdT
 constexpr double SeamTolerance = 1e-12;
 constexpr double SeamRoundingUnits = 64.0; // times DBL_EPSILON times the largest coordinate
 constexpr size_t MaximumSeamGroups = 16;
-
-double Distance2(const double* a, const double* b)
-{
-  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-    (a[2] - b[2]) * (a[2] - b[2]);
-}
 
 vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
   const PointDataAgreement& agree, vtkIdType& keptApart)

@@ -64,8 +64,7 @@ void CollapseMesh::Initialize(
   AssignFresh(this->Flags, nv, 0);
   AssignFresh(this->Quadrics, nv, Quadric());
   AssignFresh(this->Facing, 3 * static_cast<std::size_t>(nv), 0.0f);
-  // (boundaryScale is the diagonal, or 1 for a mesh of one point.)
-  const double areaUnit = std::ldexp(1.0, -2 * std::ilogb(boundaryScale));
+  const double areaUnit = SquaredLengthUnit(boundaryScale); // the diagonal (1 for one point)
   ResizeFresh(this->Survivor, nv);
   std::iota(this->Survivor.begin(), this->Survivor.end(), 0);
   this->AliveTriangles = nt;

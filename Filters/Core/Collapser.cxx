@@ -1,6 +1,7 @@
 #include "Collapser.h"
 
 #include "LevelData.h"
+#include "Vector3.h"
 
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
@@ -46,7 +47,7 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   // with the square of the distance to the origin, and far from it (a mesh in world or map
   // coordinates) its evaluation cancels away the error it measures. Levels are moved back.
   const double diagonal = TranslateToCentre(mesh, this->Centre);
-  this->SpreadUnit = diagonal > 0.0 ? std::ldexp(1.0, -2 * std::ilogb(diagonal)) : 1.0;
+  this->SpreadUnit = SquaredLengthUnit(diagonal);
   const bool curvature = options.Method == CollapseMethod::Curvature;
   if (curvature) // the fits use the ancestral (original) points
   {

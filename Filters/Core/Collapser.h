@@ -381,8 +381,7 @@ private:
   // region every collapse costs 0; taking the ones that move vertices least first decimates it
   // evenly.
   std::vector<float> Spreads;
-  // The squared diagonal's power of two, so that Spreads stay in single precision's range
-  // whatever the mesh's size (exactly scaled: the order is the same at every scale).
+  // SquaredLengthUnit of the diagonal: Spreads in single precision at every scale.
   double SpreadUnit = 1.0;
   // What the last evaluation of each triangle chose (CollapseCandidate::Choice), so that the
   // check of a chosen triangle solves for that collapse only.

@@ -158,11 +158,9 @@ void LevelCentering::Apply(TriangleMesh& level,
     return;
   }
 
-  // Sample areas are kept in single precision in units of the diagonal squared (a power of two,
-  // so exactly): in world units they overflowed for a mesh 1e21 across and vanished for one
-  // 1e-21 across, and the centred levels strayed from the input there.
-  const double diagonal = level.BoundingDiagonal();
-  const double areaUnit = diagonal > 0.0 ? std::ldexp(1.0, -2 * std::ilogb(diagonal)) : 1.0;
+  // Sample areas are kept in single precision in units of the diagonal squared: in world units
+  // the centred levels strayed from the input for a mesh 1e21 across or 1e-21 across.
+  const double areaUnit = SquaredLengthUnit(level.BoundingDiagonal());
 
   // Points that did not change keep their shift of the previous level, added in the same
   // rounding as there (so they land exactly where the previous level has them); the others

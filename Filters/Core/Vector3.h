@@ -2,6 +2,8 @@
 #ifndef meshlod_Vector3_h
 #define meshlod_Vector3_h
 
+#include <cmath>
+
 namespace meshlod
 {
 inline void Subtract(const double u[3], const double v[3], double out[3])
@@ -37,6 +39,15 @@ inline void Normal(const double a[3], const double b[3], const double c[3], doub
   Subtract(b, a, u);
   Subtract(c, a, v);
   Cross(u, v, n);
+}
+
+// A power of two near 1 / length^2 (1 for a length of 0). Squared lengths and areas of a mesh
+// that long, times it, fit single precision whatever the mesh's size (in world units they
+// overflow for a mesh 1e20 across and vanish for one 1e-20 across), and a power of two changes
+// no rounding, so what is computed from them is the same at every scale.
+inline double SquaredLengthUnit(double length)
+{
+  return length > 0.0 ? std::ldexp(1.0, -2 * std::ilogb(length)) : 1.0;
 }
 } // namespace meshlod
 
