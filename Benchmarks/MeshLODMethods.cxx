@@ -116,6 +116,12 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     [](vtkTriangleCollapseDecimation* d) { d->SetPlacementToPaperCandidates(); });
   placement.Parallel = false;
   methods.push_back(placement);
+  Method uniform = TriangleCollapse("vtkTriangleCollapseDecimation uniform weights",
+    "as vtkTriangleCollapseDecimation, with PlaneWeights UNIFORM_WEIGHTS (every plane weighs the "
+    "input's mean triangle area, as vtkQuadricDecimation weighs them); one-thread row only",
+    [](vtkTriangleCollapseDecimation* d) { d->SetPlaneWeightsToUniform(); });
+  uniform.Parallel = false;
+  methods.push_back(uniform);
   methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation independent sets",
     "quadric method, IndependentSets schedule (LevelFraction 0.025), triangles and edges, 8 levels",
     [](vtkTriangleCollapseDecimation* d) { d->SetScheduleToIndependentSets(); }));

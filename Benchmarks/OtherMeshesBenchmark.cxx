@@ -1,11 +1,12 @@
-// Beyond isosurfaces: vtkTriangleCollapseDecimation (defaults, then the curvature method)
-// against vtkQuadricDecimation, and vtkVertexClusterOctree against vtkQuadricClustering, on
-// meshes made by VTK's own sources, the kinds a user feeds in besides marching-cubes output: a
-// CAD-like faceted solid, a parametric surface with a seam, scan-like noisy spheres, open
-// surfaces (a scan-like sphere with holes, a terrain), a non-orientable surface, a superquadric
-// with rounded edges, VTK's wavelet test volume's isosurface (open, with many handles), a mesh in
-// georeferenced coordinates (far from the origin) and the smoothed surfaces between the regions
-// of a segmented volume, where three sheets meet along curves. Prints four markdown tables
+// Beyond isosurfaces: vtkTriangleCollapseDecimation (defaults, then the curvature method, then
+// uniform plane weights, then PreserveTopology off) against vtkQuadricDecimation, and
+// vtkVertexClusterOctree against vtkQuadricClustering, on meshes made by VTK's own sources, the
+// kinds a user feeds in besides marching-cubes output: a CAD-like faceted solid, a parametric
+// surface with a seam, scan-like noisy spheres, open surfaces (a scan-like sphere with holes, a
+// terrain), a non-orientable surface, a superquadric with rounded edges, VTK's wavelet test
+// volume's isosurface (open, with many handles), a mesh in georeferenced coordinates (far from
+// the origin) and the smoothed surfaces between the regions of a segmented volume, where three
+// sheets meet along curves. Prints five markdown tables
 // (quality and Euler characteristics, or the counts reached; no timing) that run-benchmarks.sh
 // appends to RESULTS.md.
 //
@@ -347,7 +348,7 @@ int main(int argc, char* argv[])
   const meshlod::benchmark::Method flipped = method("vtkVertexClusterOctree flipped edges");
   const meshlod::benchmark::Method free = method("vtkVertexClusterOctree free topology");
   const meshlod::benchmark::Method grid = method("vtkQuadricClustering");
-  std::ostringstream octreeRows, curvatureRows, freeTopologyRows;
+  std::ostringstream octreeRows, curvatureRows, uniformRows, freeTopologyRows;
   for (const TestMesh& test : Meshes())
   {
     vtkSmartPointer<vtkPolyData> mesh = test.Make();
@@ -373,6 +374,11 @@ int main(int argc, char* argv[])
     curvature->SetMethodToCurvature();
     curvature->Update();
     curvatureRows << QuadricDecimationRows(test, mesh, curvature, options);
+    vtkNew<vtkTriangleCollapseDecimation> uniform;
+    uniform->SetInputData(mesh);
+    uniform->SetPlaneWeightsToUniform();
+    uniform->Update();
+    uniformRows << QuadricDecimationRows(test, mesh, uniform, options);
     const std::vector<vtkIdType> targets = { triangles / 10, triangles / 100 };
     const std::vector<vtkSmartPointer<vtkPolyData>> levels = octree.Hierarchy(mesh, targets);
     // FlipEdges changes no count: the same grid answers both.
@@ -434,6 +440,11 @@ int main(int argc, char* argv[])
               "defaults otherwise) and vtkQuadricDecimation, as in the first table:\n\n");
   PrintQuadricDecimationHeader();
   std::printf("%s", curvatureRows.str().c_str());
+  std::printf("\nvtkTriangleCollapseDecimation with PlaneWeights UNIFORM_WEIGHTS (every plane "
+              "weighs the input's mean triangle area, as vtkQuadricDecimation weighs them; "
+              "defaults otherwise) and vtkQuadricDecimation, as in the first table:\n\n");
+  PrintQuadricDecimationHeader();
+  std::printf("%s", uniformRows.str().c_str());
   std::printf("\nvtkTriangleCollapseDecimation with PreserveTopology off (small closed pieces may "
               "vanish; defaults otherwise) and vtkQuadricDecimation, as in the first table, on "
               "the meshes where it changes a level:\n\n");

@@ -52,8 +52,9 @@ VTK_SMP_BACKEND_IN_USE=Sequential "$build/bin/MeshLODBenchmark" \
   echo "lose the surface to rounding far from the origin, while both our filters give their"
   echo "output for the same mesh at the origin, moved (at 10% the main table's metaballs rows; its"
   echo "1% targets round differently). Then the same meshes with vtkVertexClusterOctree,"
-  echo "with the curvature method of vtkTriangleCollapseDecimation, and with its PreserveTopology"
-  echo "off (small closed pieces may vanish; shown where that changes a level):"
+  echo "with the curvature method of vtkTriangleCollapseDecimation, with its PlaneWeights"
+  echo "UNIFORM_WEIGHTS (vtkQuadricDecimation's weighting of the planes) and with its"
+  echo "PreserveTopology off (small closed pieces may vanish; shown where that changes a level):"
   echo
   "$build/bin/OtherMeshesBenchmark"
 } >> "$repo/Benchmarks/RESULTS.md"

@@ -82,6 +82,11 @@ const char* vtkTriangleCollapseDecimation::GetPlacementAsString() const
   return this->Placement == PAPER_CANDIDATES ? "PaperCandidates" : "Regularized";
 }
 
+const char* vtkTriangleCollapseDecimation::GetPlaneWeightsAsString() const
+{
+  return this->PlaneWeights == UNIFORM_WEIGHTS ? "Uniform" : "Area";
+}
+
 void vtkTriangleCollapseDecimation::AddLevelReduction(double reduction)
 {
   this->LevelReductions.push_back(reduction);
@@ -187,6 +192,7 @@ int vtkTriangleCollapseDecimation::RequestData(
   options.Placement = this->Placement == PAPER_CANDIDATES
     ? meshlod::CollapsePlacement::PaperCandidates
     : meshlod::CollapsePlacement::Regularized;
+  options.UniformPlaneWeights = this->PlaneWeights == UNIFORM_WEIGHTS;
   options.PartitionedGreedy = this->PartitionedGreedy;
   options.TriangleCostFactor = this->TriangleCostFactor;
   options.MaximumError = this->MaximumError;
@@ -383,6 +389,7 @@ void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Schedule: " << this->GetScheduleAsString() << "\n";
   os << indent << "Operator: " << this->GetOperatorAsString() << "\n";
   os << indent << "Placement: " << this->GetPlacementAsString() << "\n";
+  os << indent << "PlaneWeights: " << this->GetPlaneWeightsAsString() << "\n";
   os << indent << "PartitionedGreedy: " << (this->PartitionedGreedy ? "On" : "Off") << "\n";
   os << indent << "TriangleCostFactor: " << this->TriangleCostFactor << "\n";
   os << indent << "TargetReduction: " << this->TargetReduction << "\n";

@@ -13,7 +13,8 @@
  * Two methods weight the triangles and place the collapse point (SetMethod):
  * - Quadric (the default; Pan, Zhou, Shi, "A New Mesh Simplification Algorithm Based on
  *   Triangle Collapses", J. Comput. Sci. Technol. 2002): each vertex carries the quadric of the
- *   planes of the original triangles around it (area weighted, plus planes through boundary
+ *   planes of the original triangles around it (area weighted, or alike: PlaneWeights; plus
+ *   planes through boundary
  *   edges perpendicular to their triangle, weighted by BoundaryWeight times the edge length
  *   times the bounding-box diagonal, so open boundaries stay in place). Collapsing a triangle
  *   costs the sum of its three quadrics at the point minimising it; quadrics add up when
@@ -237,6 +238,11 @@ public:
     REGULARIZED = 0,
     PAPER_CANDIDATES = 1
   };
+  enum PlaneWeightings
+  {
+    AREA_WEIGHTS = 0,
+    UNIFORM_WEIGHTS = 1
+  };
 
   /// The hierarchy (output port 0).
   vtkMultiBlockDataSet* GetHierarchy();
@@ -454,7 +460,8 @@ public:
   /**
    * Weight of the planes through boundary edges relative to the surface planes, in
    * [0, 1e6]: an edge of length l adds a plane weighted BoundaryWeight * l * D, D the input's
-   * bounding-box diagonal (the surface planes weigh their triangle's area). Per unit of
+   * bounding-box diagonal (the surface planes weigh their triangle's area, or the mean
+   * triangle area with PlaneWeights UNIFORM_WEIGHTS). Per unit of
    * boundary length the weight is the same whatever the input's resolution, and scaling the
    * input scales every weight alike. 0 lets boundaries move freely. Default 0.3: at 1% of
    * open isosurfaces, scan-like spheres with holes and a terrain, the levels then keep about
@@ -465,6 +472,37 @@ public:
    */
   vtkSetClampMacro(BoundaryWeight, double, 0.0, 1.0e6);
   vtkGetMacro(BoundaryWeight, double);
+  ///@}
+
+  ///@{
+  /**
+   * How much each input triangle's plane weighs in the quadrics: the quadric method's costs
+   * and placements; for the curvature method, its merged planes (which FIT_DEVIATION compares
+   * with the fit's deviation, area-weighted either way), its placement of boundary triangles
+   * and its error estimates. AREA_WEIGHTS
+   * (default): its area, so that a quadric measures the squared distance integrated over the
+   * surface, whatever the input's tessellation; levels then spend their vertices where that
+   * integral asks, the least RMS distance per triangle. UNIFORM_WEIGHTS: every plane weighs
+   * the same, the input's mean triangle area (vtkQuadricDecimation's weighting, made
+   * scale-invariant), so regions tessellated finely in the input keep more of the error budget's
+   * attention. Measured at 1% against vtkQuadricDecimation (Benchmarks/RESULTS.md, Beyond
+   * isosurfaces; Hausdorff distance ratio, AREA_WEIGHTS -> UNIFORM_WEIGHTS): lower on meshes
+   * whose triangle sizes vary across the surface or that are rough (parametric torus 0.95 ->
+   * 0.83, Boy's surface 1.15 -> 0.79, terrain 1.08 -> 0.83, noisy UV spheres 0.73-1.03 ->
+   * 0.67-0.87, VTK's wavelet isosurface 1.36 -> 1.12), higher on the sphere with holes
+   * (1.10 -> 1.14; 1.02 -> 1.27 at 10%), the segmented volume and the noisy isosurface; the RMS
+   * distance rises a little on most (superquadric 0.74 -> 1.06). On the benchmark's
+   * marching-cubes isosurfaces (metaballs, gyroid) UNIFORM_WEIGHTS has the larger Hausdorff
+   * distance at three of the four targets (metaballs at 10%: 0.94 -> 1.07) and the larger RMS
+   * distance at all. Keep AREA_WEIGHTS for isosurfaces and for the least RMS distance; try
+   * UNIFORM_WEIGHTS for tessellations with graded triangle sizes when the largest distance
+   * matters.
+   */
+  vtkSetClampMacro(PlaneWeights, int, AREA_WEIGHTS, UNIFORM_WEIGHTS);
+  vtkGetMacro(PlaneWeights, int);
+  void SetPlaneWeightsToArea() { this->SetPlaneWeights(AREA_WEIGHTS); }
+  void SetPlaneWeightsToUniform() { this->SetPlaneWeights(UNIFORM_WEIGHTS); }
+  const char* GetPlaneWeightsAsString() const;
   ///@}
 
   ///@{
@@ -576,6 +614,7 @@ protected:
   int Operator = TRIANGLES_AND_EDGES;
   bool PartitionedGreedy = true;
   int Placement = REGULARIZED;
+  int PlaneWeights = AREA_WEIGHTS;
   double TriangleCostFactor = 1.5;
   double TargetReduction = 0.99;
   int NumberOfLevels = 8;

@@ -54,8 +54,8 @@ double TriangleNormal(const double* p0, const double* p1, const double* p2, doub
 }
 
 //------------------------------------------------------------------------------
-void CollapseMesh::Initialize(
-  TriangleMesh&& input, TriangleTopology&& topology, double boundaryWeight, double boundaryScale)
+void CollapseMesh::Initialize(TriangleMesh&& input, TriangleTopology&& topology,
+  double boundaryWeight, double boundaryScale, double planeWeight)
 {
   this->Mesh = std::move(input);
   const TriangleMesh& mesh = this->Mesh;
@@ -98,7 +98,15 @@ void CollapseMesh::Initialize(
         {
           continue; // degenerate triangle
         }
-        q += plane;
+        if (planeWeight > 0.0)
+        {
+          // (TriangleQuadric weighs the plane by the area, half the normal's length.)
+          q.Add(plane, 2.0 * planeWeight / std::sqrt(Dot(normal, normal)));
+        }
+        else
+        {
+          q += plane;
+        }
         for (int i = 0; i < 3; ++i)
         {
           facing[i] += normal[i] / 6.0; // a third of the area vector (normal is twice it)

@@ -147,13 +147,15 @@ public:
   Id AliveTriangles = 0;
   Id AliveAtLastRebuild = 0;
 
-  /// Take over the mesh and its topology (both are moved from); classify vertices from the topology; accumulate area-weighted plane
-  /// quadrics plus, on boundary edges, planes through the edge perpendicular to its triangle
-  /// weighted by boundaryWeight times the edge length times boundaryScale (a length: the
-  /// boundary's planes weigh boundaryWeight * boundaryScale per unit of its length), or times
-  /// the edge length again when boundaryScale is 0.
+  /// Take over the mesh and its topology (both are moved from); classify vertices from the
+  /// topology; accumulate plane quadrics, each weighted by its triangle's area, or by
+  /// planeWeight (an area) for every plane when that is positive, plus, on boundary edges,
+  /// planes through the edge perpendicular to its triangle weighted by boundaryWeight times the
+  /// edge length times boundaryScale (a length: the boundary's planes weigh boundaryWeight *
+  /// boundaryScale per unit of its length), or times the edge length again when boundaryScale
+  /// is 0.
   void Initialize(TriangleMesh&& mesh, TriangleTopology&& topology, double boundaryWeight,
-    double boundaryScale);
+    double boundaryScale, double planeWeight = 0.0);
 
   bool IsAlive(Id t) const { return this->Mesh.Triangles[3 * static_cast<std::size_t>(t)] != InvalidId; }
   bool IsLocked(Id v) const { return (this->Flags[v] & FlagLocked) != 0; }

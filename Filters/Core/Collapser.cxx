@@ -67,8 +67,12 @@ Collapser::Collapser(TriangleMesh&& mesh, TriangleTopology&& topology,
   this->Tracker.Initialize(mesh.GetNumberOfPoints(), curvature);
   // Boundary planes weigh BoundaryWeight per unit of boundary length and of diagonal: the same
   // per unit length at every input resolution (see TriangleCollapseOptions::BoundaryWeight).
+  // Uniform plane weights: every plane weighs the mean triangle area, so that the boundary
+  // planes keep their weight relative to the surface's (and the two weightings agree on a mesh
+  // of equal triangles).
+  const double planeWeight = options.UniformPlaneWeights ? mesh.MeanTriangleArea() : 0.0;
   this->State.Initialize(std::move(mesh), std::move(topology), options.BoundaryWeight,
-    diagonal > 0.0 ? diagonal : 1.0);
+    diagonal > 0.0 ? diagonal : 1.0, planeWeight);
   if (!options.PreserveTopology)
   {
     this->State.TrackPieces();

@@ -91,6 +91,9 @@ struct TriangleCollapseOptions
   /// planes (the plane of an edge of length l gets BoundaryWeight * l * the bounding-box
   /// diagonal).
   double BoundaryWeight = 0.3;
+  /// Off: each triangle's plane weighs the triangle's area. On: every plane weighs the same, the
+  /// input's mean triangle area (vtkQuadricDecimation's weighting, kept scale-invariant).
+  bool UniformPlaneWeights = false;
   /// Largest angle (degrees) a triangle's normal may turn in one collapse (see CollapseMesh).
   double MaximumNormalDeviation = 90.0;
   /// Off: a small closed piece of genus 0 (CollapseMesh::SmallPiece; a tetrahedron cannot lose

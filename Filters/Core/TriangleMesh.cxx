@@ -275,6 +275,38 @@ double TriangleMesh::BoundingDiagonal() const
 }
 
 //------------------------------------------------------------------------------
+double TriangleMesh::MeanTriangleArea() const
+{
+  constexpr Id Block = 8192;
+  const Id triangles = this->GetNumberOfTriangles();
+  const Id blocks = (triangles + Block - 1) / Block;
+  std::vector<double> sums(2 * static_cast<std::size_t>(blocks), 0.0); // area, count per block
+  vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
+    for (Id b = begin; b < end; ++b)
+    {
+      for (Id t = b * Block; t < std::min(triangles, (b + 1) * Block); ++t)
+      {
+        double n[3];
+        this->AreaVector(t, n);
+        const double area = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (area > 0.0)
+        {
+          sums[2 * b] += area;
+          sums[2 * b + 1] += 1.0;
+        }
+      }
+    }
+  });
+  double area = 0.0, count = 0.0;
+  for (Id b = 0; b < blocks; ++b)
+  {
+    area += sums[2 * b];
+    count += sums[2 * b + 1];
+  }
+  return count > 0.0 ? area / count : 0.0;
+}
+
+//------------------------------------------------------------------------------
 double BoxDiagonal(const double lo[3], const double hi[3])
 {
   // hypot: no overflow or underflow of the squares (a box of 1e-200 is not one of size 0).

@@ -42,6 +42,10 @@ struct VTKFILTERSMESHLOD_EXPORT TriangleMesh
 
   /// Length of the diagonal of the points' axis-aligned bounding box (0 without points).
   double BoundingDiagonal() const;
+
+  /// Mean area of the triangles of positive area (0 without any), summed in blocks of a fixed
+  /// size: the same number for any thread count.
+  double MeanTriangleArea() const;
 };
 
 /// Length of the diagonal of the box [lo, hi] (TriangleMesh::GetBounds' box).

@@ -175,15 +175,37 @@ check(curvature.GetCurvatureCost() == curvature.FIT_DEVIATION, "CurvatureCost se
 # is 0.089 here, as the quadric method's (0.095); paper 000's weight gives 0.21.
 test_hierarchy(contour, curvature, 0.13)
 
-# Paper 002's placement through the wrapping: the same checks on every level.
-paper = meshlod.vtkTriangleCollapseDecimation()
-paper.SetInputConnection(contour.GetOutputPort())
-paper.SetNumberOfLevels(LEVELS)
-paper.ComputeLevelErrorOn()
+def contour_filter():
+    """A filter on the contour with the levels of the tests above and measured errors."""
+    decimate = meshlod.vtkTriangleCollapseDecimation()
+    decimate.SetInputConnection(contour.GetOutputPort())
+    decimate.SetNumberOfLevels(LEVELS)
+    decimate.ComputeLevelErrorOn()
+    return decimate
+
+
+def coarsest_points(hierarchy):
+    level = hierarchy.GetBlock(hierarchy.GetNumberOfBlocks() - 1)
+    return [level.GetPoint(i) for i in range(level.GetNumberOfPoints())]
+
+
+# Paper 002's placement and uniform plane weights (vtkQuadricDecimation's weighting) through the
+# wrapping: the same checks on every level, and levels unlike the defaults' (the setting reaches
+# the engine).
+by_default = contour_filter()
+by_default.Update()
+paper = contour_filter()
 check(paper.GetPlacementAsString() == "Regularized", "Placement default")
 paper.SetPlacementToPaperCandidates()
 check(paper.GetPlacement() == paper.PAPER_CANDIDATES, "Placement setter")
-test_hierarchy(contour, paper)
+uniform = contour_filter()
+check(uniform.GetPlaneWeightsAsString() == "Area", "PlaneWeights default")
+uniform.SetPlaneWeightsToUniform()
+check(uniform.GetPlaneWeights() == uniform.UNIFORM_WEIGHTS, "PlaneWeights setter")
+for name, changed in (("Placement", paper), ("PlaneWeights", uniform)):
+    test_hierarchy(contour, changed)
+    check(coarsest_points(changed.GetHierarchy()) != coarsest_points(by_default.GetHierarchy()),
+          "%s changes the coarsest level" % name)
 
 def unused_points(poly):
     return poly.GetNumberOfPoints() - len(set(triangles_of(poly)))
