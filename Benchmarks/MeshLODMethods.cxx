@@ -122,6 +122,13 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     [](vtkTriangleCollapseDecimation* d) { d->SetPlaneWeightsToUniform(); });
   uniform.Parallel = false;
   methods.push_back(uniform);
+  Method paperCost = TriangleCollapse("vtkTriangleCollapseDecimation paper cost",
+    "as vtkTriangleCollapseDecimation, with AreaNormalization 0 (a collapse costs its merged "
+    "quadric's value, paper 002's cost, not divided by the surface it stands for); one-thread "
+    "row only",
+    [](vtkTriangleCollapseDecimation* d) { d->SetAreaNormalization(0.0); });
+  paperCost.Parallel = false;
+  methods.push_back(paperCost);
   methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation independent sets",
     "quadric method, IndependentSets schedule (LevelFraction 0.025), triangles and edges, 8 levels",
     [](vtkTriangleCollapseDecimation* d) { d->SetScheduleToIndependentSets(); }));

@@ -128,6 +128,7 @@ int vtkTriangleCollapseDecimation::RequestData(
           { "MaximumError", this->MaximumError }, { "CurvatureWeight", this->CurvatureWeight },
           { "AngleWeight", this->AngleWeight }, { "ValenceWeight", this->ValenceWeight },
           { "BoundaryWeight", this->BoundaryWeight },
+          { "AreaNormalization", this->AreaNormalization },
           { "MaximumNormalDeviation", this->MaximumNormalDeviation } }))
   {
     return 0;
@@ -193,6 +194,7 @@ int vtkTriangleCollapseDecimation::RequestData(
     ? meshlod::CollapsePlacement::PaperCandidates
     : meshlod::CollapsePlacement::Regularized;
   options.UniformPlaneWeights = this->PlaneWeights == UNIFORM_WEIGHTS;
+  options.AreaNormalization = this->AreaNormalization;
   options.PartitionedGreedy = this->PartitionedGreedy;
   options.TriangleCostFactor = this->TriangleCostFactor;
   options.MaximumError = this->MaximumError;
@@ -390,6 +392,7 @@ void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Operator: " << this->GetOperatorAsString() << "\n";
   os << indent << "Placement: " << this->GetPlacementAsString() << "\n";
   os << indent << "PlaneWeights: " << this->GetPlaneWeightsAsString() << "\n";
+  os << indent << "AreaNormalization: " << this->AreaNormalization << "\n";
   os << indent << "PartitionedGreedy: " << (this->PartitionedGreedy ? "On" : "Off") << "\n";
   os << indent << "TriangleCostFactor: " << this->TriangleCostFactor << "\n";
   os << indent << "TargetReduction: " << this->TargetReduction << "\n";

@@ -537,7 +537,10 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   {
     meshlod::ClusterLevel level;
     const bool made = requests[i].ByCount
-      ? clustering.MakeLevelForTriangleCount(static_cast<Id>(requests[i].Count), level)
+      // (A count above the input's asks for no change; clamped so that it fits the core's ids.)
+      ? clustering.MakeLevelForTriangleCount(
+          static_cast<Id>(std::min<vtkIdType>(requests[i].Count, in.Mesh.GetNumberOfTriangles())),
+          level)
       : clustering.MakeLevel(requests[i].Epsilon, level);
     if (!made)
     {

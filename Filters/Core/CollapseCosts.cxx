@@ -99,7 +99,24 @@ CollapseCostModel::CollapseCostModel(const TriangleCollapseOptions& options,
   , State(state)
   , Tracker(tracker)
   , OriginalPoints(originalPoints)
+  , AreaPower(options.Method == CollapseMethod::Quadric ? options.AreaNormalization : 0.0)
 {
+}
+
+//------------------------------------------------------------------------------
+double CollapseCostModel::SurfaceScale(double surfaceWeight) const
+{
+  if (this->AreaPower == 0.0 || !(surfaceWeight > 0.0))
+  {
+    return 1.0; // (no surface, no planes: a quadric value of 0)
+  }
+  const double x = surfaceWeight / this->State.SurfaceWeightUnit;
+  // Square roots where they do: faster than pow on the evaluations' path, and exactly scaled
+  // by a power-of-two change of the input's size.
+  return this->AreaPower == 0.25 ? std::sqrt(std::sqrt(x))
+    : this->AreaPower == 0.5     ? std::sqrt(x)
+    : this->AreaPower == 1.0     ? x
+                                 : std::pow(x, this->AreaPower);
 }
 
 //------------------------------------------------------------------------------
@@ -168,10 +185,12 @@ bool CollapseCostModel::EvaluateChoice(
 void CollapseCostModel::EvaluateVanish(const Id* members, int count, CollapseCandidate& c) const
 {
   Quadric q;
+  double surface = 0.0;
   double centroid[3] = { 0.0, 0.0, 0.0 };
   for (int k = 0; k < count; ++k)
   {
     q += this->State.Quadrics[members[k]];
+    surface += this->State.SurfaceWeights[members[k]];
     const double* p = this->State.Mesh.Point(members[k]);
     for (int i = 0; i < 3; ++i)
     {
@@ -184,8 +203,9 @@ void CollapseCostModel::EvaluateVanish(const Id* members, int count, CollapseCan
   c.Swapped = false;
   c.Area = 0.0;
   q.MinimizeRegularized(centroid, c.Position);
-  c.Cost = q.Evaluate(c.Position);
-  c.Error = q.Weight() > 0.0 ? std::sqrt(c.Cost / q.Weight()) : 0.0;
+  const double value = q.Evaluate(c.Position);
+  c.Cost = value / this->SurfaceScale(surface);
+  c.Error = q.Weight() > 0.0 ? std::sqrt(value / q.Weight()) : 0.0;
 }
 
 //------------------------------------------------------------------------------
@@ -215,8 +235,11 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   if (this->Options.Method == CollapseMethod::Quadric)
   {
     this->Place(q, p, 3, centroid, c.Position);
-    c.Cost = q.Evaluate(c.Position);
-    c.Error = q.Weight() > 0.0 ? std::sqrt(c.Cost / q.Weight()) : 0.0;
+    const double value = q.Evaluate(c.Position);
+    c.Cost = value /
+      this->SurfaceScale(this->State.SurfaceWeights[members[0]] +
+        this->State.SurfaceWeights[members[1]] + this->State.SurfaceWeights[members[2]]);
+    c.Error = q.Weight() > 0.0 ? std::sqrt(value / q.Weight()) : 0.0;
     if (this->Options.Operator == CollapseOperator::TrianglesAndEdges)
     {
       c.Cost /= this->Options.TriangleCostFactor; // ranked against edges, see below
@@ -356,6 +379,7 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
     // Never legal (see CollapseMesh::EdgeMayMerge): priced out, so that a triangle with a
     // legal edge besides does not wait on this one.
     e.Cost = Infinity;
+    e.Scale = 1.0;
     e.Weight = 0.0;
     e.Other = other;
     for (int i = 0; i < 3; ++i)
@@ -376,7 +400,8 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
   const double middle[3] = { 0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]) };
   const double* ends[2] = { pa, pb };
   this->Place(q, ends, 2, middle, e.Position);
-  e.Cost = q.Evaluate(e.Position);
+  e.Scale = this->SurfaceScale(this->State.SurfaceWeights[a] + this->State.SurfaceWeights[b]);
+  e.Cost = q.Evaluate(e.Position) / e.Scale;
   e.Weight = q.Weight();
   e.Other = other;
   if (spoke)
@@ -400,7 +425,7 @@ double CollapseCostModel::BestEdge(
   for (int k = 0; k < 3; ++k)
   {
     this->SolveEdge(tri[k], tri[(k + 1) % 3], edge, scratch);
-    worst = std::max(worst, edge.Cost);
+    worst = std::max(worst, edge.Quadric());
     if (edge.Cost < best.Cost)
     {
       best = edge;
@@ -441,10 +466,12 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
   const double best = this->BestEdge(tri, c, worst, &scratch);
   // A triangle collapse removes twice the triangles of an edge collapse: it is taken when it
   // costs at most TriangleCostFactor times the cheapest edge, and ranked by its cost over that
-  // factor. Its quadric contains each edge's, so it costs at least the dearest edge: when that
-  // alone exceeds the limit, the edge wins without solving for the triangle.
+  // factor. Its quadric contains each edge's, so its value is at least the largest edge's: when
+  // that over the triangle's surface scale alone exceeds the limit, the edge wins without
+  // solving for the triangle.
   const double limit = this->Options.TriangleCostFactor * best;
-  if (worst > limit)
+  if (worst / this->SurfaceScale(this->State.SurfaceWeights[tri[0]] +
+              this->State.SurfaceWeights[tri[1]] + this->State.SurfaceWeights[tri[2]]) > limit)
   {
     return true;
   }

@@ -63,6 +63,7 @@ void CollapseMesh::Initialize(TriangleMesh&& input, TriangleTopology&& topology,
   const Id nt = mesh.GetNumberOfTriangles();
   AssignFresh(this->Flags, nv, 0);
   AssignFresh(this->Quadrics, nv, Quadric());
+  AssignFresh(this->SurfaceWeights, nv, 0.0);
   AssignFresh(this->Facing, 3 * static_cast<std::size_t>(nv), 0.0f);
   const double areaUnit = SquaredLengthUnit(boundaryScale); // the diagonal (1 for one point)
   ResizeFresh(this->Survivor, nv);
@@ -86,6 +87,7 @@ void CollapseMesh::Initialize(TriangleMesh&& input, TriangleTopology&& topology,
         this->Flags[v] = kind == VertexKind::Boundary ? FlagBoundary : 0;
       }
       Quadric q;
+      double surface = 0.0;
       double facing[3] = { 0, 0, 0 };
       for (Id i = adj.Begin(v); i < adj.End(v); ++i)
       {
@@ -102,10 +104,12 @@ void CollapseMesh::Initialize(TriangleMesh&& input, TriangleTopology&& topology,
         {
           // (TriangleQuadric weighs the plane by the area, half the normal's length.)
           q.Add(plane, 2.0 * planeWeight / std::sqrt(Dot(normal, normal)));
+          surface += planeWeight;
         }
         else
         {
           q += plane;
+          surface += plane.Weight();
         }
         for (int i = 0; i < 3; ++i)
         {
@@ -129,6 +133,7 @@ void CollapseMesh::Initialize(TriangleMesh&& input, TriangleTopology&& topology,
         }
       }
       this->Quadrics[v] = q;
+      this->SurfaceWeights[v] = surface;
       for (int i = 0; i < 3; ++i)
       {
         this->Facing[3 * static_cast<std::size_t>(v) + i] =
@@ -138,10 +143,15 @@ void CollapseMesh::Initialize(TriangleMesh&& input, TriangleTopology&& topology,
   });
 
   ResizeFresh(this->TriangleCounts, nv);
+  double surface = 0.0; // in vertex order, for the same sum on any thread count
   for (Id v = 0; v < nv; ++v)
   {
     this->TriangleCounts[v] = adj.Count(v);
+    surface += this->SurfaceWeights[v];
   }
+  // (Each plane went to its triangle's three corners. A power-of-two scaling of the input
+  // scales every weight and this unit alike, exactly.)
+  this->SurfaceWeightUnit = surface > 0.0 && nt > 0 ? surface / (3.0 * nt) : 1.0;
 
   // The topology's vertex -> triangle rows are the first rows.
   this->Rows.Offsets.swap(topology.VertexTriangles.Offsets);
@@ -179,6 +189,7 @@ void CollapseMesh::Prefetch(Id t, int stage) const
     CacheHint(this->Mesh.Point(v));
     CacheHint(this->Quadrics[v].Q);
     CacheHint(this->Quadrics[v].Q + 9);
+    CacheHint(this->SurfaceWeights.data() + v);
     CacheHint(this->Facing.data() + 3 * static_cast<std::size_t>(v));
     CacheHint(this->Flags.data() + v);
     CacheHint(this->TriangleCounts.data() + v);
@@ -909,6 +920,7 @@ Id CollapseMesh::Apply(const Star& star, const double x[3])
   {
     const Id v = star.Members[m];
     this->Quadrics[survivor] += this->Quadrics[v];
+    this->SurfaceWeights[survivor] += this->SurfaceWeights[v];
     for (int i = 0; i < 3; ++i)
     {
       this->Facing[3 * static_cast<std::size_t>(survivor) + i] +=

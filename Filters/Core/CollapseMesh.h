@@ -137,6 +137,12 @@ class VTKFILTERSMESHLOD_EXPORT CollapseMesh
 public:
   TriangleMesh Mesh;             // positions and triangles; dead triangles have corner 0 invalid
   std::vector<Quadric> Quadrics; // per vertex: planes of the original triangles merged into it
+  /// Per vertex: the weight of the original triangles' planes merged into it (their area, or
+  /// planeWeight each; boundary planes left out): the surface it stands for.
+  std::vector<double> SurfaceWeights;
+  /// The mean of SurfaceWeights over the input's triangles (one plane each, counted once): the
+  /// unit that makes a surface weight independent of the input's scale.
+  double SurfaceWeightUnit = 1.0;
   /// Per vertex (x, y, z): the summed area vectors of the original triangles merged into it (a
   /// third of each around it), i.e. which way the original surface it stands for faces. In
   /// units of the squared diagonal (a power of two): only directions are read, and areas in

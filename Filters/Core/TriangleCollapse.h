@@ -94,6 +94,12 @@ struct TriangleCollapseOptions
   /// Off: each triangle's plane weighs the triangle's area. On: every plane weighs the same, the
   /// input's mean triangle area (vtkQuadricDecimation's weighting, kept scale-invariant).
   bool UniformPlaneWeights = false;
+  /// Quadric method: a collapse costs its merged quadric's value (the summed weighted squared
+  /// distances to the original planes) divided by the merged original surface (the plane
+  /// weight of the original triangles around the collapsing vertices, in units of the input's
+  /// mean triangle's) to this power, in [0, 1]. 0: the quadric value itself (paper 002); 1:
+  /// the mean squared distance alone.
+  double AreaNormalization = 0.25;
   /// Largest angle (degrees) a triangle's normal may turn in one collapse (see CollapseMesh).
   double MaximumNormalDeviation = 90.0;
   /// Off: a small closed piece of genus 0 (CollapseMesh::SmallPiece; a tetrahedron cannot lose

@@ -196,9 +196,12 @@ void TestSheetsMeetingAlongCurve()
     }
     MESHLOD_CHECK_EQ(walked, curve.size());
     // Curve points stay on the circle (the sheets' planes hold them to it), within about what
-    // a polygon of that many sides misses the circle by (its sagitta).
+    // a polygon of that many sides misses the circle by (its sagitta). (Off the plane at the
+    // 134-triangle level, 12 curve edges: 0.039 with AreaNormalization 0, 0.072 with the
+    // default 0.25, whose curve points, standing for three sheets, collapse a little earlier;
+    // the level's Hausdorff distance 3.2% and 3.0%.)
     const double sagitta = 1.0 - std::cos(vtkMath::Pi() / static_cast<double>(curve.size()));
-    MESHLOD_CHECK_LE(offPlane, 2.0 * sagitta + 1e-3);
+    MESHLOD_CHECK_LE(offPlane, 2.5 * sagitta + 1e-3);
     MESHLOD_CHECK_LE(offCircle, 2.0 * sagitta + 1e-3);
   }
   SurfaceDistanceOptions options;

@@ -418,6 +418,19 @@ void TestUnreachableCount()
   MESHLOD_CHECK(observer->GetWarningMessage().find("at least the 2048 of level 0") !=
     std::string::npos);
   MESHLOD_CHECK_LE(Level(filter->GetHierarchy(), 2)->GetNumberOfPolys(), 4); // then merges again
+  // So do counts beyond the core's 32-bit ids (they once wrapped to 0 or below and gave 8
+  // triangles).
+  for (const long long asked : { 1LL << 31, 1LL << 32, 1000000000000LL })
+  {
+    if (asked > static_cast<long long>(VTK_ID_MAX))
+    {
+      continue; // a build with 32-bit vtkIdType cannot ask for it
+    }
+    filter->RemoveAllTargetTriangleCounts();
+    filter->AddTargetTriangleCount(static_cast<vtkIdType>(asked));
+    filter->Update();
+    MESHLOD_CHECK_EQ(Level(filter->GetHierarchy(), 1)->GetNumberOfPolys(), 2 * 32 * 32);
+  }
 
   // Small counts met within their tolerance (2 triangles) by the cut of the level before (5, 3,
   // 3, 2, 2 triangles for 5 to 1): every level is kept, and each repeated one is said.

@@ -189,9 +189,9 @@ def coarsest_points(hierarchy):
     return [level.GetPoint(i) for i in range(level.GetNumberOfPoints())]
 
 
-# Paper 002's placement and uniform plane weights (vtkQuadricDecimation's weighting) through the
-# wrapping: the same checks on every level, and levels unlike the defaults' (the setting reaches
-# the engine).
+# Paper 002's placement, uniform plane weights (vtkQuadricDecimation's weighting) and paper 002's
+# cost (AreaNormalization 0) through the wrapping: the same checks on every level, and levels
+# unlike the defaults' (the setting reaches the engine).
 by_default = contour_filter()
 by_default.Update()
 paper = contour_filter()
@@ -202,7 +202,12 @@ uniform = contour_filter()
 check(uniform.GetPlaneWeightsAsString() == "Area", "PlaneWeights default")
 uniform.SetPlaneWeightsToUniform()
 check(uniform.GetPlaneWeights() == uniform.UNIFORM_WEIGHTS, "PlaneWeights setter")
-for name, changed in (("Placement", paper), ("PlaneWeights", uniform)):
+paper_cost = contour_filter()
+check(paper_cost.GetAreaNormalization() == 0.25, "AreaNormalization default")
+paper_cost.SetAreaNormalization(0.0)
+check(paper_cost.GetAreaNormalization() == 0.0, "AreaNormalization setter")
+for name, changed in (("Placement", paper), ("PlaneWeights", uniform),
+                      ("AreaNormalization", paper_cost)):
     test_hierarchy(contour, changed)
     check(coarsest_points(changed.GetHierarchy()) != coarsest_points(by_default.GetHierarchy()),
           "%s changes the coarsest level" % name)
