@@ -115,11 +115,11 @@
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its
  *   whole hierarchy the curvature method takes 1.4-3.9x the time vtkQuadricDecimation needs
  *   for one 10% target on one thread, and 1.7-2.1x less on two (the quadric method: 0.29-0.54x
- *   over four runs on AMD EPYC processors, Benchmarks/RESULTS.md, and 1.6-1.9x less on two; the
- *   ratios move with the processor, the machine's load and what ran before in the same process:
- *   on an Intel Xeon the quadric method took 0.43-0.69x, its own times about as on the EPYC,
- *   vtkQuadricDecimation's 1.3-2.0x shorter; on one EPYC the 154k mesh's 0.54 was 0.41 in the
- *   next run of the same build).
+ *   over four runs on AMD EPYC processors, and 1.6-1.9x less on two; the ratios move with the
+ *   processor, the machine's load and what ran before in the same process: on an Intel Xeon
+ *   the quadric method took 0.42-0.69x over two runs (Benchmarks/RESULTS.md), its own times
+ *   about as on the EPYC, vtkQuadricDecimation's 1.3-2.0x shorter; on one EPYC the 154k mesh's
+ *   0.54 was 0.41 in the next run of the same build).
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
@@ -145,7 +145,7 @@
  * mesh reached is then the last level. By default every connected piece stays, each at least
  * a tetrahedron, with its genus: on the isosurface of a noisy volume (103,940 triangles, 328
  * specks of 8 triangles around single noisy samples besides the main surface) the levels
- * stopped at 2,072 triangles for a target of 1,039, most of them specks, and that level was 3.5
+ * stopped at 2,072 triangles for a target of 1,039, most of them specks, and that level was 5.1
  * times as far from the input (Hausdorff distance) as vtkQuadricDecimation's output of the same
  * count, which drops the specks. With PreserveTopology off small closed pieces vanish and the
  * levels reach their counts (Benchmarks/RESULTS.md, "Beyond isosurfaces"). A warning reports a
@@ -335,9 +335,10 @@ public:
    * centroid, then the vertices). On the benchmark isosurfaces (Benchmarks/RESULTS.md, the
    * "paper placement" rows, one thread): the same RMS distance to within 1% and the same
    * Hausdorff distance at 10% of the triangles; at 1% the candidates' Hausdorff distance was
-   * 0.97, 1.07 and 1.00x vtkQuadricDecimation's against the default's 0.95, 1.02 and 0.85x (a
+   * 0.98, 1.08 and 0.92x vtkQuadricDecimation's against the default's 0.92, 1.26 and 0.87x (a
    * vertex or midpoint taken where the system is singular moves the surface more than a point
-   * off the merging vertices would), and the whole hierarchy took 1.4-1.5 times as long (an
+   * off the merging vertices would; the gyroid's 1.26 is one spot that moves by chance, see
+   * AreaNormalization), and the whole hierarchy took 1.4-1.5 times as long (an
    * eigendecomposition per solve, against one L D L^T factorisation). On faceted solids both
    * keep the faces exactly. Curvature method: not used (its collapse point comes from the fit).
    */
@@ -487,17 +488,19 @@ public:
    * the same, the input's mean triangle area (vtkQuadricDecimation's weighting, made
    * scale-invariant), so regions tessellated finely in the input keep more of the error budget's
    * attention. Measured at 1% against vtkQuadricDecimation (Benchmarks/RESULTS.md, Beyond
-   * isosurfaces; Hausdorff distance ratio, AREA_WEIGHTS -> UNIFORM_WEIGHTS): lower on meshes
-   * whose triangle sizes vary across the surface or that are rough (parametric torus 0.95 ->
-   * 0.83, Boy's surface 1.15 -> 0.79, terrain 1.08 -> 0.83, noisy UV spheres 0.73-1.03 ->
-   * 0.67-0.87, VTK's wavelet isosurface 1.36 -> 1.12), higher on the sphere with holes
-   * (1.10 -> 1.14; 1.02 -> 1.27 at 10%), the segmented volume and the noisy isosurface; the RMS
-   * distance rises a little on most (superquadric 0.74 -> 1.06). On the benchmark's
-   * marching-cubes isosurfaces (metaballs, gyroid) UNIFORM_WEIGHTS has the larger Hausdorff
-   * distance at three of the four targets (metaballs at 10%: 0.94 -> 1.07) and the larger RMS
-   * distance at all. Keep AREA_WEIGHTS for isosurfaces and for the least RMS distance; try
-   * UNIFORM_WEIGHTS for tessellations with graded triangle sizes when the largest distance
-   * matters.
+   * isosurfaces; Hausdorff distance ratio, AREA_WEIGHTS -> UNIFORM_WEIGHTS, with the default
+   * AreaNormalization): lower on some rough meshes and some with graded triangle sizes (very
+   * noisy sphere 1.05 -> 0.70, superquadric 1.07 -> 0.86, terrain 1.11 -> 1.05, Boy's surface
+   * 0.77 -> 0.74, one of three noisy UV spheres 1.06 -> 0.61), higher on the other two noisy
+   * spheres (0.80 -> 0.89, 0.78 -> 0.93), the parametric torus (0.73 -> 0.79) and the sphere
+   * with holes (1.06 -> 1.30); the RMS distance rises on most
+   * (superquadric 0.72 -> 1.13, noisy UV spheres 0.80-0.82 -> 0.86-0.88). On the benchmark's
+   * marching-cubes isosurfaces UNIFORM_WEIGHTS has the larger Hausdorff distance at five of
+   * the six targets (metaballs at 1%: 0.92 -> 1.09) and the larger RMS distance at all (with
+   * AreaNormalization 0, which brought smaller gains of its own, uniform weights had helped
+   * more: parametric torus 0.95 -> 0.83, Boy's surface 1.15 -> 0.79). Keep AREA_WEIGHTS for
+   * isosurfaces and for the least RMS distance; try UNIFORM_WEIGHTS for rough or graded
+   * tessellations when the largest distance matters.
    */
   vtkSetClampMacro(PlaneWeights, int, AREA_WEIGHTS, UNIFORM_WEIGHTS);
   vtkGetMacro(PlaneWeights, int);
@@ -527,8 +530,9 @@ public:
    * spot and moves by chance: with TargetReduction 0.99 instead of the benchmark's 1 - 6,108 /
    * 610,880 (a level of 6,108 triangles instead of 6,107) the same gyroid gives 0.98, and in
    * trials powers of 0.5 and 0.75 gave 1.11 and 1.12 there. In those trials 0.5 lowered the
-   * 10% ratios a little more and raised RMS by about 1%; 1 raised RMS by 7-12%.
-   * Ignored by the curvature method. Costs 8 bytes per input point.
+   * 10% ratios a little more and raised RMS by about 1%; 1 raised RMS by 7-12%. (The figures
+   * given for TriangleCostFactor, MaximumNormalDeviation and the schedules were measured with
+   * 0.) Ignored by the curvature method. Costs 8 bytes per input point.
    */
   vtkSetClampMacro(AreaNormalization, double, 0.0, 1.0);
   vtkGetMacro(AreaNormalization, double);
@@ -569,7 +573,7 @@ public:
    * quadric error among them. For the isosurface of a noisy volume, as of a scan, whose specks
    * around single noisy samples otherwise fill the coarse levels: on one of 103,940 triangles
    * with 328 specks, asked for 1%, 1,038 triangles at 1.4 times vtkQuadricDecimation's
-   * Hausdorff distance instead of 2,072 at 3.5 times (Benchmarks/RESULTS.md, "Beyond
+   * Hausdorff distance instead of 2,072 at 5.1 times (Benchmarks/RESULTS.md, "Beyond
    * isosurfaces"; the largest distances left are from vanished specks to the surface, for
    * vtkQuadricDecimation's output too). Costs 4 bytes per input point and 12 per piece (8 per
    * point while the pieces are labelled).
