@@ -129,7 +129,7 @@
  * target; the collapses between two levels are composed. (A collapse along a curve where k
  * sheets meet removes k triangles, so such a mesh's level may end up to k - 1 triangles below
  * its target.) On the benchmark meshes both reach
- * about the same error per triangle (RMS within 2%, Hausdorff distances within the few tens of
+ * about the same error per triangle (RMS within 3%, Hausdorff distances within the few tens of
  * percent by which a maximum varies between runs; Benchmarks/RESULTS.md); Greedy is the
  * default because it is about twice as fast, on one thread and on two. On CAD-like solids
  * (flat faces, sharp rims) Greedy is also far more accurate: IndependentSets keeps paper 000's
@@ -333,8 +333,9 @@ public:
    * the largest), otherwise the cheapest of the triangle's centroid, its three vertices and its
    * three edge midpoints (for an edge collapse: the midpoint and the two ends; ties go to the
    * centroid, then the vertices). On the benchmark isosurfaces (Benchmarks/RESULTS.md, the
-   * "paper placement" rows, one thread): the same RMS distance to within 1% and the same
-   * Hausdorff distance at 10% of the triangles; at 1% the candidates' Hausdorff distance was
+   * "paper placement" rows, one thread): the same RMS distance to within 1%; at 10% of the
+   * triangles the same Hausdorff distance on the metaballs and the 611k gyroid, and less on the
+   * 2.3M gyroid (0.89x vtkQuadricDecimation's against 0.99x); at 1% the candidates' was
    * 0.98, 1.08 and 0.92x vtkQuadricDecimation's against the default's 0.92, 1.26 and 0.87x (a
    * vertex or midpoint taken where the system is singular moves the surface more than a point
    * off the merging vertices would; the gyroid's 1.26 is one spot that moves by chance, see
@@ -359,7 +360,9 @@ public:
    * was 1.06x vtkQuadricDecimation's (geometric mean) at 2 and 1.00x at 1.5, RMS 1.00x
    * at both, the 10% levels the same, the time the same. At 1 a triangle collapses only when it
    * costs no more than an edge (flat regions, where all costs are 0); 1 and 1.5 gave the same
-   * figures. Larger values make more triangle collapses at some cost in accuracy.
+   * figures. Larger values make more triangle collapses at some cost in accuracy. Both costs
+   * are divided by their surface's scale (AreaNormalization), a triangle's by more than an
+   * edge's: at 0.25 that favours triangles by about a tenth, at 1 by about half.
    */
   vtkSetClampMacro(TriangleCostFactor, double, 1.0, 1.0e6);
   vtkGetMacro(TriangleCostFactor, double);
@@ -496,9 +499,8 @@ public:
    * with holes (1.06 -> 1.30); the RMS distance rises on most
    * (superquadric 0.72 -> 1.13, noisy UV spheres 0.80-0.82 -> 0.86-0.88). On the benchmark's
    * marching-cubes isosurfaces UNIFORM_WEIGHTS has the larger Hausdorff distance at five of
-   * the six targets (metaballs at 1%: 0.92 -> 1.09) and the larger RMS distance at all (with
-   * AreaNormalization 0, which brought smaller gains of its own, uniform weights had helped
-   * more: parametric torus 0.95 -> 0.83, Boy's surface 1.15 -> 0.79). Keep AREA_WEIGHTS for
+   * the six targets (metaballs at 1%: 0.92 -> 1.09) and the larger RMS distance at all. Keep
+   * AREA_WEIGHTS for
    * isosurfaces and for the least RMS distance; try UNIFORM_WEIGHTS for rough or graded
    * tessellations when the largest distance matters.
    */
@@ -520,19 +522,24 @@ public:
    * standing for much surface costs more than one as far from its planes standing for little;
    * 1: the mean squared distance alone, whatever the area. Between, levels spend fewer
    * vertices on large smooth regions and more where few original triangles are far from their
-   * planes, which lowers the largest distance: against vtkQuadricDecimation at the same count
-   * (Benchmarks/RESULTS.md; Hausdorff distance ratio, 0 -> 0.25), on the 11 meshes of "Beyond
-   * isosurfaces" that are not at rounding level or topology-bound, the geometric mean went from
-   * 0.95 to 0.90 at 10% and from 1.01 to 0.94 at 1% (parametric torus at 1% 0.95 -> 0.73,
-   * Boy's surface 1.15 -> 0.77; one noisy UV sphere 0.73 -> 1.06), the RMS distance unchanged
-   * (0.91 and 0.87); on the benchmark isosurfaces metaballs 0.94 / 0.95 -> 0.88 / 0.92 and
-   * gyroid (611k) 0.97 / 1.02 -> 0.81 / 1.26 at 10% / 1%. The largest distance at 1% is one
-   * spot and moves by chance: with TargetReduction 0.99 instead of the benchmark's 1 - 6,108 /
-   * 610,880 (a level of 6,108 triangles instead of 6,107) the same gyroid gives 0.98, and in
-   * trials powers of 0.5 and 0.75 gave 1.11 and 1.12 there. In those trials 0.5 lowered the
-   * 10% ratios a little more and raised RMS by about 1%; 1 raised RMS by 7-12%. (The figures
-   * given for TriangleCostFactor, MaximumNormalDeviation and the schedules were measured with
-   * 0.) Ignored by the curvature method. Costs 8 bytes per input point.
+   * planes, which lowers the largest distance on most meshes: against vtkQuadricDecimation at
+   * the same count (Benchmarks/RESULTS.md, the first and the AreaNormalization 0 tables of
+   * "Beyond isosurfaces"; Hausdorff distance ratio, 0 -> 0.25), on the 11 meshes there that are
+   * not at rounding level or topology-bound, the geometric mean went from 0.95 to 0.90 at 10%
+   * and from 1.01 to 0.94 at 1%, the RMS distance unchanged (0.91 and 0.87). At 1% lower on 7 of
+   * the 11 (parametric torus 0.95 -> 0.73, Boy's surface 1.15 -> 0.77), higher on 4 (noisy UV
+   * sphere, seed 9, 0.73 -> 1.06; very noisy sphere 1.03 -> 1.05; terrain 1.08 -> 1.11;
+   * superquadric 1.03 -> 1.07). On the benchmark isosurfaces ("paper cost" rows), at 10% / 1%:
+   * metaballs 0.94 / 0.95 -> 0.88 / 0.92, gyroid (611k) 0.97 / 1.02 -> 0.81 / 1.26, gyroid
+   * (2.3M) 0.97 / 0.85 -> 0.99 / 0.87. The largest distance at 1% is one spot and moves by
+   * chance: with TargetReduction 0.99 instead of the benchmark's 1 - 6,108 / 610,880 (a level of
+   * 6,108 triangles instead of 6,107) the same gyroid gives 0.98. Not in Benchmarks/RESULTS.md,
+   * from trial runs: powers of 0.5 and 0.75 gave 1.11 and 1.12 there; 0.5 lowered the 10%
+   * ratios a little more than 0.25 and raised RMS by about 1%; 1 raised RMS by 7-12%. The
+   * power also shifts TRIANGLES_AND_EDGES towards whole triangles, whose three vertices stand
+   * for more surface than an edge's two (see TriangleCostFactor). (The accuracy figures given
+   * for TriangleCostFactor and MaximumNormalDeviation were measured with 0.) Ignored by the
+   * curvature method. Costs 8 bytes per input point (allocated for either method).
    */
   vtkSetClampMacro(AreaNormalization, double, 0.0, 1.0);
   vtkGetMacro(AreaNormalization, double);

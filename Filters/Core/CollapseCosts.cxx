@@ -379,7 +379,7 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
     // Never legal (see CollapseMesh::EdgeMayMerge): priced out, so that a triangle with a
     // legal edge besides does not wait on this one.
     e.Cost = Infinity;
-    e.Scale = 1.0;
+    e.Value = Infinity;
     e.Weight = 0.0;
     e.Other = other;
     for (int i = 0; i < 3; ++i)
@@ -400,8 +400,9 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
   const double middle[3] = { 0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]) };
   const double* ends[2] = { pa, pb };
   this->Place(q, ends, 2, middle, e.Position);
-  e.Scale = this->SurfaceScale(this->State.SurfaceWeights[a] + this->State.SurfaceWeights[b]);
-  e.Cost = q.Evaluate(e.Position) / e.Scale;
+  e.Value = q.Evaluate(e.Position);
+  e.Cost =
+    e.Value / this->SurfaceScale(this->State.SurfaceWeights[a] + this->State.SurfaceWeights[b]);
   e.Weight = q.Weight();
   e.Other = other;
   if (spoke)
@@ -425,7 +426,7 @@ double CollapseCostModel::BestEdge(
   for (int k = 0; k < 3; ++k)
   {
     this->SolveEdge(tri[k], tri[(k + 1) % 3], edge, scratch);
-    worst = std::max(worst, edge.Quadric());
+    worst = std::max(worst, edge.Value);
     if (edge.Cost < best.Cost)
     {
       best = edge;

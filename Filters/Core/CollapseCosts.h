@@ -54,15 +54,11 @@ struct CollapseCandidate
 struct EdgeSolution
 {
   Id Other = InvalidId; // the endpoint that is not the spoke centre (see CostScratch)
-  double Cost = 0.0;     // the merged quadric's value at Position over Scale
-  double Scale = 1.0;    // see CollapseCostModel::SurfaceScale
+  double Cost = 0.0;   // Value over CollapseCostModel::SurfaceScale
+  double Value = 0.0;  // the merged quadric's value at Position
   double Weight = 0.0; // of the merged quadric: Error() is the RMS distance to its planes
   double Position[3] = { 0, 0, 0 };
-  double Quadric() const { return this->Cost * this->Scale; }
-  double Error() const
-  {
-    return this->Weight > 0.0 ? std::sqrt(this->Quadric() / this->Weight) : 0.0;
-  }
+  double Error() const { return this->Weight > 0.0 ? std::sqrt(this->Value / this->Weight) : 0.0; }
 };
 
 /// Per-thread scratch for the evaluations.
@@ -183,8 +179,8 @@ private:
   double BestEdge(const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const;
   // What a quadric value is divided by to make the cost of a collapse whose vertices stand for
   // original surface of this weight (CollapseMesh::SurfaceWeights, summed): that weight in
-  // units of the input's mean triangle, to the power AreaNormalization (quadric method only;
-  // 1 otherwise). Costs then compare distances more than areas: with the quadric value alone,
+  // units of the input's mean triangle (see CollapseMesh::SurfaceWeightUnit), to the power
+  // AreaNormalization (quadric method only; 1 otherwise). Costs then compare distances more than areas: with the quadric value alone,
   // a collapse over much surface costs more than one as far from its planes over little.
   double SurfaceScale(double surfaceWeight) const;
   // Where the merged `count` points (2 or 3) collapse to by the merged quadric alone: by the

@@ -140,8 +140,10 @@ public:
   /// Per vertex: the weight of the original triangles' planes merged into it (their area, or
   /// planeWeight each; boundary planes left out): the surface it stands for.
   std::vector<double> SurfaceWeights;
-  /// The mean of SurfaceWeights over the input's triangles (one plane each, counted once): the
-  /// unit that makes a surface weight independent of the input's scale.
+  /// The mean of SurfaceWeights over the input's triangles (one plane each, counted once). The
+  /// costs' order does not need it (a constant factor), but the weights over it are the same
+  /// numbers, to the bit, for the input scaled by a power of two, and so is every power of
+  /// them, pow included.
   double SurfaceWeightUnit = 1.0;
   /// Per vertex (x, y, z): the summed area vectors of the original triangles merged into it (a
   /// third of each around it), i.e. which way the original surface it stands for faces. In
