@@ -75,6 +75,16 @@ Method TriangleCollapse(const std::string& name, const std::string& settings,
   return method;
 }
 
+// A variant of the triangle collapse measured on one thread only (its settings end by saying
+// so): a row for the accuracy and the speed of one setting, not for the threads.
+Method OneThreadTriangleCollapse(const std::string& name, const std::string& settings,
+  void (*configure)(vtkTriangleCollapseDecimation*))
+{
+  Method method = TriangleCollapse(name, settings + "; one-thread row only", configure);
+  method.Parallel = false;
+  return method;
+}
+
 Method VertexCluster(const std::string& name, const std::string& settings,
   void (*configure)(vtkVertexClusterOctree*))
 {
@@ -103,32 +113,23 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     "defaults: quadric method, greedy schedule in parallel rounds (PartitionedGreedy), "
     "triangles and edges, 8 levels",
     [](vtkTriangleCollapseDecimation*) {}));
-  Method strict = TriangleCollapse("vtkTriangleCollapseDecimation strict greedy",
+  methods.push_back(OneThreadTriangleCollapse("vtkTriangleCollapseDecimation strict greedy",
     "quadric method, greedy schedule with PartitionedGreedy off (one collapse after the other, "
-    "the order of paper 002), triangles and edges, 8 levels; one-thread row only",
-    [](vtkTriangleCollapseDecimation* d) { d->PartitionedGreedyOff(); });
-  strict.Parallel = false;
-  methods.push_back(strict);
-  Method placement = TriangleCollapse("vtkTriangleCollapseDecimation paper placement",
+    "the order of paper 002), triangles and edges, 8 levels",
+    [](vtkTriangleCollapseDecimation* d) { d->PartitionedGreedyOff(); }));
+  methods.push_back(OneThreadTriangleCollapse("vtkTriangleCollapseDecimation paper placement",
     "as vtkTriangleCollapseDecimation, with Placement PAPER_CANDIDATES (paper 002: the "
     "quadric's minimiser where its system is solvable, else the best of centroid, vertices and "
-    "edge midpoints); one-thread row only",
-    [](vtkTriangleCollapseDecimation* d) { d->SetPlacementToPaperCandidates(); });
-  placement.Parallel = false;
-  methods.push_back(placement);
-  Method uniform = TriangleCollapse("vtkTriangleCollapseDecimation uniform weights",
+    "edge midpoints)",
+    [](vtkTriangleCollapseDecimation* d) { d->SetPlacementToPaperCandidates(); }));
+  methods.push_back(OneThreadTriangleCollapse("vtkTriangleCollapseDecimation uniform weights",
     "as vtkTriangleCollapseDecimation, with PlaneWeights UNIFORM_WEIGHTS (every plane weighs the "
-    "input's mean triangle area, as vtkQuadricDecimation weighs them); one-thread row only",
-    [](vtkTriangleCollapseDecimation* d) { d->SetPlaneWeightsToUniform(); });
-  uniform.Parallel = false;
-  methods.push_back(uniform);
-  Method paperCost = TriangleCollapse("vtkTriangleCollapseDecimation paper cost",
+    "input's mean triangle area, as vtkQuadricDecimation weighs them)",
+    [](vtkTriangleCollapseDecimation* d) { d->SetPlaneWeightsToUniform(); }));
+  methods.push_back(OneThreadTriangleCollapse("vtkTriangleCollapseDecimation paper cost",
     "as vtkTriangleCollapseDecimation, with AreaNormalization 0 (a collapse costs its merged "
-    "quadric's value, paper 002's cost, not divided by the surface it stands for); one-thread "
-    "row only",
-    [](vtkTriangleCollapseDecimation* d) { d->SetAreaNormalization(0.0); });
-  paperCost.Parallel = false;
-  methods.push_back(paperCost);
+    "quadric's value, paper 002's cost, not divided by the surface it stands for)",
+    [](vtkTriangleCollapseDecimation* d) { d->SetAreaNormalization(0.0); }));
   methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation independent sets",
     "quadric method, IndependentSets schedule (LevelFraction 0.025), triangles and edges, 8 levels",
     [](vtkTriangleCollapseDecimation* d) { d->SetScheduleToIndependentSets(); }));
@@ -145,14 +146,13 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     "TRIANGLES_AND_EDGES (an edge instead of a triangle only at a crease), greedy schedule in "
     "parallel rounds (PartitionedGreedy), 8 levels",
     [](vtkTriangleCollapseDecimation* d) { d->SetMethodToCurvature(); }));
-  Method strictCurvature = TriangleCollapse("vtkTriangleCollapseDecimation curvature strict greedy",
-    "as vtkTriangleCollapseDecimation curvature, with PartitionedGreedy off; one-thread row only",
+  methods.push_back(OneThreadTriangleCollapse(
+    "vtkTriangleCollapseDecimation curvature strict greedy",
+    "as vtkTriangleCollapseDecimation curvature, with PartitionedGreedy off",
     [](vtkTriangleCollapseDecimation* d) {
       d->SetMethodToCurvature();
       d->PartitionedGreedyOff();
-    });
-  strictCurvature.Parallel = false;
-  methods.push_back(strictCurvature);
+    }));
   Method paper = TriangleCollapse("vtkTriangleCollapseDecimation curvature paper weight",
     "curvature method as in paper 000: CurvatureCost WEIGHT (weights 1/3 each), "
     "IndependentSets schedule, 8 levels",

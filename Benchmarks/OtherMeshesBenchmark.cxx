@@ -354,36 +354,31 @@ int main(int argc, char* argv[])
     vtkSmartPointer<vtkPolyData> mesh = test.Make();
     const vtkIdType triangles = mesh->GetNumberOfPolys();
     notes.push_back("- " + test.Name + ": " + test.Description);
-    vtkNew<vtkTriangleCollapseDecimation> decimate;
-    decimate->SetInputData(mesh);
-    decimate->Update();
+    // vtkTriangleCollapseDecimation on the mesh, defaults but for what `configure` sets.
+    auto reduce = [&](const std::function<void(vtkTriangleCollapseDecimation*)>& configure) {
+      auto decimate = vtkSmartPointer<vtkTriangleCollapseDecimation>::New();
+      decimate->SetInputData(mesh);
+      configure(decimate);
+      decimate->Update();
+      return decimate;
+    };
+    const auto decimate = reduce([](vtkTriangleCollapseDecimation*) {});
     std::printf("%s", QuadricDecimationRows(test, mesh, decimate, options).c_str());
     std::fflush(stdout);
     // PreserveTopology off changes only meshes with small closed pieces.
-    vtkNew<vtkTriangleCollapseDecimation> freeTopology;
-    freeTopology->SetInputData(mesh);
-    freeTopology->PreserveTopologyOff();
-    freeTopology->Update();
+    const auto freeTopology =
+      reduce([](vtkTriangleCollapseDecimation* d) { d->PreserveTopologyOff(); });
     if (meshlod::testing::CountDifferingLevels(
           decimate->GetHierarchy(), freeTopology->GetHierarchy()) > 0)
     {
       freeTopologyRows << QuadricDecimationRows(test, mesh, freeTopology, options);
     }
-    vtkNew<vtkTriangleCollapseDecimation> curvature;
-    curvature->SetInputData(mesh);
-    curvature->SetMethodToCurvature();
-    curvature->Update();
-    curvatureRows << QuadricDecimationRows(test, mesh, curvature, options);
-    vtkNew<vtkTriangleCollapseDecimation> uniform;
-    uniform->SetInputData(mesh);
-    uniform->SetPlaneWeightsToUniform();
-    uniform->Update();
-    uniformRows << QuadricDecimationRows(test, mesh, uniform, options);
-    vtkNew<vtkTriangleCollapseDecimation> paperCost;
-    paperCost->SetInputData(mesh);
-    paperCost->SetAreaNormalization(0.0);
-    paperCost->Update();
-    paperCostRows << QuadricDecimationRows(test, mesh, paperCost, options);
+    curvatureRows << QuadricDecimationRows(test, mesh,
+      reduce([](vtkTriangleCollapseDecimation* d) { d->SetMethodToCurvature(); }), options);
+    uniformRows << QuadricDecimationRows(test, mesh,
+      reduce([](vtkTriangleCollapseDecimation* d) { d->SetPlaneWeightsToUniform(); }), options);
+    paperCostRows << QuadricDecimationRows(test, mesh,
+      reduce([](vtkTriangleCollapseDecimation* d) { d->SetAreaNormalization(0.0); }), options);
     const std::vector<vtkIdType> targets = { triangles / 10, triangles / 100 };
     const std::vector<vtkSmartPointer<vtkPolyData>> levels = octree.Hierarchy(mesh, targets);
     // FlipEdges changes no count: the same grid answers both.

@@ -536,12 +536,11 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   for (size_t i = 0; i < requests.size(); ++i)
   {
     meshlod::ClusterLevel level;
-    const bool made = requests[i].ByCount
-      // (A count above the input's asks for no change; clamped so that it fits the core's ids.)
-      ? clustering.MakeLevelForTriangleCount(
-          static_cast<Id>(std::min<vtkIdType>(requests[i].Count, in.Mesh.GetNumberOfTriangles())),
-          level)
-      : clustering.MakeLevel(requests[i].Epsilon, level);
+    // (A count above the input's asks for no change; clamped so that it fits the core's ids.)
+    const Id count =
+      static_cast<Id>(std::min<vtkIdType>(requests[i].Count, in.Mesh.GetNumberOfTriangles()));
+    const bool made = requests[i].ByCount ? clustering.MakeLevelForTriangleCount(count, level)
+                                          : clustering.MakeLevel(requests[i].Epsilon, level);
     if (!made)
     {
       vtkWarningMacro(

@@ -104,9 +104,18 @@ CollapseCostModel::CollapseCostModel(const TriangleCollapseOptions& options,
 }
 
 //------------------------------------------------------------------------------
-double CollapseCostModel::SurfaceScale(double surfaceWeight) const
+double CollapseCostModel::SurfaceScale(const Id* members, int count) const
 {
-  if (this->AreaPower == 0.0 || !(surfaceWeight > 0.0))
+  if (this->AreaPower == 0.0)
+  {
+    return 1.0;
+  }
+  double surfaceWeight = 0.0;
+  for (int k = 0; k < count; ++k)
+  {
+    surfaceWeight += this->State.SurfaceWeights[members[k]];
+  }
+  if (!(surfaceWeight > 0.0))
   {
     return 1.0; // (no surface, no planes: a quadric value of 0)
   }
@@ -185,12 +194,10 @@ bool CollapseCostModel::EvaluateChoice(
 void CollapseCostModel::EvaluateVanish(const Id* members, int count, CollapseCandidate& c) const
 {
   Quadric q;
-  double surface = 0.0;
   double centroid[3] = { 0.0, 0.0, 0.0 };
   for (int k = 0; k < count; ++k)
   {
     q += this->State.Quadrics[members[k]];
-    surface += this->State.SurfaceWeights[members[k]];
     const double* p = this->State.Mesh.Point(members[k]);
     for (int i = 0; i < 3; ++i)
     {
@@ -204,7 +211,7 @@ void CollapseCostModel::EvaluateVanish(const Id* members, int count, CollapseCan
   c.Area = 0.0;
   q.MinimizeRegularized(centroid, c.Position);
   const double value = q.Evaluate(c.Position);
-  c.Cost = value / this->SurfaceScale(surface);
+  c.Cost = value / this->SurfaceScale(members, count);
   c.Error = q.Weight() > 0.0 ? std::sqrt(value / q.Weight()) : 0.0;
 }
 
@@ -236,9 +243,7 @@ bool CollapseCostModel::EvaluateTriple(const Id* members, CollapseCandidate& c, 
   {
     this->Place(q, p, 3, centroid, c.Position);
     const double value = q.Evaluate(c.Position);
-    c.Cost = value /
-      this->SurfaceScale(this->State.SurfaceWeights[members[0]] +
-        this->State.SurfaceWeights[members[1]] + this->State.SurfaceWeights[members[2]]);
+    c.Cost = value / this->SurfaceScale(members, 3);
     c.Error = q.Weight() > 0.0 ? std::sqrt(value / q.Weight()) : 0.0;
     if (this->Options.Operator == CollapseOperator::TrianglesAndEdges)
     {
@@ -401,8 +406,8 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
   const double* ends[2] = { pa, pb };
   this->Place(q, ends, 2, middle, e.Position);
   e.Value = q.Evaluate(e.Position);
-  e.Cost =
-    e.Value / this->SurfaceScale(this->State.SurfaceWeights[a] + this->State.SurfaceWeights[b]);
+  const Id pair[2] = { a, b };
+  e.Cost = e.Value / this->SurfaceScale(pair, 2);
   e.Weight = q.Weight();
   e.Other = other;
   if (spoke)
@@ -471,8 +476,7 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
   // that over the triangle's surface scale alone exceeds the limit, the edge wins without
   // solving for the triangle.
   const double limit = this->Options.TriangleCostFactor * best;
-  if (worst / this->SurfaceScale(this->State.SurfaceWeights[tri[0]] +
-              this->State.SurfaceWeights[tri[1]] + this->State.SurfaceWeights[tri[2]]) > limit)
+  if (worst / this->SurfaceScale(tri, 3) > limit)
   {
     return true;
   }

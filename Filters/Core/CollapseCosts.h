@@ -177,12 +177,13 @@ private:
   // The cheapest edge of the triangle into c; returns its cost, and the largest of the edges'
   // quadric values in worst.
   double BestEdge(const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const;
-  // What a quadric value is divided by to make the cost of a collapse whose vertices stand for
-  // original surface of this weight (CollapseMesh::SurfaceWeights, summed): that weight in
-  // units of the input's mean triangle (see CollapseMesh::SurfaceWeightUnit), to the power
-  // AreaNormalization (quadric method only; 1 otherwise). Costs then compare distances more than areas: with the quadric value alone,
-  // a collapse over much surface costs more than one as far from its planes over little.
-  double SurfaceScale(double surfaceWeight) const;
+  // What a quadric value is divided by to make the cost of merging `count` vertices: the
+  // surface they stand for (their CollapseMesh::SurfaceWeights, summed) in units of the input's
+  // mean triangle (see CollapseMesh::SurfaceWeightUnit), to the power AreaNormalization
+  // (quadric method only; 1 otherwise). Costs then compare distances more than areas: with the
+  // quadric value alone, a collapse over much surface costs more than one as far from its
+  // planes over little.
+  double SurfaceScale(const Id* members, int count) const;
   // Where the merged `count` points (2 or 3) collapse to by the merged quadric alone: by the
   // option's placement for the quadric method, regularised for the curvature method's edges
   // (`origin`: the points' centroid).
