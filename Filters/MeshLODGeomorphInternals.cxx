@@ -30,6 +30,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace meshlod
@@ -48,8 +49,6 @@ vtkMTimeType HierarchyTime(vtkMultiBlockDataSet* input)
   }
   return time;
 }
-
-// The level's polygons as 32-bit triangles; false when a cell is not a triangle or the level
 } // namespace geomorph
 } // namespace meshlod
 
@@ -57,6 +56,8 @@ namespace
 {
 using meshlod::Id;
 using namespace meshlod::geomorph;
+
+// The level's polygons as 32-bit triangles; false when a cell is not a triangle or the level
 // has vertices, lines or strips.
 bool ReadTriangles(vtkPolyData* poly, std::vector<Id>& triangles)
 {
@@ -98,6 +99,51 @@ vtkAbstractArray* UnblendedTCoords(vtkPolyData* level)
   return level->GetFieldData()->GetAbstractArray(meshlod::names::TextureAtlasLevel)
     ? level->GetPointData()->GetTCoords()
     : nullptr;
+}
+
+// A level split per texture square (vtkVertexClusterOctree with BakeTexture: names::
+// TextureAtlasLevel) has a copy of a point for each square around it, copies that share the
+// position, the target and the rank. Returns level point -> its point once the copies are
+// welded (numbered in the order of their lowest copy), and the representatives (welded point
+// -> its lowest copy). Copies only: distinct points with these in common stay apart unless
+// they also coincide, and then joining them together changes nothing a schedule can see.
+std::vector<Id> WeldCopies(const double* positions, const Id* target, const std::int64_t* rank,
+  Id n, std::vector<Id>& representatives)
+{
+  std::vector<Id> order(n);
+  for (Id p = 0; p < n; ++p)
+  {
+    order[p] = p;
+  }
+  auto key = [&](Id p) {
+    const double* x = positions + 3 * static_cast<size_t>(p);
+    return std::make_tuple(target[p], rank[p], x[0], x[1], x[2]);
+  };
+  // Sorting by the key, ties by id, puts each point's copies together, lowest first.
+  std::sort(order.begin(), order.end(), [&](Id a, Id b) {
+    const auto ka = key(a), kb = key(b);
+    return ka != kb ? ka < kb : a < b;
+  });
+  std::vector<Id> lowest(n);
+  for (Id i = 0; i < n; ++i)
+  {
+    lowest[order[i]] = (i > 0 && key(order[i - 1]) == key(order[i])) ? lowest[order[i - 1]] : order[i];
+  }
+  std::vector<Id> welded(n);
+  representatives.clear();
+  for (Id p = 0; p < n; ++p)
+  {
+    if (lowest[p] == p)
+    {
+      welded[p] = static_cast<Id>(representatives.size());
+      representatives.push_back(p);
+    }
+    else
+    {
+      welded[p] = welded[lowest[p]];
+    }
+  }
+  return welded;
 }
 
 std::vector<Id> ToIds(vtkDataArray* array)
@@ -462,6 +508,39 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
       atTarget[p] = (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) ? 1 : 0;
     }
   });
+  // The copies of a split level's points join as one point: joined one at a time, every copy
+  // but the last would pinch the mesh at a seam of the atlas, a step no count can stop at (on a
+  // UV sphere's octree levels of 986 and 496 triangles, 17 of the 737 counts between them were
+  // reachable with the copies apart, all of them welded).
+  std::vector<Id> triangles, targets;
+  const std::vector<Id>* scheduleTriangles = &cache.Triangles;
+  const Id* scheduleTargets = cache.TargetIds.data();
+  Id schedulePoints = static_cast<Id>(n);
+  cache.ScheduleIds.clear();
+  if (UnblendedTCoords(poly))
+  {
+    std::vector<Id> representatives;
+    cache.ScheduleIds =
+      WeldCopies(from.data(), cache.TargetIds.data(), rank.data(), static_cast<Id>(n), representatives);
+    schedulePoints = static_cast<Id>(representatives.size());
+    targets.resize(schedulePoints);
+    for (Id w = 0; w < schedulePoints; ++w)
+    {
+      const Id p = representatives[w];
+      targets[w] = cache.TargetIds[p];
+      rank[w] = rank[p]; // p >= w: the representatives come in increasing order
+      atTarget[w] = atTarget[p];
+      std::copy_n(from.data() + 3 * static_cast<size_t>(p), 3, from.data() + 3 * static_cast<size_t>(w));
+      std::copy_n(to.data() + 3 * static_cast<size_t>(p), 3, to.data() + 3 * static_cast<size_t>(w));
+    }
+    triangles.resize(cache.Triangles.size());
+    for (size_t c = 0; c < triangles.size(); ++c)
+    {
+      triangles[c] = cache.ScheduleIds[cache.Triangles[c]];
+    }
+    scheduleTriangles = &triangles;
+    scheduleTargets = targets.data();
+  }
   // Collapses that would fold triangles over wait for their neighbours (on a UV sphere's octree
   // levels, 44% of the counts had a folded triangle without the waiting, none with it), unless
   // the waiting leaves fewer counts reachable: collapses that keep waiting are made last, in
@@ -470,9 +549,9 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
   // when no collapse waited, the two are the same and the second is not built.
   const auto build = [&](bool waitForFolds) {
     auto schedule = std::unique_ptr<meshlod::CollapseSchedule>(new meshlod::CollapseSchedule);
-    schedule->Build(cache.Triangles.data(), static_cast<Id>(cache.Triangles.size() / 3),
-      static_cast<Id>(n), cache.TargetIds.data(), rank.data(), atTarget.data(), from.data(),
-      to.data(), waitForFolds);
+    schedule->Build(scheduleTriangles->data(), static_cast<Id>(scheduleTriangles->size() / 3),
+      schedulePoints, scheduleTargets, rank.data(), atTarget.data(), from.data(), to.data(),
+      waitForFolds);
     return schedule;
   };
   cache.Schedule = build(true);
@@ -728,13 +807,37 @@ void vtkLODGeomorph::Internals::BuildExactTopology(int level, Id steps, Id nextS
   exact.Source.clear();
   exact.State.clear();
 
-  // Settled points with the same target become one point: the lowest id among them.
+  // Settled points with the same target become one point: the lowest id among them. Not so in
+  // a level split per texture square: its copies of a point address different squares of the
+  // atlas, and so do the points of a cluster, so they stay apart (and coincide), as in the
+  // level itself; the points left without a triangle are dropped.
+  const bool split = !cache.ScheduleIds.empty();
+  auto stepOf = [&](Id p) { return schedule.Step[split ? cache.ScheduleIds[p] : p]; };
+  std::vector<std::uint8_t> used;
+  if (split)
+  {
+    used.assign(n, 0);
+    for (size_t t = 0; t < schedule.RemovalStep.size(); ++t)
+    {
+      if (schedule.RemovalStep[t] > steps)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          used[cache.Triangles[3 * t + c]] = 1;
+        }
+      }
+    }
+  }
   std::vector<Id> representative(targets, meshlod::InvalidId);
-  std::vector<Id> newId(n);
+  std::vector<Id> newId(n, meshlod::InvalidId);
   for (Id p = 0; p < n; ++p)
   {
-    const Id step = schedule.Step[p];
-    if (step <= steps)
+    const Id step = stepOf(p);
+    if (split && !used[p])
+    {
+      continue;
+    }
+    if (step <= steps && !split)
     {
       Id& rep = representative[cache.TargetIds[p]];
       if (rep != meshlod::InvalidId)

@@ -57,6 +57,9 @@ struct LevelCache
   std::vector<Id> Triangles;
 
   std::unique_ptr<meshlod::CollapseSchedule> Schedule; // exact count
+  // Level point -> schedule point, for a level split per texture square (its copies of a point
+  // welded into one); empty when the schedule's points are the level's.
+  std::vector<Id> ScheduleIds;
 
   bool HasCorrespondence = false; // nearest vertices: this level -> the next one
   std::vector<Id> Partner;
