@@ -508,20 +508,29 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
       atTarget[p] = (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) ? 1 : 0;
     }
   });
-  // The copies of a split level's points join as one point: joined one at a time, every copy
-  // but the last would pinch the mesh at a seam of the atlas, a step no count can stop at (on a
-  // UV sphere's octree levels of 986 and 496 triangles, 17 of the 737 counts between them were
-  // reachable with the copies apart, all of them welded).
+  // A level whose TCoords address a texture of its own may have its points split per texture
+  // square (the octree's baked levels): the copies of a point join as one. Joined one at a
+  // time, every copy but the last would pinch the mesh at a seam of the atlas, a step no count
+  // can stop at (between a UV sphere's octree levels of 986 and 496 triangles, 8 of the 489
+  // counts were reachable with the copies apart, all of them welded).
   std::vector<Id> triangles, targets;
   const std::vector<Id>* scheduleTriangles = &cache.Triangles;
   const Id* scheduleTargets = cache.TargetIds.data();
   Id schedulePoints = static_cast<Id>(n);
   cache.ScheduleIds.clear();
-  if (UnblendedTCoords(poly))
+  cache.KeepPointsApart = UnblendedTCoords(poly) != nullptr;
+  std::vector<Id> representatives;
+  if (cache.KeepPointsApart)
   {
-    std::vector<Id> representatives;
-    cache.ScheduleIds =
-      WeldCopies(from.data(), cache.TargetIds.data(), rank.data(), static_cast<Id>(n), representatives);
+    cache.ScheduleIds = WeldCopies(
+      from.data(), cache.TargetIds.data(), rank.data(), static_cast<Id>(n), representatives);
+    if (representatives.size() == static_cast<size_t>(n))
+    {
+      cache.ScheduleIds.clear(); // no copies (level 0 with the octree's input texture)
+    }
+  }
+  if (!cache.ScheduleIds.empty())
+  {
     schedulePoints = static_cast<Id>(representatives.size());
     targets.resize(schedulePoints);
     for (Id w = 0; w < schedulePoints; ++w)
@@ -808,13 +817,16 @@ void vtkLODGeomorph::Internals::BuildExactTopology(int level, Id steps, Id nextS
   exact.State.clear();
 
   // Settled points with the same target become one point: the lowest id among them. Not so in
-  // a level split per texture square: its copies of a point address different squares of the
-  // atlas, and so do the points of a cluster, so they stay apart (and coincide), as in the
-  // level itself; the points left without a triangle are dropped.
-  const bool split = !cache.ScheduleIds.empty();
-  auto stepOf = [&](Id p) { return schedule.Step[split ? cache.ScheduleIds[p] : p]; };
+  // a level whose TCoords address a texture of its own: the points of a cluster, and a split
+  // level's copies of a point, address different places of the texture, so they stay apart
+  // (and coincide) with their own coordinates, as in the partial collapse between levels; the
+  // points left without a triangle are dropped.
+  const bool apart = cache.KeepPointsApart;
+  auto stepOf = [&](Id p) {
+    return schedule.Step[cache.ScheduleIds.empty() ? p : cache.ScheduleIds[p]];
+  };
   std::vector<std::uint8_t> used;
-  if (split)
+  if (apart)
   {
     used.assign(n, 0);
     for (size_t t = 0; t < schedule.RemovalStep.size(); ++t)
@@ -833,11 +845,11 @@ void vtkLODGeomorph::Internals::BuildExactTopology(int level, Id steps, Id nextS
   for (Id p = 0; p < n; ++p)
   {
     const Id step = stepOf(p);
-    if (split && !used[p])
+    if (apart && !used[p])
     {
       continue;
     }
-    if (step <= steps && !split)
+    if (step <= steps && !apart)
     {
       Id& rep = representative[cache.TargetIds[p]];
       if (rep != meshlod::InvalidId)

@@ -67,14 +67,15 @@
  * waits for that neighbour; a join that no order can make valid is passed through and its
  * count is not reachable. When the count is not reachable, the output has the largest
  * reachable count below it, with a warning when it is more than 2% (and 3 triangles) below
- * (on the meshes tried, every count of levels even 97% apart is reached within parity). Levels
- * with baked textures (vtkVertexClusterOctree with BakeTexture) have their points split per
- * texture square; the schedule joins each point's copies (same position, target and rank) as
- * one point, so their counts are as reachable as those of a hierarchy without BakeTexture
- * (joined one copy at a time, a UV sphere's levels of 986 and 496 triangles reached 17 of the
- * 737 counts between them; welded, all of them). In the output those copies, and the points
- * that settle on one target, stay apart at the same position, each with its own texture
- * coordinates, as in the level itself (points left without a triangle are dropped). Counts
+ * (on the meshes tried, every count of levels even 97% apart is reached within parity). A level
+ * whose TCoords address a texture of its own (TextureAtlasLevel: vtkVertexClusterOctree's levels
+ * with BakeTexture, and its level 0 when the input comes with a texture) keeps its points apart
+ * in the output, each with its own coordinates, as between levels: the points that settle on
+ * one target coincide instead of merging, and points left without a triangle are dropped.
+ * Baked levels have their points split per texture square; the schedule joins each point's
+ * copies (same position, target and rank) as one point, so their counts are as reachable as
+ * without BakeTexture (joined one copy at a time, 8 of the 489 counts between a UV sphere's
+ * levels of 986 and 496 triangles were reachable; welded, all of them). Counts
  * above the finest level's or below the coarsest level's are clamped to them, with a warning.
  * CollapseFraction geomorphs the next collapse: the points of the next step that removes
  * triangles (with the steps before it that remove none) are moved that fraction of the way to
