@@ -28,6 +28,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -111,10 +112,7 @@ std::vector<Id> WeldCopies(const double* positions, const Id* target, const std:
   Id n, std::vector<Id>& representatives)
 {
   std::vector<Id> order(n);
-  for (Id p = 0; p < n; ++p)
-  {
-    order[p] = p;
-  }
+  std::iota(order.begin(), order.end(), Id(0));
   auto key = [&](Id p) {
     const double* x = positions + 3 * static_cast<size_t>(p);
     return std::make_tuple(target[p], rank[p], x[0], x[1], x[2]);
@@ -518,9 +516,8 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
   const Id* scheduleTargets = cache.TargetIds.data();
   Id schedulePoints = static_cast<Id>(n);
   cache.ScheduleIds.clear();
-  cache.KeepPointsApart = UnblendedTCoords(poly) != nullptr;
   std::vector<Id> representatives;
-  if (cache.KeepPointsApart)
+  if (UnblendedTCoords(poly))
   {
     cache.ScheduleIds = WeldCopies(
       from.data(), cache.TargetIds.data(), rank.data(), static_cast<Id>(n), representatives);
@@ -821,10 +818,7 @@ void vtkLODGeomorph::Internals::BuildExactTopology(int level, Id steps, Id nextS
   // level's copies of a point, address different places of the texture, so they stay apart
   // (and coincide) with their own coordinates, as in the partial collapse between levels; the
   // points left without a triangle are dropped.
-  const bool apart = cache.KeepPointsApart;
-  auto stepOf = [&](Id p) {
-    return schedule.Step[cache.ScheduleIds.empty() ? p : cache.ScheduleIds[p]];
-  };
+  const bool apart = UnblendedTCoords(cache.Poly) != nullptr;
   std::vector<std::uint8_t> used;
   if (apart)
   {
@@ -844,11 +838,11 @@ void vtkLODGeomorph::Internals::BuildExactTopology(int level, Id steps, Id nextS
   std::vector<Id> newId(n, meshlod::InvalidId);
   for (Id p = 0; p < n; ++p)
   {
-    const Id step = stepOf(p);
     if (apart && !used[p])
     {
       continue;
     }
+    const Id step = schedule.Step[cache.ScheduleIds.empty() ? p : cache.ScheduleIds[p]];
     if (step <= steps && !apart)
     {
       Id& rep = representative[cache.TargetIds[p]];

@@ -60,9 +60,6 @@ struct LevelCache
   // Level point -> schedule point, for a level split per texture square (its copies of a point
   // welded into one); empty when the schedule's points are the level's.
   std::vector<Id> ScheduleIds;
-  // The level's TCoords address a texture of its own: the exact-count output keeps its points
-  // apart, each with its own coordinates (see BuildExactTopology).
-  bool KeepPointsApart = false;
 
   bool HasCorrespondence = false; // nearest vertices: this level -> the next one
   std::vector<Id> Partner;

@@ -416,18 +416,15 @@ void CheckExactCountsWithOwnTextures(vtkMultiBlockDataSet* h, unsigned int i)
                   report.EulerCharacteristic != fineReport.EulerCharacteristic)
         ? 1
         : 0;
+      vtkDataArray* tcoords = out->GetPointData()->GetTCoords();
+      MESHLOD_CHECK(tcoords != nullptr);
       std::vector<std::uint8_t> used(out->GetNumberOfPoints(), 0);
       for (const Triangle& t : Triangles(out))
       {
         used[t[0]] = used[t[1]] = used[t[2]] = 1;
-      }
-      unused += static_cast<int>(std::count(used.begin(), used.end(), 0));
-      vtkDataArray* tcoords = out->GetPointData()->GetTCoords();
-      MESHLOD_CHECK(tcoords != nullptr);
-      for (const Triangle& t : Triangles(out))
-      {
         foreign += tcoords && levelUVs.count(CornerUVs(tcoords, t)) == 0 ? 1 : 0;
       }
+      unused += static_cast<int>(std::count(used.begin(), used.end(), 0));
     }
   }
   std::cout << "  exact counts between levels " << i << " and " << i + 1 << " ("
