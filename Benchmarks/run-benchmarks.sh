@@ -2,7 +2,8 @@
 # Builds MeshLOD (installing the Debian packages it needs if missing) and runs the side-by-side
 # benchmark; writes Benchmarks/RESULTS.md. Arguments are passed to MeshLODBenchmark (see the
 # top of MeshLODBenchmark.cxx), e.g. --meshes gyroid:600000 --targets 0.1.
-# Takes twenty to thirty minutes on two cores (more when other programs use them).
+# Takes forty to fifty minutes on two cores (more when other programs use them): each run's
+# memory is measured once more in a fresh process (see MeshLODBenchmark.cxx).
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
 build=${MESHLOD_BUILD_DIR:-"$repo/build"}
