@@ -57,14 +57,34 @@ struct InterpolateWorker
     vtkSMPTools::For(0, dst.size(), [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType p = begin; p < end; ++p)
       {
+        // The weights are kept in single precision: as offsets from the first parent's value,
+        // divided by their own sum, they keep a constant array exact and a large value with
+        // small variations (a date, a georeferenced coordinate) to double precision.
+        const Id first = s.Offsets[p];
+        double weights = 0.0;
+        for (Id i = first; i < s.Offsets[p + 1]; ++i)
+        {
+          weights += s.Weights[i];
+        }
         for (int c = 0; c < nc; ++c)
         {
+          const double base = static_cast<double>(src[s.Parents[first]][c]);
           double sum = 0.0;
-          for (Id i = s.Offsets[p]; i < s.Offsets[p + 1]; ++i)
+          for (Id i = first + 1; i < s.Offsets[p + 1]; ++i)
           {
-            sum += s.Weights[i] * static_cast<double>(src[s.Parents[i]][c]);
+            sum += s.Weights[i] * (static_cast<double>(src[s.Parents[i]][c]) - base);
           }
-          dst[p][c] = static_cast<typename decltype(dst[p])::value_type>(sum);
+          double value = weights > 0.0 ? base + sum / weights : base;
+          if (!std::isfinite(value))
+          {
+            // Infinite values among the parents: the plain weighted sum (inf - inf is NaN).
+            value = 0.0;
+            for (Id i = first; i < s.Offsets[p + 1]; ++i)
+            {
+              value += s.Weights[i] * static_cast<double>(src[s.Parents[i]][c]);
+            }
+          }
+          dst[p][c] = static_cast<typename decltype(dst[p])::value_type>(value);
         }
       }
     });

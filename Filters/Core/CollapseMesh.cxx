@@ -13,6 +13,12 @@ namespace meshlod
 {
 namespace
 {
+// A new triangle is degenerate when the sine of its corner between the moved edge and the
+// opposite edge is below 1e-10 (squared here): rounding level, as when a collapse point lands
+// on a neighbour (the solve puts it exactly on a corner of a box's flat faces), which left
+// triangles of zero area in the levels.
+constexpr double DegenerateSine2 = 1e-12;
+
 // Whether two vectors with dot product `dot` and squared lengths' product `norms2` make an
 // angle whose cosine is at least `cosine`.
 bool WithinAngle(double dot, double norms2, double cosine)
@@ -840,10 +846,16 @@ Legality CollapseMesh::IsLegal(
     Cross(toU, uw, after);
     const double after2 = Dot(after, after);
     const double before2 = Dot(before, before);
-    const double tiny = 1e-30 * Dot(uw, uw) * Dot(uw, uw);
-    if (!(after2 > tiny))
+    // Degenerate: the corner at u flat to rounding (DegenerateSine2), or the area below 1e-15 of
+    // the squared edge (u, w).
+    const double uw2 = Dot(uw, uw);
+    const double tiny = 1e-30 * uw2 * uw2;
+    const double afterTiny = std::max(tiny, DegenerateSine2 * Dot(toU, toU) * uw2);
+    if (!(after2 > afterTiny))
     {
-      if (before2 > tiny)
+      double fromBefore[3];
+      Subtract(u, this->Mesh.Point(tri[c]), fromBefore);
+      if (before2 > std::max(tiny, DegenerateSine2 * Dot(fromBefore, fromBefore) * uw2))
       {
         return Legality::Illegal; // the new triangle would be degenerate
       }

@@ -215,6 +215,39 @@ void TestStarShape()
   MESHLOD_CHECK(f.Check(tri, high) == Legality::Illegal);
 }
 
+// A collapse point on the line of a ring edge, or on a ring vertex, makes a triangle without
+// area: refused down to the flatness rounding gives (a sine of 1e-6), which once let a solve that
+// put the point on a corner of a box's flat faces leave triangles of zero area in the levels.
+void TestDegenerateRefused()
+{
+  Fixture f(testing::MakeGrid(4, 4));
+  // Only the degeneracy test judges the geometry here.
+  f.Rules.MinimumNormalCosine = -1.0;
+  f.Rules.RequireStarShaped = false;
+  f.Rules.KeepFacing = false;
+  const std::vector<Id> edge = { 6, 7 };
+  const std::array<double, 3> middle = f.Centroid(edge);
+  MESHLOD_CHECK(f.Check(edge, middle.data(), false) == Legality::Legal);
+  // The first ring triangle (member, u, w): points beyond u on the line from w, off it by
+  // `off` times the edge's length.
+  const Id* ring = f.State.Mesh.Triangle(f.Stars.Ring[0]);
+  const int c = f.Stars.RingCorner[0];
+  const double* u = f.State.Mesh.Point(ring[(c + 1) % 3]);
+  const double* w = f.State.Mesh.Point(ring[(c + 2) % 3]);
+  auto beyond = [&](double off) {
+    const double along[3] = { u[0] - w[0], u[1] - w[1], 0.0 };
+    const std::array<double, 3> x = { u[0] + 0.5 * along[0] - off * along[1],
+      u[1] + 0.5 * along[1] + off * along[0], 0.0 };
+    return f.Check(edge, x.data(), false);
+  };
+  MESHLOD_CHECK(beyond(0.0) == Legality::Illegal);
+  MESHLOD_CHECK(beyond(1e-9) == Legality::Illegal);
+  MESHLOD_CHECK(beyond(1e-8) == Legality::Illegal);
+  MESHLOD_CHECK(beyond(1e-2) == Legality::Legal);
+  MESHLOD_CHECK(beyond(-1e-2) == Legality::Legal);
+  MESHLOD_CHECK(f.Check(edge, u, false) == Legality::Illegal);
+}
+
 // Merging two boundary vertices across the interior would pinch the surface; locked
 // (non-manifold) vertices never merge.
 void TestBoundaryAndLocks()
@@ -285,6 +318,7 @@ int TestTriangleCollapseRules(int, char*[])
   TestValenceFourApexNeedsSwap();
   TestStarShape();
   TestBoundaryAndLocks();
+  TestDegenerateRefused();
   TestLinkCondition();
   return meshlod::testing::Result();
 }

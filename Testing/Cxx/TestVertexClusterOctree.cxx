@@ -16,6 +16,7 @@
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
+#include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkIntArray.h"
 #include "vtkLine.h"
@@ -217,6 +218,12 @@ vtkSmartPointer<vtkPolyData> DecoratedMetaballs()
   }
   mesh->GetPointData()->AddArray(height);
   mesh->GetPointData()->AddArray(label);
+  // A constant far from 0 (a date, a map coordinate): averaged, it must stay exact.
+  vtkNew<vtkDoubleArray> constant;
+  constant->SetName("Constant");
+  constant->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  constant->Fill(1e9 + 0.25);
+  mesh->GetPointData()->AddArray(constant);
   vtkNew<vtkIntArray> triangleId;
   triangleId->SetName("TriangleId");
   for (vtkIdType c = 0; c < mesh->GetNumberOfPolys(); ++c)
@@ -335,6 +342,15 @@ void TestHierarchy()
       MESHLOD_CHECK_LE(levelRange[1], range[1] + 1e-6);
       MESHLOD_CHECK_GE(labelRange[0], 0.0);
       MESHLOD_CHECK_LE(labelRange[1], 6.0);
+    }
+    vtkDataArray* constant = level->GetPointData()->GetArray("Constant");
+    MESHLOD_CHECK(constant != nullptr);
+    if (constant)
+    {
+      double constantRange[2];
+      constant->GetRange(constantRange);
+      MESHLOD_CHECK_EQ(constantRange[0], 1e9 + 0.25);
+      MESHLOD_CHECK_EQ(constantRange[1], 1e9 + 0.25);
     }
     const double epsilon = filter->GetLevelEpsilon(static_cast<int>(i));
     MESHLOD_CHECK_GT(epsilon, 0.0);
