@@ -14,9 +14,10 @@ namespace meshlod
 namespace
 {
 // A new triangle is degenerate when the sine of its corner between the moved edge and the
-// opposite edge is below 1e-10 (squared here): rounding level, as when a collapse point lands
-// on a neighbour (the solve puts it exactly on a corner of a box's flat faces), which left
-// triangles of zero area in the levels.
+// opposite edge is below 1e-6 (squared here). A collapse point landing on a neighbour (the
+// solve puts it exactly on a corner of a box's flat faces) makes a sine at rounding level,
+// which left triangles of zero area in the levels; one on the line of a ring edge (the solve
+// is exact there to about 1e-9) made slivers with sines of 7e-9, flat in single precision.
 constexpr double DegenerateSine2 = 1e-12;
 
 // Whether two vectors with dot product `dot` and squared lengths' product `norms2` make an
@@ -846,7 +847,7 @@ Legality CollapseMesh::IsLegal(
     Cross(toU, uw, after);
     const double after2 = Dot(after, after);
     const double before2 = Dot(before, before);
-    // Degenerate: the corner at u flat to rounding (DegenerateSine2), or the area below 1e-15 of
+    // Degenerate: the corner at u all but flat (DegenerateSine2), or the area below 1e-15 of
     // the squared edge (u, w).
     const double uw2 = Dot(uw, uw);
     const double tiny = 1e-30 * uw2 * uw2;
