@@ -335,8 +335,9 @@ void TextureBaker::ColorAt(const double point[3], float rgba[4]) const
   };
   weigh();
   // Closest on an edge or a corner: other triangles may be as close (LowestClosestTriangle).
-  // Well inside, only a triangle lying on this one could be: the search is skipped (it made
-  // baking a quarter slower).
+  // Well inside, only a triangle lying on this one, or one elsewhere at the very same
+  // distance, could be: the search is skipped (made for every texel, it made baking a quarter
+  // slower).
   if (std::min({ w[0], w[1], w[2] }) <= 1e-6)
   {
     const vtkIdType lowest = impl.LowestClosestTriangle(point, dist2, closest);

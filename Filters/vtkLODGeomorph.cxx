@@ -123,6 +123,7 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
   auto* output = vtkPolyData::GetData(outputVector, 0);
   output->Initialize();
   this->ActualNumberOfTriangles = 0;
+  this->ActualLevelOfDetail = -1.0; // until a level of detail is produced
   Internals& impl = *this->Impl;
 
   // 1. The input, validated once per change of the hierarchy or of the correspondence mode.

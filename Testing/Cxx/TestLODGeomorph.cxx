@@ -285,6 +285,8 @@ int ExpectError(vtkDataObject* input, const std::string& expected,
     ++testing::FailureCount();
   }
   MESHLOD_CHECK(filter->GetOutput() == nullptr || filter->GetOutput()->GetNumberOfPoints() == 0);
+  MESHLOD_CHECK_EQ(filter->GetActualLevelOfDetail(), -1.0);
+  MESHLOD_CHECK_EQ(filter->GetActualNumberOfTriangles(), 0);
   return 0;
 }
 

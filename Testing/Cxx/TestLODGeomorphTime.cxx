@@ -9,6 +9,7 @@
 #include "MeshLODTestMeshes.h"
 
 #include "vtkCellArray.h"
+#include "vtkCommand.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiBlockDataSet.h"
@@ -18,8 +19,10 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTestErrorObserver.h"
 #include "vtkTriangleFilter.h"
 
+#include <limits>
 #include <vector>
 
 namespace
@@ -118,6 +121,17 @@ int TestLODGeomorphTime(int, char*[])
   timed->UpdateTimeStep(9.0);
   MESHLOD_CHECK_EQ(timed->GetActualLevelOfDetail(), 3.0);
   MESHLOD_CHECK_EQ(timed->GetOutput()->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()), 9.0);
+  // A time that is not a number: an error, an empty output, and no level of detail reported
+  // (the last one used to stay).
+  {
+    vtkNew<vtkTest::ErrorObserver> errors;
+    timed->AddObserver(vtkCommand::ErrorEvent, errors);
+    timed->UpdateTimeStep(std::numeric_limits<double>::quiet_NaN());
+    MESHLOD_CHECK(errors->GetError());
+    MESHLOD_CHECK_EQ(timed->GetOutput()->GetNumberOfPolys(), 0);
+    MESHLOD_CHECK_EQ(timed->GetActualLevelOfDetail(), -1.0);
+    timed->RemoveObserver(errors);
+  }
 
   // A time-unaware filter downstream asking for a time.
   vtkNew<vtkTriangleFilter> downstream;
