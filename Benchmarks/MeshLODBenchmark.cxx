@@ -159,6 +159,19 @@ void UseAllCores(const Backends& backends)
   UseBackend(backends.Parallel.empty() ? "Sequential" : backends.Parallel, 0);
 }
 
+/// For a timed run on `threads` threads: Sequential for one.
+void UseTimedBackend(const Backends& backends, int threads)
+{
+  if (threads > 1)
+  {
+    UseBackend(backends.Parallel, threads);
+  }
+  else
+  {
+    UseBackend("Sequential", 1);
+  }
+}
+
 //------------------------------------------------------------------------------
 struct Options
 {
@@ -543,18 +556,6 @@ private:
     return text;
   }
 
-  void UseTimedBackend(int threads) const
-  {
-    if (threads > 1)
-    {
-      UseBackend(this->Smp.Parallel, threads);
-    }
-    else
-    {
-      UseBackend("Sequential", 1);
-    }
-  }
-
   void RunMethod(size_t meshIndex, const Method& method, int threads)
   {
     vtkPolyData* input = this->Meshes[meshIndex].Data;
@@ -568,7 +569,7 @@ private:
     const size_t firstRerun = this->Reruns.size();
     for (size_t j = 0; j < jobs.size(); ++j)
     {
-      this->UseTimedBackend(threads);
+      UseTimedBackend(this->Smp, threads);
       runs.push_back(Measure(jobs[j]));
       UseAllCores(this->Smp);
       if (this->Opts.FreshMemory)
@@ -652,7 +653,7 @@ private:
         const int times = first.Seconds < ShortRunSeconds ? 2 : 1;
         for (int time = 0; time < times; ++time)
         {
-          this->UseTimedBackend(rerun.Threads);
+          UseTimedBackend(this->Smp, rerun.Threads);
           const Run run = Time(rerun.Job);
           UseAllCores(this->Smp);
           for (const size_t r : rerun.Rows)
@@ -968,14 +969,7 @@ int RunMemoryProbe(const Options& options, const std::vector<Method>& methods, c
   vtkSmartPointer<vtkPolyData> input = MakeMesh(options.Meshes[0], resolution, dropped);
   const std::vector<TimedJob> jobs =
     MakeJobs(methods[0], input, TargetCounts(input, options.Targets), smp);
-  if (options.Threads > 1)
-  {
-    UseBackend(smp.Parallel, options.Threads);
-  }
-  else
-  {
-    UseBackend("Sequential", 1);
-  }
+  UseTimedBackend(smp, options.Threads);
   const Run run = Measure(jobs.front());
   std::printf("memory-probe-bytes %lld\n", run.PeakBytes);
   return run.PeakBytes >= 0 ? 0 : 1;

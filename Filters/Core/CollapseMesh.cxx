@@ -839,24 +839,24 @@ Legality CollapseMesh::IsLegal(
     const int c = star.RingCorner[i];
     const double* u = this->Mesh.Point(tri[(c + 1) % 3]);
     const double* w = this->Mesh.Point(tri[(c + 2) % 3]);
-    double uw[3], before[3], after[3], toU[3];
+    double uw[3], fromMember[3], fromX[3], before[3], after[3];
     Subtract(w, u, uw);
-    Subtract(u, this->Mesh.Point(tri[c]), toU);
-    Cross(toU, uw, before);
-    Subtract(u, x, toU);
-    Cross(toU, uw, after);
+    Subtract(u, this->Mesh.Point(tri[c]), fromMember);
+    Cross(fromMember, uw, before);
+    Subtract(u, x, fromX);
+    Cross(fromX, uw, after);
     const double after2 = Dot(after, after);
     const double before2 = Dot(before, before);
-    // Degenerate: the corner at u all but flat (DegenerateSine2), or the area below 1e-15 of
-    // the squared edge (u, w).
     const double uw2 = Dot(uw, uw);
     const double tiny = 1e-30 * uw2 * uw2;
-    const double afterTiny = std::max(tiny, DegenerateSine2 * Dot(toU, toU) * uw2);
-    if (!(after2 > afterTiny))
+    // Degenerate (cross2: the squared cross product of `side` and uw): the corner at u all but
+    // flat (DegenerateSine2), or the area below 1e-15 of the squared edge (u, w).
+    auto degenerate = [&](double cross2, const double side[3]) {
+      return !(cross2 > std::max(tiny, DegenerateSine2 * Dot(side, side) * uw2));
+    };
+    if (degenerate(after2, fromX))
     {
-      double fromBefore[3];
-      Subtract(u, this->Mesh.Point(tri[c]), fromBefore);
-      if (before2 > std::max(tiny, DegenerateSine2 * Dot(fromBefore, fromBefore) * uw2))
+      if (!degenerate(before2, fromMember))
       {
         return Legality::Illegal; // the new triangle would be degenerate
       }

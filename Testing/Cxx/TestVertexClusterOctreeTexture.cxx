@@ -543,6 +543,26 @@ void TestColorArray()
 }
 
 //------------------------------------------------------------------------------
+// A square RGB texture of `size` texels a side, texel (x, y) coloured by `rgb`.
+vtkSmartPointer<vtkImageData> MakeTexture(
+  int size, const std::function<std::array<unsigned char, 3>(int x, int y)>& rgb)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(size, size, 1);
+  vtkNew<vtkUnsignedCharArray> texels;
+  texels->SetNumberOfComponents(3);
+  texels->SetNumberOfTuples(size * size);
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      texels->SetTypedTuple(y * size + x, rgb(x, y).data());
+    }
+  }
+  image->GetPointData()->SetScalars(texels);
+  return image;
+}
+
 // Colours from an input texture at the input's texture coordinates.
 void TestInputTexture()
 {
@@ -560,25 +580,14 @@ void TestInputTexture()
     tcoords->InsertNextTypedTuple(uv);
   }
   mesh->GetPointData()->SetTCoords(tcoords);
-  vtkNew<vtkImageData> image;
   const int size = 64;
-  image->SetDimensions(size, size, 1);
-  vtkNew<vtkUnsignedCharArray> texels;
-  texels->SetNumberOfComponents(3);
-  texels->SetNumberOfTuples(size * size);
-  for (int y = 0; y < size; ++y)
-  {
-    for (int x = 0; x < size; ++x)
-    {
-      const double u = (x + 0.5) / size, v = (y + 0.5) / size;
-      texels->SetTypedComponent(
-        y * size + x, 0, static_cast<unsigned char>(127.5 + 127.5 * std::sin(12.0 * u)));
-      texels->SetTypedComponent(
-        y * size + x, 1, static_cast<unsigned char>(127.5 + 127.5 * std::cos(9.0 * v)));
-      texels->SetTypedComponent(y * size + x, 2, static_cast<unsigned char>(255.0 * u * v));
-    }
-  }
-  image->GetPointData()->SetScalars(texels);
+  vtkSmartPointer<vtkImageData> image = MakeTexture(size, [&](int x, int y) {
+    const double u = (x + 0.5) / size, v = (y + 0.5) / size;
+    return std::array<unsigned char, 3>{ static_cast<unsigned char>(
+                                           127.5 + 127.5 * std::sin(12.0 * u)),
+      static_cast<unsigned char>(127.5 + 127.5 * std::cos(9.0 * v)),
+      static_cast<unsigned char>(255.0 * u * v) };
+  });
 
   vtkNew<vtkVertexClusterOctree> filter;
   filter->SetInputData(mesh);
@@ -712,22 +721,10 @@ void TestThreads()
   sphere->SetThetaResolution(48);
   sphere->SetPhiResolution(48);
   sphere->Update();
-  vtkNew<vtkImageData> image;
-  const int size = 64;
-  image->SetDimensions(size, size, 1);
-  vtkNew<vtkUnsignedCharArray> texels;
-  texels->SetNumberOfComponents(3);
-  texels->SetNumberOfTuples(size * size);
-  for (int y = 0; y < size; ++y)
-  {
-    for (int x = 0; x < size; ++x)
-    {
-      texels->SetTypedComponent(y * size + x, 0, static_cast<unsigned char>(4 * x));
-      texels->SetTypedComponent(y * size + x, 1, static_cast<unsigned char>(4 * y));
-      texels->SetTypedComponent(y * size + x, 2, static_cast<unsigned char>(8 * (x ^ y)));
-    }
-  }
-  image->GetPointData()->SetScalars(texels);
+  vtkSmartPointer<vtkImageData> image = MakeTexture(64, [](int x, int y) {
+    return std::array<unsigned char, 3>{ static_cast<unsigned char>(4 * x),
+      static_cast<unsigned char>(4 * y), static_cast<unsigned char>(8 * (x ^ y)) };
+  });
   CheckThreads(sphere->GetOutput(), image);
 }
 
