@@ -12,7 +12,8 @@
 // world units; *Percent() divides by the bounding-box diagonal of the first mesh (the reference).
 //
 // Used by the tests, the benchmark and vtkTriangleCollapseDecimation::ComputeLevelError. It is
-// a measurement by sampling, not a bound: a finer sampling can only raise the maxima.
+// a measurement by sampling, not a bound: the true maxima are at least as large (more area
+// samples can only raise them; the vertex samples, every k-th vertex, are not nested).
 #ifndef MeshLODSurfaceDistance_h
 #define MeshLODSurfaceDistance_h
 

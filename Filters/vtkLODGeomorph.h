@@ -78,7 +78,8 @@
  * Baked levels have their points split per texture square; the schedule joins each point's
  * copies (same position, target and rank) as one point, so their counts are as reachable as
  * without BakeTexture (joined one copy at a time, 8 of the 489 counts between a UV sphere's
- * levels of 986 and 496 triangles were reachable; welded, all of them). Counts
+ * levels of 986 and 496 triangles were reached within one triangle, the step of a closed
+ * surface; welded, all of them). Counts
  * above the finest level's or below the coarsest level's are clamped to them, with a warning.
  * CollapseFraction geomorphs the next collapse: the points of the next step that removes
  * triangles (with the steps before it that remove none) are moved that fraction of the way to

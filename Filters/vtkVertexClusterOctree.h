@@ -70,7 +70,8 @@
  *   from the one before): the search's epsilon merges all that may merge, at an error far beyond
  *   what a few more triangles need; on the surfaces of a segmented volume asked for 1%, whose
  *   curves merge only so far, 3,245 triangles at 0.79% Hausdorff distance instead of 2,423 at
- *   4.6%; on a finely subdivided icosahedron asked for 1%, 864 triangles at no error instead of
+ *   4.6% when this rule was made (the segmented balls of Benchmarks/RESULTS.md now: 3,059 at
+ *   0.84%); on a finely subdivided icosahedron asked for 1%, 864 triangles at no error instead of
  *   390 at 8%, whose clusters across the edges cut the corners); a count
  *   between two that consecutive epsilons give (levels cut one cluster tree, so counts move in
  *   steps of whole clusters); a count at or above the previous level's (a level never refines).
@@ -205,7 +206,8 @@ public:
 
   ///@{
   /**
-   * Error bound of the first simplified level in GEOMETRIC_EPSILON mode, as a fraction of the
+   * Bound on the cluster error (not on the distance to the input: see the class docs) of the
+   * first simplified level in GEOMETRIC_EPSILON mode, as a fraction of the
    * bounding-box diagonal (RelativeUnits on) or in world units. Range [0, VTK_DOUBLE_MAX],
    * default 0.002.
    */
@@ -319,7 +321,7 @@ public:
    * distances as with it on. Noise far above the edge length is beyond it: a sphere whose
    * radii moved by up to 2.5 edges got its 10% level, but its 1% level crumpled (about 5 times
    * vtkQuadricClustering's Hausdorff distance and 10 times its RMS distance), where the
-   * repairs keep 87% of its triangles at both targets. Levels still nest, and MorphTargetId
+   * repairs keep 92% and 87% of its triangles at the 10% and 1% targets. Levels still nest, and MorphTargetId
    * maps every triangle onto one of the next level with its orientation.
    */
   vtkSetMacro(PreserveTopology, bool);
@@ -332,9 +334,9 @@ public:
    * Flip edges of every simplified level where the other diagonal of the two triangles lies
    * closer to the input (judged by the local surface distance both ways). Points, triangle
    * counts, clusters and MorphTargetId stay as they are, and the next level is clustered from
-   * the unflipped triangles. On the benchmark isosurfaces it lowers the RMS distance by 10-20%
-   * and the Hausdorff distance by up to 10%, for up to 1.7 times the time on one thread (about
-   * 1.3 times on two). The price: a level's triangles are then no longer exactly what the finer
+   * the unflipped triangles. On the benchmark isosurfaces it lowers the RMS distance by 8-21%
+   * and changes the Hausdorff distance by -8% to +3%, for 1.4-1.55 times the time on one
+   * thread (1.4-1.5 times on two; Benchmarks/RESULTS.md). The price: a level's triangles are then no longer exactly what the finer
    * level's triangles become through MorphTargetId, so a geomorph into a flipped level ends on
    * its unflipped triangles and the flipped quads change at the switch (a small pop). For
    * discrete levels (no geomorph) turn it on. Default off.
