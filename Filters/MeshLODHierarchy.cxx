@@ -27,6 +27,7 @@
 #include "vtkTypeInt64Array.h"
 
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -284,6 +285,19 @@ void SetDoubleField(vtkPolyData* poly, const char* name, double value)
   array->InsertNextValue(value);
   poly->GetFieldData()->AddArray(array);
 }
+// Whether `name` is one of the field-data arrays the hierarchy's layout gives its levels.
+bool IsLevelFieldName(const char* name)
+{
+  for (const char* own : { names::LevelIndex, names::NumberOfTriangles, names::EstimatedError,
+         names::MeasuredHausdorff, names::MeasuredRMS, names::TextureAtlasLevel })
+  {
+    if (std::strcmp(name, own) == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -520,13 +534,15 @@ void HierarchyBuilder::Finish(vtkMultiBlockDataSet* output)
   vtkFieldData* passed = this->Impl->InputFieldData;
   for (size_t i = 0; i < this->Impl->Levels.size(); ++i)
   {
-    // The input's field data (metadata, as VTK filters pass it on), shared, on every level; a
-    // level's own arrays (LevelIndex, NumberOfTriangles, ...) keep their names.
+    // The input's field data (metadata, as VTK filters pass it on), shared, on every level;
+    // the layout's own names are left out even where this level has no such array (an input
+    // that is itself a measured level must not lend its MeasuredHausdorff to unmeasured ones).
     vtkFieldData* fd = this->Impl->Levels[i]->GetFieldData();
     for (int a = 0; passed && a < passed->GetNumberOfArrays(); ++a)
     {
       vtkAbstractArray* array = passed->GetAbstractArray(a);
-      if (array && array->GetName() && !fd->GetAbstractArray(array->GetName()))
+      if (array && array->GetName() && !IsLevelFieldName(array->GetName()) &&
+        !fd->GetAbstractArray(array->GetName()))
       {
         fd->AddArray(array);
       }

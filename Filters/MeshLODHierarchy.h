@@ -13,7 +13,8 @@
 // - field data: LevelIndex (int), NumberOfTriangles (vtkIdType), EstimatedError (double, the
 //   algorithm's own estimate in world units), and, when measured, MeasuredHausdorff and
 //   MeasuredRMS (double, world units, surface distance to level 0 by MeshLODSurfaceDistance);
-//   plus the input's field-data arrays, shared, except those named like a level's own.
+//   plus the input's field-data arrays, shared, except those named like the level arrays
+//   above or TextureAtlasLevel (left out even where the level has none).
 // Every level except the coarsest also carries the correspondence to the next level:
 // - MorphTargetId (32-bit int): the point of level i+1 this point becomes. Chaining it maps any
 //   point of level 0 to its point in any coarser level.

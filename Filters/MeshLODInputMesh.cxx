@@ -19,6 +19,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTriangleFilter.h"
 #include "vtkTypeInt32Array.h"
 
@@ -514,6 +515,19 @@ int FillSurfaceInputPortInformation(vtkInformation* info)
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void RequestWholeInput(vtkInformation* inputInfo)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  inputInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
+  inputInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
+  inputInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  if (inputInfo->Has(SDDP::WHOLE_EXTENT()))
+  {
+    inputInfo->Set(SDDP::UPDATE_EXTENT(), inputInfo->Get(SDDP::WHOLE_EXTENT()), 6);
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -89,6 +89,13 @@ enum class InputStatus
 /// block, which nested hierarchies inside a hierarchy.
 VTKFILTERSMESHLOD_EXPORT int FillSurfaceInputPortInformation(vtkInformation* info);
 
+/// In RequestUpdateExtent, for an input the filter needs whole whatever piece it is asked for
+/// (vtkVertexClusterOctree's texture, vtkLODGeomorph's hierarchy): piece 0 of 1, no ghost
+/// levels, the whole extent of structured data. Otherwise the piece request reaches it (an image
+/// source then makes part of the texture; an image filter upstream can crash on it, a reader of
+/// a saved hierarchy hands out some of its blocks).
+VTKFILTERSMESHLOD_EXPORT void RequestWholeInput(vtkInformation* inputInfo);
+
 /// The vtkPolyData on `port`, or nullptr; false, with an error on `caller`, when it is composite
 /// data (a multiblock of surfaces: one filter simplifies one surface).
 VTKFILTERSMESHLOD_EXPORT bool SurfaceInput(

@@ -1,6 +1,7 @@
 #include "vtkLODGeomorph.h"
 
 #include "MeshLODGeomorphInternals.h"
+#include "MeshLODInputMesh.h"
 #include "MeshLODSettings.h"
 
 #include "vtkDoubleArray.h"
@@ -20,6 +21,8 @@ vtkStandardNewMacro(vtkLODGeomorph);
 namespace
 {
 constexpr const char* LevelOfDetailName = "LevelOfDetail";
+// A pipeline time within this many levels of a level's time step is that level.
+constexpr double LevelSnapTolerance = 1e-9;
 using meshlod::geomorph::HierarchyTime;
 } // namespace
 
@@ -104,9 +107,14 @@ int vtkLODGeomorph::RequestInformation(vtkInformation* vtkNotUsed(request),
 int vtkLODGeomorph::RequestUpdateExtent(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* vtkNotUsed(outputVector))
 {
-  // With pipeline time, the time is the level of detail, not a request for the hierarchy: do
-  // not pass it upstream.
+  // The blend needs the whole hierarchy, whatever piece is asked for (the piece is produced
+  // whole or empty in RequestData). With pipeline time, the time is the level of detail, not a
+  // request for the hierarchy: do not pass it upstream.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo)
+  {
+    meshlod::RequestWholeInput(inInfo);
+  }
   if (this->UsePipelineTime && inInfo)
   {
     inInfo->Remove(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
@@ -160,6 +168,13 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
   const int n = static_cast<int>(impl.Levels.size());
   this->NumberOfLevels = n;
   this->ActualCorrespondence = impl.Mode;
+  // The whole mesh is piece 0; the other pieces of a request in pieces are empty, so that the
+  // pieces together hold it once.
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
+  {
+    return 1;
+  }
 
   // 2. The level of detail: the pipeline time, or the explicit setting.
   double lod = this->LevelOfDetail;
@@ -167,6 +182,14 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
   {
     const double time = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
     lod = std::min(std::max(time / this->TimeScale, 0.0), static_cast<double>(n - 1));
+    // The advertised time steps, i * TimeScale, need not divide back to i (3 * 0.7 / 0.7 is
+    // 2.9999999999999996, whose floor is level 2 collapsed almost to level 3): a time that
+    // close to a level's is that level.
+    const double nearest = std::round(lod);
+    if (std::abs(lod - nearest) <= LevelSnapTolerance)
+    {
+      lod = nearest;
+    }
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), time);
   }
   else if (lod > n - 1)

@@ -100,14 +100,21 @@
  * @par Time
  * With UsePipelineTime on (the default), RequestInformation publishes TIME_STEPS = {0, s, 2s,
  * ..., (n - 1) s} and TIME_RANGE = [0, (n - 1) s], s = TimeScale, and a requested
- * UPDATE_TIME_STEP u gives L = u / s (clamped to [0, n - 1] silently, as readers clamp time);
- * the output's DATA_TIME_STEP is u. ParaView then shows one time step per level; to see the
+ * UPDATE_TIME_STEP u gives L = u / s (clamped to [0, n - 1] silently, as readers clamp time;
+ * within 1e-9 of a whole number, that number: a published step i * s gives level i exactly
+ * although i * s / s may round below i); the output's DATA_TIME_STEP is u. ParaView then shows one time step per level; to see the
  * continuous transitions, animate in Sequence mode rather than Snap To TimeSteps. Without a
  * time request LevelOfDetail rules. The number of levels is a property of the data, so
  * RequestInformation brings the input up to date first (the upstream runs then rather than in
  * the data pass). The time request is not passed upstream: the hierarchy is taken to be
  * independent of time and is never recomputed because time changes (an upstream with time
  * steps of its own produces its default one).
+ *
+ * @par Pieces
+ * The blend needs the whole hierarchy: the input is always asked for piece 0 of 1 without
+ * ghost levels (a reader of a saved hierarchy gives all its levels), and a request for pieces
+ * gets the whole mesh as piece 0 and empty pieces otherwise, so that the pieces together hold
+ * it once. (A hierarchy per piece of a distributed mesh is not blended piece by piece.)
  * With UsePipelineTime off, LevelOfDetail always rules and the filter is transparent to time:
  * the input's time steps, if any, are passed on and time requests go upstream, so a
  * hierarchy that changes with time can be animated at a fixed level of detail.

@@ -171,7 +171,8 @@
  *   transition is applied, -1 for points that do not move);
  * - field data LevelIndex, NumberOfTriangles, EstimatedError and, with ComputeLevelError on,
  *   MeasuredHausdorff and MeasuredRMS, plus the input's field-data arrays (shared; one named
- *   like a level's own is left out). EstimatedError is the filter's own estimate: the largest
+ *   like any of these, or TextureAtlasLevel, is left out, so a level of an unmeasured run
+ *   never shows an input's MeasuredHausdorff). EstimatedError is the filter's own estimate: the largest
  *   RMS distance of a vertex to the original planes merged into it. It is not a bound. The
  *   measured values are symmetric surface distances to level 0 found by sampling; they are
  *   measurements from below: the true Hausdorff distance is at least as large.

@@ -179,8 +179,11 @@ void vtkVertexClusterOctree::AddEpsilonValue(double epsilon)
 
 void vtkVertexClusterOctree::RemoveAllEpsilonValues()
 {
-  this->EpsilonValues.clear();
-  this->Modified();
+  if (!this->EpsilonValues.empty())
+  {
+    this->EpsilonValues.clear();
+    this->Modified();
+  }
 }
 
 int vtkVertexClusterOctree::GetNumberOfEpsilonValues() const
@@ -201,8 +204,11 @@ void vtkVertexClusterOctree::AddTargetTriangleCount(vtkIdType count)
 
 void vtkVertexClusterOctree::RemoveAllTargetTriangleCounts()
 {
-  this->TargetTriangleCounts.clear();
-  this->Modified();
+  if (!this->TargetTriangleCounts.empty())
+  {
+    this->TargetTriangleCounts.clear();
+    this->Modified();
+  }
 }
 
 int vtkVertexClusterOctree::GetNumberOfTargetTriangleCounts() const
@@ -316,6 +322,17 @@ int vtkVertexClusterOctree::FillInputPortInformation(int port, vtkInformation* i
 int vtkVertexClusterOctree::FillOutputPortInformation(int, vtkInformation* info)
 {
   return meshlod::FillHierarchyOutputPortInformation(info);
+}
+
+int vtkVertexClusterOctree::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
+  if (vtkInformation* textureInfo = inputVector[1]->GetInformationObject(0))
+  {
+    meshlod::RequestWholeInput(textureInfo);
+  }
+  return 1;
 }
 
 //------------------------------------------------------------------------------

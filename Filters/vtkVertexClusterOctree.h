@@ -136,7 +136,8 @@
  * from the dominant one), cell data from the input triangle each triangle descends from, field
  * data LevelIndex, NumberOfTriangles, EstimatedError (the largest cluster error of the level)
  * and, with MeasureLevelErrors, MeasuredHausdorff and MeasuredRMS, plus the input's field-data
- * arrays (shared; one named like a level's own is left out); every level but the last
+ * arrays (shared; one named like any of these or TextureAtlasLevel is left out, so a level
+ * of an unmeasured run never shows an input's MeasuredHausdorff); every level but the last
  * carries MorphTarget, MorphTargetId and CollapseRank (clusters ordered by error: the points of
  * one cluster share a rank; -1 for points whose cluster did not change).
  *
@@ -444,6 +445,9 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  // The texture (port 1) is needed whole whatever piece of the mesh is asked for.
+  int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;

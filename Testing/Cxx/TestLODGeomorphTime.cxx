@@ -41,6 +41,7 @@ public:
   int Executions = 0;
   std::vector<double> TimeSteps; // published when not empty
   double RequestedTime = -1.0;   // the time of the last execution, -1 when none was asked
+  int RequestedPiece = -1, RequestedPieces = -1; // the piece request of the last execution
 
 protected:
   HierarchySource() { this->SetNumberOfInputPorts(0); }
@@ -63,6 +64,8 @@ protected:
     vtkInformation* info = out->GetInformationObject(0);
     this->RequestedTime =
       info->Has(SDDP::UPDATE_TIME_STEP()) ? info->Get(SDDP::UPDATE_TIME_STEP()) : -1.0;
+    this->RequestedPiece = info->Get(SDDP::UPDATE_PIECE_NUMBER());
+    this->RequestedPieces = info->Get(SDDP::UPDATE_NUMBER_OF_PIECES());
     vtkMultiBlockDataSet::GetData(out)->ShallowCopy(this->Hierarchy);
     return 1;
   }
@@ -117,6 +120,21 @@ int TestLODGeomorphTime(int, char*[])
     explicitLod->Update();
     MESHLOD_CHECK(SameMesh(byTime, explicitLod->GetOutput()));
   }
+  // Every published time step gives its level exactly, also where i * TimeScale / TimeScale
+  // rounds below i (3 * 0.7 / 0.7 is 2.9999999999999996: level 2 almost collapsed to level 3
+  // came out instead of level 3).
+  timed->SetTimeScale(0.7);
+  timed->UpdateInformation();
+  MESHLOD_CHECK_EQ(outInfo->Length(SDDP::TIME_STEPS()), 4);
+  for (int i = 0; i < outInfo->Length(SDDP::TIME_STEPS()); ++i)
+  {
+    timed->UpdateTimeStep(outInfo->Get(SDDP::TIME_STEPS())[i]);
+    MESHLOD_CHECK_EQ(timed->GetActualLevelOfDetail(), static_cast<double>(i));
+    MESHLOD_CHECK(SameMesh(timed->GetOutput(),
+      vtkPolyData::SafeDownCast(source->Hierarchy->GetBlock(static_cast<unsigned int>(i)))));
+  }
+  timed->SetTimeScale(2.0);
+
   // Beyond the range: clamped silently to the coarsest level.
   timed->UpdateTimeStep(9.0);
   MESHLOD_CHECK_EQ(timed->GetActualLevelOfDetail(), 3.0);
@@ -145,6 +163,28 @@ int TestLODGeomorphTime(int, char*[])
   // The upstream ran once: its time request was never set, so it never re-ran for time.
   MESHLOD_CHECK_EQ(source->Executions, 1);
   MESHLOD_CHECK(!source->GetOutputInformation(0)->Has(SDDP::UPDATE_TIME_STEP()));
+
+  // Pieces: the hierarchy is asked for whole (piece 0 of 1) whatever piece is asked for, and
+  // runs no more for it; the whole mesh is piece 0, the other pieces are empty.
+  {
+    vtkNew<vtkLODGeomorph> pieces;
+    pieces->SetInputConnection(source->GetOutputPort());
+    pieces->UsePipelineTimeOff();
+    pieces->SetLevelOfDetail(1.5);
+    pieces->Update();
+    vtkNew<vtkPolyData> whole;
+    whole->DeepCopy(pieces->GetOutput());
+    const int runs = source->Executions;
+    pieces->UpdatePiece(1, 3, 1);
+    MESHLOD_CHECK_EQ(pieces->GetOutput()->GetNumberOfPoints(), 0);
+    MESHLOD_CHECK_EQ(pieces->GetNumberOfLevels(), 4);
+    MESHLOD_CHECK_EQ(source->RequestedPiece, 0);
+    MESHLOD_CHECK_EQ(source->RequestedPieces, 1);
+    pieces->UpdatePiece(0, 3, 1);
+    MESHLOD_CHECK(SameMesh(pieces->GetOutput(), whole));
+    MESHLOD_CHECK_EQ(source->Executions, runs);
+    MESHLOD_CHECK(!source->GetOutputInformation(0)->Has(SDDP::UPDATE_TIME_STEP()));
+  }
 
   // An exact count ignores the time.
   timed->SetTargetNumberOfTriangles(1000);

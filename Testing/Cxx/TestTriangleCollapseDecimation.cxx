@@ -301,14 +301,19 @@ void TestPointData()
   constant->SetNumberOfTuples(surface->GetNumberOfPoints());
   constant->Fill(1e9 + 0.25);
   surface->GetPointData()->AddArray(constant);
-  // Field data (metadata) is passed to every level, but for a name the levels use themselves.
+  // Field data (metadata) is passed to every level, but for a name of the levels' own: an input
+  // that is a measured level must not lend its MeasuredHausdorff to levels not measured.
   vtkNew<vtkIntArray> run, clash;
+  vtkNew<vtkDoubleArray> measured;
   run->SetName("RunNumber");
   run->InsertNextValue(42);
   clash->SetName(names::LevelIndex);
   clash->InsertNextValue(-5);
+  measured->SetName(names::MeasuredHausdorff);
+  measured->InsertNextValue(0.125);
   surface->GetFieldData()->AddArray(run);
   surface->GetFieldData()->AddArray(clash);
+  surface->GetFieldData()->AddArray(measured);
   vtkNew<vtkTriangleCollapseDecimation> filter;
   filter->SetInputData(surface);
   filter->SetNumberOfLevels(3);
@@ -323,6 +328,7 @@ void TestPointData()
     vtkDataArray* passed = level->GetFieldData()->GetArray("RunNumber");
     MESHLOD_CHECK(passed != nullptr && passed->GetTuple1(0) == 42.0);
     MESHLOD_CHECK_EQ(Field(level, names::LevelIndex), static_cast<double>(i));
+    MESHLOD_CHECK(level->GetFieldData()->GetArray(names::MeasuredHausdorff) == nullptr);
     vtkPointData* pd = level->GetPointData();
     MESHLOD_CHECK(pd->GetNormals() != nullptr);
     MESHLOD_CHECK(pd->GetScalars() != nullptr);

@@ -241,6 +241,11 @@ void TestHierarchy()
   run->SetName("RunNumber");
   run->InsertNextValue(42);
   mesh->GetFieldData()->AddArray(run);
+  // ... but for the levels' own names, even where a level lacks the array (not measured).
+  vtkNew<vtkDoubleArray> rms;
+  rms->SetName(names::MeasuredRMS);
+  rms->InsertNextValue(0.125);
+  mesh->GetFieldData()->AddArray(rms);
   vtkNew<vtkVertexClusterOctree> filter;
   filter->SetInputData(mesh);
   filter->SetNumberOfLevels(4);
@@ -254,6 +259,20 @@ void TestHierarchy()
   for (unsigned int i = 0; i < h->GetNumberOfBlocks(); ++i)
   {
     MESHLOD_CHECK(Level(h, i)->GetFieldData()->GetArray("RunNumber") != nullptr);
+    // Measured here: the level's own value, 0 at level 0.
+    MESHLOD_CHECK(i > 0 || Field(Level(h, i), names::MeasuredRMS) == 0.0);
+  }
+  {
+    vtkNew<vtkVertexClusterOctree> unmeasured;
+    unmeasured->SetInputData(mesh);
+    unmeasured->SetNumberOfLevels(1);
+    unmeasured->Update();
+    for (unsigned int i = 0; i < unmeasured->GetHierarchy()->GetNumberOfBlocks(); ++i)
+    {
+      MESHLOD_CHECK(
+        Level(unmeasured->GetHierarchy(), i)->GetFieldData()->GetArray(names::MeasuredRMS) ==
+        nullptr);
+    }
   }
   CheckTriangles(h);
   const unsigned int levels = h->GetNumberOfBlocks();
@@ -1151,6 +1170,13 @@ void TestSettingsAndErrors()
   filter->AddTargetTriangleCount(5);
   filter->AddTargetTriangleCount(5);
   expectError("strictly decreasing");
+  // Clearing a list that is already empty changes nothing (no re-execution).
+  filter->RemoveAllTargetTriangleCounts();
+  filter->RemoveAllEpsilonValues();
+  const vtkMTimeType cleared = filter->GetMTime();
+  filter->RemoveAllTargetTriangleCounts();
+  filter->RemoveAllEpsilonValues();
+  MESHLOD_CHECK_EQ(filter->GetMTime(), cleared);
 
   // Baking with nothing to bake.
   filter->SetLevelModeToGeometricEpsilon();

@@ -17,6 +17,7 @@
 #include "vtkFloatArray.h"
 #include "vtkGenericCell.h"
 #include "vtkImageData.h"
+#include "vtkImageShiftScale.h"
 #include "vtkLookupTable.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
@@ -24,6 +25,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkRTAnalyticSource.h"
 #include "vtkSMPTools.h"
 #include "vtkStaticCellLocator.h"
 #include "vtkTestErrorObserver.h"
@@ -652,6 +654,52 @@ bool SameArray(vtkDataArray* a, vtkDataArray* b)
   return true;
 }
 
+// A request for a piece of the mesh still gets the whole texture: the piece request used to
+// reach port 1, so an image source made half the image (371 of 4,096 texels of the level's
+// baked texture then differed) and an image filter there crashed on the part it was missing.
+void TestTextureInPieces()
+{
+  vtkNew<vtkTexturedSphereSource> sphere;
+  sphere->SetThetaResolution(40);
+  sphere->SetPhiResolution(20);
+  vtkNew<vtkRTAnalyticSource> wavelet;
+  wavelet->SetWholeExtent(0, 63, 0, 63, 0, 0);
+  vtkNew<vtkImageShiftScale> texture;
+  texture->SetInputConnection(wavelet->GetOutputPort());
+  texture->SetShift(-37.0);
+  texture->SetScale(1.2);
+  texture->SetOutputScalarTypeToUnsignedChar();
+  texture->ClampOverflowOn();
+  vtkNew<vtkVertexClusterOctree> filter;
+  filter->SetInputConnection(0, sphere->GetOutputPort());
+  filter->SetInputConnection(1, texture->GetOutputPort());
+  filter->SetNumberOfLevels(1);
+  filter->BakeTextureOn();
+  filter->SetTextureResolution(64);
+  filter->UpdatePiece(0, 2, 0);
+  const int* extent = texture->GetOutput()->GetExtent();
+  MESHLOD_CHECK(extent[0] == 0 && extent[1] == 63 && extent[2] == 0 && extent[3] == 63);
+  // The same textures as the same piece of the mesh baked from the whole image given as data.
+  vtkMultiBlockDataSet* textures = filter->GetTextures();
+  MESHLOD_CHECK_EQ(textures->GetNumberOfBlocks(), 2u);
+  vtkNew<vtkImageData> whole;
+  whole->DeepCopy(texture->GetOutput());
+  vtkNew<vtkPolyData> piece;
+  piece->DeepCopy(vtkPolyData::SafeDownCast(filter->GetInputDataObject(0, 0)));
+  vtkNew<vtkVertexClusterOctree> reference;
+  reference->SetInputData(piece);
+  reference->SetTextureData(whole);
+  reference->SetNumberOfLevels(1);
+  reference->BakeTextureOn();
+  reference->SetTextureResolution(64);
+  reference->Update();
+  auto* baked = vtkImageData::SafeDownCast(textures->GetBlock(1));
+  auto* expected = vtkImageData::SafeDownCast(reference->GetTextures()->GetBlock(1));
+  MESHLOD_CHECK(baked && expected &&
+    SameArray(baked->GetPointData()->GetScalars(), expected->GetPointData()->GetScalars()));
+}
+
+
 void CheckThreads(vtkPolyData* mesh, vtkImageData* texture)
 {
   const std::string original = vtkSMPTools::GetBackend();
@@ -793,6 +841,7 @@ int TestVertexClusterOctreeTexture(int, char*[])
 {
   TestColorArray();
   TestInputTexture();
+  TestTextureInPieces();
   TestThreads();
   TestBakingProgress();
   return meshlod::testing::Result();

@@ -3,7 +3,9 @@ vtkQuadricDecimation outputs without them; the time-driven update must give the 
 the explicit LevelOfDetail. Exact counts on an extruded vector text, whose large flat faces make
 clusters that are valid only together."""
 
+import os
 import sys
+import tempfile
 
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIdTypeArray, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkMultiBlockDataSet, vtkPolyData
@@ -11,6 +13,7 @@ from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkQuadricDecimation, vtkTriangleFilter
 from vtkmodules.vtkFiltersModeling import vtkAdaptiveSubdivisionFilter, vtkLinearExtrusionFilter
 from vtkmodules.vtkFiltersSources import vtkSphereSource
+from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataReader, vtkXMLMultiBlockDataWriter
 from vtkmodules.vtkRenderingFreeType import vtkVectorText
 
 import meshlod
@@ -209,9 +212,46 @@ def test_clusters_valid_together():
     check(worst <= 2500, "extruded text: worst miss %d" % worst)
 
 
+def test_saved_hierarchy_in_pieces():
+    # A hierarchy saved as .vtm and read back with a request for pieces: the reader hands each
+    # piece only some of the levels, so the geomorph asks for the whole file and produces the
+    # whole mesh as piece 0 (it used to fail on every piece: "block 3 is not a vtkPolyData").
+    sphere = vtkSphereSource()
+    sphere.SetThetaResolution(48)
+    sphere.SetPhiResolution(24)
+    decimate = meshlod.vtkTriangleCollapseDecimation()
+    decimate.SetInputConnection(sphere.GetOutputPort())
+    decimate.SetNumberOfLevels(4)
+    decimate.Update()
+    hierarchy = decimate.GetHierarchy()
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "hierarchy.vtm")
+        writer = vtkXMLMultiBlockDataWriter()
+        writer.SetInputData(hierarchy)
+        writer.SetFileName(path)
+        check(writer.Write() == 1, "saved hierarchy: written")
+        reader = vtkXMLMultiBlockDataReader()
+        reader.SetFileName(path)
+        geomorph = meshlod.vtkLODGeomorph()
+        geomorph.SetInputConnection(reader.GetOutputPort())
+        geomorph.UsePipelineTimeOff()
+        geomorph.SetLevelOfDetail(2.0)
+        total = 0
+        for piece in range(2):
+            geomorph.UpdatePiece(piece, 2, 0)
+            check(geomorph.GetNumberOfLevels() == hierarchy.GetNumberOfBlocks(),
+                  "saved hierarchy, piece %d: %d levels, expected %d" % (
+                      piece, geomorph.GetNumberOfLevels(), hierarchy.GetNumberOfBlocks()))
+            total += geomorph.GetOutput().GetNumberOfPolys()
+        expected = hierarchy.GetBlock(2).GetNumberOfPolys()
+        check(total == expected,
+              "saved hierarchy: the pieces hold %d triangles, level 2 has %d" % (total, expected))
+
+
 test_morph()
 test_nearest()
 test_clusters_valid_together()
+test_saved_hierarchy_in_pieces()
 if failures:
     print(len(failures), "check(s) failed")
     sys.exit(1)
