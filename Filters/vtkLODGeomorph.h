@@ -98,17 +98,17 @@
  * exact count: i + the fraction of level i's steps applied).
  *
  * @par Time
- * With UsePipelineTime on (the default), RequestInformation publishes TIME_STEPS = {0, s, 2s,
- * ..., (n - 1) s} and TIME_RANGE = [0, (n - 1) s], s = TimeScale, and a requested
- * UPDATE_TIME_STEP u gives L = u / s (clamped to [0, n - 1] silently, as readers clamp time;
- * within 1e-9 of a whole number, that number: a published step i * s gives level i exactly
- * although i * s / s may round below i); the output's DATA_TIME_STEP is u. ParaView then shows one time step per level; to see the
- * continuous transitions, animate in Sequence mode rather than Snap To TimeSteps. Without a
+ * With UsePipelineTime on (the default), RequestInformation publishes TIME_STEPS = {0, s, 2s, ...,
+ * (n - 1) s} and TIME_RANGE = [0, (n - 1) s], s = TimeScale, and a requested UPDATE_TIME_STEP u
+ * gives L = u / s (clamped to [0, n - 1] silently, as readers clamp time; within 1e-9 of a whole
+ * number, that number: a published step i * s gives level i exactly although i * s / s may round
+ * below i); the output's DATA_TIME_STEP is u. ParaView then shows one time step per level; to see
+ * the continuous transitions, animate in Sequence mode rather than Snap To TimeSteps. Without a
  * time request LevelOfDetail rules. The number of levels is a property of the data, so
- * RequestInformation brings the input up to date first (the upstream runs then rather than in
- * the data pass). The time request is not passed upstream: the hierarchy is taken to be
- * independent of time and is never recomputed because time changes (an upstream with time
- * steps of its own produces its default one).
+ * RequestInformation brings the input up to date first (the upstream runs then rather than in the
+ * data pass). The time request is not passed upstream: the hierarchy is taken to be independent of
+ * time and is never recomputed because time changes (an upstream with time steps of its own
+ * produces its default one).
  *
  * @par Pieces
  * The blend needs the whole hierarchy: the input is always asked for piece 0 of 1 without

@@ -118,14 +118,14 @@
  *   cost falls below half its old value); in the rounds, those with a corner in another cell
  *   are marked for re-fitting at the end of the round, and a fit reads only its own cell's
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
- *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its
- *   whole hierarchy the curvature method takes 1.4-3.9x the time vtkQuadricDecimation needs
- *   for one 10% target on one thread, and 1.7-2.1x less on two (the quadric method: 0.29-0.54x
- *   over four runs on AMD EPYC processors, and 1.6-1.9x less on two; the ratios move with the
- *   processor, the machine's load and what ran before in the same process: on an Intel Xeon
- *   the quadric method took 0.42-0.68x (Benchmarks/RESULTS.md; 0.43-0.69x in an earlier run
- *   there), its own times about as on the EPYC, vtkQuadricDecimation's 1.3-2.0x shorter; on one EPYC the 154k mesh's
- *   0.54 was 0.41 in the next run of the same build).
+ *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its whole
+ *   hierarchy the curvature method takes 1.4-3.9x the time vtkQuadricDecimation needs for one 10%
+ *   target on one thread, and 1.7-2.1x less on two (the quadric method: 0.29-0.54x over four runs
+ *   on AMD EPYC processors, and 1.6-1.9x less on two; the ratios move with the processor, the
+ *   machine's load and what ran before in the same process: on an Intel Xeon the quadric method
+ *   took 0.42-0.68x (Benchmarks/RESULTS.md; 0.43-0.69x in an earlier run there), its own times
+ *   about as on the EPYC, vtkQuadricDecimation's 1.3-2.0x shorter; on one EPYC the 154k mesh's 0.54
+ *   was 0.41 in the next run of the same build).
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
@@ -170,12 +170,12 @@
  *   coarser level) and CollapseRank (the order in which the points move when only part of the
  *   transition is applied, -1 for points that do not move);
  * - field data LevelIndex, NumberOfTriangles, EstimatedError and, with ComputeLevelError on,
- *   MeasuredHausdorff and MeasuredRMS, plus the input's field-data arrays (shared; one named
- *   like any of these, or TextureAtlasLevel, is left out, so a level of an unmeasured run
- *   never shows an input's MeasuredHausdorff). EstimatedError is the filter's own estimate: the largest
- *   RMS distance of a vertex to the original planes merged into it. It is not a bound. The
- *   measured values are symmetric surface distances to level 0 found by sampling; they are
- *   measurements from below: the true Hausdorff distance is at least as large.
+ *   MeasuredHausdorff and MeasuredRMS, plus the input's field-data arrays (shared; one named like
+ *   any of these, or TextureAtlasLevel, is left out, so a level of an unmeasured run never shows an
+ *   input's MeasuredHausdorff). EstimatedError is the filter's own estimate: the largest RMS
+ *   distance of a vertex to the original planes merged into it. It is not a bound. The measured
+ *   values are symmetric surface distances to level 0 found by sampling; they are measurements from
+ *   below: the true Hausdorff distance is at least as large.
  *
  * Input: triangles (polygons and strips are triangulated first; vertices and lines are
  * ignored with a warning). Empty input gives a hierarchy of one empty level, without error.
@@ -307,23 +307,23 @@ public:
 
   ///@{
   /**
-   * Quadric method: what one collapse merges. TRIANGLES: always a triangle's three vertices
-   * (the papers' operator). TRIANGLES_AND_EDGES (default): a triangle collapses whole when that
-   * costs at most TriangleCostFactor times its cheapest edge collapse, otherwise that edge
-   * collapses (an edge collapse is half a triangle collapse: two vertices merge, two triangles
-   * disappear). Forcing three vertices to one point costs accuracy (on the benchmark meshes
-   * TRIANGLES had 1.0-1.3 times the RMS distance of vtkQuadricDecimation at equal triangle
-   * counts, 1.14-1.15 at 10%, with the IndependentSets schedule: the "triangles only" rows of
-   * Benchmarks/RESULTS.md; TRIANGLES_AND_EDGES matches it), which the default avoids. Curvature method, ranked
-   * by FIT_DEVIATION: TRIANGLES collapses triangles only (paper 000); TRIANGLES_AND_EDGES
-   * (default) collapses a triangle's cheapest edge instead only where the triangle collapse
-   * would cost more than a million times that edge's merged planes (a crease, such as the rim
-   * of a faceted solid, where the edge runs along the rim and the triangle would cut across it,
-   * or a flat face) or cannot collapse (a corner on a curve where sheets meet). On the
-   * isosurfaces and the other smooth or noisy meshes of the benchmark the levels are those of
-   * triangle collapses (within the benchmark's noise); a faceted cylinder at 1% keeps its shape
-   * exactly instead of losing its rims (11% of the diagonal with TRIANGLES), and the surfaces
-   * of a segmented volume reach 1% instead of stopping at 3.3%. With WEIGHT, triangles only.
+   * Quadric method: what one collapse merges. TRIANGLES: always a triangle's three vertices (the
+   * papers' operator). TRIANGLES_AND_EDGES (default): a triangle collapses whole when that costs at
+   * most TriangleCostFactor times its cheapest edge collapse, otherwise that edge collapses (an
+   * edge collapse is half a triangle collapse: two vertices merge, two triangles disappear).
+   * Forcing three vertices to one point costs accuracy (on the benchmark meshes TRIANGLES had
+   * 1.0-1.3 times the RMS distance of vtkQuadricDecimation at equal triangle counts, 1.14-1.15 at
+   * 10%, with the IndependentSets schedule: the "triangles only" rows of Benchmarks/RESULTS.md;
+   * TRIANGLES_AND_EDGES matches it), which the default avoids. Curvature method, ranked by
+   * FIT_DEVIATION: TRIANGLES collapses triangles only (paper 000); TRIANGLES_AND_EDGES (default)
+   * collapses a triangle's cheapest edge instead only where the triangle collapse would cost more
+   * than a million times that edge's merged planes (a crease, such as the rim of a faceted solid,
+   * where the edge runs along the rim and the triangle would cut across it, or a flat face) or
+   * cannot collapse (a corner on a curve where sheets meet). On the isosurfaces and the other
+   * smooth or noisy meshes of the benchmark the levels are those of triangle collapses (within the
+   * benchmark's noise); a faceted cylinder at 1% keeps its shape exactly instead of losing its rims
+   * (11% of the diagonal with TRIANGLES), and the surfaces of a segmented volume reach 1% instead
+   * of stopping at 3.3%. With WEIGHT, triangles only.
    */
   vtkSetClampMacro(Operator, int, TRIANGLES, TRIANGLES_AND_EDGES);
   vtkGetMacro(Operator, int);
@@ -440,28 +440,27 @@ public:
 
   ///@{
   /**
-   * Curvature method: how collapses are ranked. FIT_DEVIATION (the default) ranks by the
-   * integral over the new triangles of their squared height above the fitted surface (the fit
-   * includes the ancestral points, so this is a deviation from the input surface, what earlier
-   * collapses cost included), or by the merged planes' area-weighted squared distance at the
-   * collapse point where that is larger (the planes see what a quadratic smooths over: a
-   * crease, a stencil grown around much of a small sphere). Two collapse points compete: the
-   * point on the normal through the centroid where the deviation is least, and the merged
-   * planes' minimiser; the one of lower cost is taken. The three weights are not used.
-   * WEIGHT is paper 000's weight W = A (wk kappa + wa alpha + wv V) from the three weights
-   * above, at the collapse point described in the class docs. The fit and the legality rules
-   * are the same for both. On the benchmark isosurfaces FIT_DEVIATION's Hausdorff distance
-   * is 0.91-1.34x and its RMS distance 0.94-1.19x vtkQuadricDecimation's, against 5.8-8.9x
-   * and 2.4-2.8x for WEIGHT (Benchmarks/RESULTS.md): the paper's weight is dominated by the
-   * area, so it evens out the triangles' sizes instead of keeping small ones where the surface
-   * bends. On the other meshes of the benchmark (a torus, noisy spheres, Boy's surface, a
-   * superquadric, a faceted cylinder and the surfaces of a segmented volume, with the default
-   * operator: see SetOperator) FIT_DEVIATION is at 0.84-1.53x and 0.79-1.16x (the faceted
-   * cylinder aside, where both methods are within float rounding of its faces); on a terrain
-   * and a sphere with holes at 1.23-1.55x and 1.06-1.35x, on the wavelet and noisy isosurfaces
-   * up to 3.3x and 4.3x at 1%. Where it falls short: a very rough input with high-valence poles (a UV sphere with radial noise of an
-   * edge) gets long triangles across it at coarse levels (at 1% 4x vtkQuadricDecimation's
-   * Hausdorff distance, WEIGHT 2x).
+   * Curvature method: how collapses are ranked. FIT_DEVIATION (the default) ranks by the integral
+   * over the new triangles of their squared height above the fitted surface (the fit includes the
+   * ancestral points, so this is a deviation from the input surface, what earlier collapses cost
+   * included), or by the merged planes' area-weighted squared distance at the collapse point where
+   * that is larger (the planes see what a quadratic smooths over: a crease, a stencil grown around
+   * much of a small sphere). Two collapse points compete: the point on the normal through the
+   * centroid where the deviation is least, and the merged planes' minimiser; the one of lower cost
+   * is taken. The three weights are not used. WEIGHT is paper 000's weight W = A (wk kappa + wa
+   * alpha + wv V) from the three weights above, at the collapse point described in the class docs.
+   * The fit and the legality rules are the same for both. On the benchmark isosurfaces
+   * FIT_DEVIATION's Hausdorff distance is 0.91-1.34x and its RMS distance 0.94-1.19x
+   * vtkQuadricDecimation's, against 5.8-8.9x and 2.4-2.8x for WEIGHT (Benchmarks/RESULTS.md): the
+   * paper's weight is dominated by the area, so it evens out the triangles' sizes instead of
+   * keeping small ones where the surface bends. On the other meshes of the benchmark (a torus,
+   * noisy spheres, Boy's surface, a superquadric, a faceted cylinder and the surfaces of a
+   * segmented volume, with the default operator: see SetOperator) FIT_DEVIATION is at 0.84-1.53x
+   * and 0.79-1.16x (the faceted cylinder aside, where both methods are within float rounding of its
+   * faces); on a terrain and a sphere with holes at 1.23-1.55x and 1.06-1.35x, on the wavelet and
+   * noisy isosurfaces up to 3.3x and 4.3x at 1%. Where it falls short: a very rough input with
+   * high-valence poles (a UV sphere with radial noise of an edge) gets long triangles across it at
+   * coarse levels (at 1% 4x vtkQuadricDecimation's Hausdorff distance, WEIGHT 2x).
    */
   vtkSetClampMacro(CurvatureCost, int, WEIGHT, FIT_DEVIATION);
   vtkGetMacro(CurvatureCost, int);

@@ -309,21 +309,21 @@ public:
    * the Hausdorff distance of vtkQuadricClustering's output of the same count; with noise of
    * 1.5 steps, 33% and 32%.
    *
-   * Off: the paper's conditions alone (the connected vertices of a cell, epsilon, and the flip
-   * test of the triangles joining a cluster to the rest of the mesh), as vertex clustering is
-   * meant to work: a level may close holes and handles, join or drop thin parts and small
-   * pieces, have non-manifold edges and vertices, and have triangles facing against their
-   * surroundings, as vtkQuadricClustering's output does; a thin part folded flat keeps both
-   * its sides (two triangles on the same points in opposite orders). The clusters' own rules
-   * for curves where sheets meet (one open piece of one curve each) and for locked vertices
-   * stay, but a curve edge may lose sheets. On that isosurface: 10,379 and 1,037
-   * triangles, at 1.02 and 1.29 times vtkQuadricClustering's Hausdorff distance and 0.95 and
-   * 0.96 times its RMS distance, in a quarter of the time; on smooth isosurfaces, counts and
-   * distances as with it on. Noise far above the edge length is beyond it: a sphere whose
-   * radii moved by up to 2.5 edges got its 10% level, but its 1% level crumpled (about 5 times
-   * vtkQuadricClustering's Hausdorff distance and 10 times its RMS distance), where the
-   * repairs keep 92% and 87% of its triangles at the 10% and 1% targets. Levels still nest, and MorphTargetId
-   * maps every triangle onto one of the next level with its orientation.
+   * Off: the paper's conditions alone (the connected vertices of a cell, epsilon, and the flip test
+   * of the triangles joining a cluster to the rest of the mesh), as vertex clustering is meant to
+   * work: a level may close holes and handles, join or drop thin parts and small pieces, have
+   * non-manifold edges and vertices, and have triangles facing against their surroundings, as
+   * vtkQuadricClustering's output does; a thin part folded flat keeps both its sides (two triangles
+   * on the same points in opposite orders). The clusters' own rules for curves where sheets meet
+   * (one open piece of one curve each) and for locked vertices stay, but a curve edge may lose
+   * sheets. On that isosurface: 10,379 and 1,037 triangles, at 1.02 and 1.29 times
+   * vtkQuadricClustering's Hausdorff distance and 0.95 and 0.96 times its RMS distance, in a
+   * quarter of the time; on smooth isosurfaces, counts and distances as with it on. Noise far above
+   * the edge length is beyond it: a sphere whose radii moved by up to 2.5 edges got its 10% level,
+   * but its 1% level crumpled (about 5 times vtkQuadricClustering's Hausdorff distance and 10 times
+   * its RMS distance), where the repairs keep 92% and 87% of its triangles at the 10% and 1%
+   * targets. Levels still nest, and MorphTargetId maps every triangle onto one of the next level
+   * with its orientation.
    */
   vtkSetMacro(PreserveTopology, bool);
   vtkGetMacro(PreserveTopology, bool);
@@ -332,14 +332,14 @@ public:
 
   ///@{
   /**
-   * Flip edges of every simplified level where the other diagonal of the two triangles lies
-   * closer to the input (judged by the local surface distance both ways). Points, triangle
-   * counts, clusters and MorphTargetId stay as they are, and the next level is clustered from
-   * the unflipped triangles. On the benchmark isosurfaces it lowers the RMS distance by 8-21%
-   * and changes the Hausdorff distance by -8% to +3%, for 1.4-1.55 times the time on one
-   * thread (1.4-1.5 times on two; Benchmarks/RESULTS.md). The price: a level's triangles are then no longer exactly what the finer
-   * level's triangles become through MorphTargetId, so a geomorph into a flipped level ends on
-   * its unflipped triangles and the flipped quads change at the switch (a small pop). For
+   * Flip edges of every simplified level where the other diagonal of the two triangles lies closer
+   * to the input (judged by the local surface distance both ways). Points, triangle counts,
+   * clusters and MorphTargetId stay as they are, and the next level is clustered from the unflipped
+   * triangles. On the benchmark isosurfaces it lowers the RMS distance by 8-21% and changes the
+   * Hausdorff distance by -8% to +3%, for 1.4-1.55 times the time on one thread (1.4-1.5 times on
+   * two; Benchmarks/RESULTS.md). The price: a level's triangles are then no longer exactly what the
+   * finer level's triangles become through MorphTargetId, so a geomorph into a flipped level ends
+   * on its unflipped triangles and the flipped quads change at the switch (a small pop). For
    * discrete levels (no geomorph) turn it on. Default off.
    */
   vtkSetMacro(FlipEdges, bool);
