@@ -72,11 +72,15 @@ struct CostScratch
   /// After a collapse every triangle around the survivor is evaluated again, and each edge
   /// from the survivor belongs to two of them: between BeginSpokes(v) and EndSpokes() the
   /// solutions of edges from v are kept and reused (they are the same numbers either way).
+  /// They are looked up one by one, so not around a vertex of more than FanTriangleLimit
+  /// triangles (`triangles`): there every lookup scanned the whole fan, and a flat disc whose
+  /// centre had 16,000 triangles spent most of a minute in the lookups. Such spokes are solved
+  /// twice instead, to the same numbers.
   Id SpokeCentre = InvalidId;
   std::vector<EdgeSolution> Spokes;
-  void BeginSpokes(Id centre)
+  void BeginSpokes(Id centre, Id triangles)
   {
-    this->SpokeCentre = centre;
+    this->SpokeCentre = triangles <= FanTriangleLimit ? centre : InvalidId;
     this->Spokes.clear();
   }
   void EndSpokes() { this->SpokeCentre = InvalidId; }

@@ -294,6 +294,14 @@ public:
   void RebuildRows();
 
 private:
+  // The three parts of IsLegal: the merged vertex's link is one simple cycle or path (and,
+  // where that is not enough, the link condition holds); no apex's valence drops too low
+  // (LowValenceApex, with Star::BlockingApex); no ring triangle folds, turns too far or
+  // degenerates, and the stencil stays star-shaped.
+  bool LinkKeepsManifold(const Star& star, bool boundary, bool curve) const;
+  Legality ApexValences(const Star& star, const CollapseRules& rules) const;
+  bool GeometryKeepsShape(const Star& star, const double x[3], const double* planeNormal,
+    const CollapseRules& rules, bool curve) const;
   /// The topology test of an edge collapse with a FlagCurve member (see IsLegal).
   bool CurveMergeIsValid(const Star& star) const;
   /// The link condition: the members joined to any other vertex are connected through dying

@@ -162,7 +162,7 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
     // New costs around the survivor; its neighbours' valences and its position changed, which
     // the parking lot takes note of. For the curvature method the triangles one ring further
     // out are re-weighted too: their stencils moved.
-    scratch.BeginSpokes(survivor);
+    scratch.BeginSpokes(survivor, this->State.TriangleCount(survivor));
     this->State.ForEachTriangle(survivor, [&](Id s) {
       this->Lot.Touch(this->State.Mesh.Triangle(s), this->Clock);
       reweigh(s);

@@ -496,7 +496,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
         {
           heap.Remove(d);
         }
-        mine.Cost.BeginSpokes(survivor);
+        mine.Cost.BeginSpokes(survivor, this->State.TriangleCount(survivor));
         this->State.ForEachTriangle(survivor, [&](Id s) {
           this->Lot.Touch(this->State.Mesh.Triangle(s), now + 1);
           reweigh(s);

@@ -224,6 +224,28 @@ vtkSmartPointer<vtkPolyData> MakeFan(int n)
   return MakePolyData(points, triangles);
 }
 
+vtkSmartPointer<vtkPolyData> MakeFlatFanInRing(int n)
+{
+  std::vector<double> points = { 0.0, 0.0, 0.0 };
+  for (const double radius : { 1.0, 2.0 })
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const double a = 2.0 * vtkMath::Pi() * i / n;
+      points.insert(points.end(), { radius * std::cos(a), radius * std::sin(a), 0.0 });
+    }
+  }
+  std::vector<long long> triangles;
+  for (long long i = 0; i < n; ++i)
+  {
+    const long long j = (i + 1) % n;
+    triangles.insert(triangles.end(), { 0, 1 + i, 1 + j });
+    triangles.insert(triangles.end(), { 1 + i, 1 + n + i, 1 + n + j });
+    triangles.insert(triangles.end(), { 1 + i, 1 + n + j, 1 + j });
+  }
+  return MakePolyData(points, triangles);
+}
+
 void Scale(vtkPolyData* mesh, double scale)
 {
   for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)

@@ -65,6 +65,9 @@ vtkSmartPointer<vtkPolyData> MakeGridWithHole();
 /// A wavy disk of n triangles around one centre point (valence n): an open fan, as a
 /// triangulated polygon or a cylinder's cap makes it.
 vtkSmartPointer<vtkPolyData> MakeFan(int n);
+/// A flat disc in z = 0: a fan of n triangles around the origin out to radius 1, inside a ring
+/// of 2n triangles out to radius 2 (open there). The fan's centre and rim are interior.
+vtkSmartPointer<vtkPolyData> MakeFlatFanInRing(int n);
 /// Scan-like noise: every point's position vector scaled by 1 + amplitude (u - 1/2), u uniform
 /// in [0, 1) from vtkMinimalStandardRandomSequence with `seed`, in point order (for surfaces
 /// centred at the origin).
