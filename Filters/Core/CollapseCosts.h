@@ -21,13 +21,6 @@ constexpr int TriangleChoice = 3;
 /// ... and for the vanishing of the small piece it belongs to (see EvaluateVanish).
 constexpr int VanishChoice = 4;
 
-/// Curvature method: around a vertex where more triangles than this meet (a fan, a cone's tip,
-/// a UV sphere's pole) a fit reads every k-th of them only, k the least that keeps at most this
-/// many, and a collapse next to it leaves their costs as they are: with every triangle of the
-/// fan read by every fit, and re-fitted after every collapse next to it, the work grew with
-/// the cube of the valence (a fan of 2,000 triangles took 88 s).
-constexpr Id FanTriangleLimit = 64;
-
 /// CollapsePlacement::PaperCandidates: the 3x3 system counts as solvable when every eigenvalue
 /// of A exceeds this times the largest (the regularised solve's epsilon, relative to the trace,
 /// is of the same size).

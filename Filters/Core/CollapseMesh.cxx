@@ -20,11 +20,6 @@ namespace
 // is exact there to about 1e-9) made slivers with sines of 7e-9, flat in single precision.
 constexpr double DegenerateSine2 = 1e-12;
 
-// Stars of more ring triangles than this are checked geometry first (see IsLegal), and rows
-// longer than this are hinted in part (Prefetch); the same bound as the cost model's
-// FanTriangleLimit.
-constexpr std::size_t LargeStar = 64;
-
 // Whether two vectors with dot product `dot` and squared lengths' product `norms2` make an
 // angle whose cosine is at least `cosine`.
 bool WithinAngle(double dot, double norms2, double cosine)
@@ -217,12 +212,12 @@ void CollapseMesh::Prefetch(Id t, int stage) const
       CacheHint(this->Rows.Offsets.data() + v);
       continue;
     }
-    // At most the first LargeStar entries of the row: hints for a whole fan of thousands of
+    // At most the first FanTriangleLimit entries of the row: hints for a whole fan of thousands of
     // triangles, asked for every candidate next to its centre, took 90% of the time of a flat
     // fan of 120,000 triangles (and help nothing there: they cannot all stay in the cache).
     const Id* row = this->Rows.Triangles.data() + this->Rows.Begin(v);
     const Id* rowEnd = std::min(this->Rows.Triangles.data() + this->Rows.End(v),
-      row + static_cast<std::ptrdiff_t>(LargeStar));
+      row + static_cast<std::ptrdiff_t>(FanTriangleLimit));
     if (stage == 1)
     {
       for (const Id* entry = row; entry < rowEnd; entry += 16)
@@ -778,7 +773,7 @@ Legality CollapseMesh::IsLegal(
   // hub moved into its fan folds it over); there, where the apexes pass, the geometry goes
   // first, to the same verdicts. (A flat disc of 16,000 fan triangles inside two rings spent
   // more than half its time sorting links of collapses that folded.)
-  if (ringSize > LargeStar)
+  if (ringSize > static_cast<std::size_t>(FanTriangleLimit))
   {
     const Legality apexes = this->ApexValences(star, rules);
     if (apexes == Legality::Legal && !this->GeometryKeepsShape(star, x, planeNormal, rules, curve))

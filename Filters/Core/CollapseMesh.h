@@ -47,6 +47,18 @@ enum VertexFlag : std::uint8_t
   FlagVanished = 8,
 };
 
+/// Around a vertex where more triangles than this meet (a fan, a cone's tip, a UV sphere's
+/// pole) the work per collapse is bounded instead of following the fan:
+/// - curvature method: a fit reads every k-th of them only, k the least that keeps at most this
+///   many, and a collapse next to it leaves their costs as they are (with every triangle of the
+///   fan read by every fit, and re-fitted after every collapse next to it, the work grew with
+///   the cube of the valence: a fan of 2,000 triangles took 88 s);
+/// - a star of more ring triangles is checked geometry first (CollapseMesh::IsLegal), a longer
+///   row is hinted in part (CollapseMesh::Prefetch), and the solved spokes of such a survivor
+///   are not kept (CostScratch::BeginSpokes);
+/// - the parking lot looks at such a corner alone (ParkingLot::Release).
+constexpr Id FanTriangleLimit = 64;
+
 /// The largest connected piece that may vanish (TriangleCollapseOptions::PreserveTopology
 /// off): a closed surface of genus 0 with at most this many triangles (it cannot shrink below
 /// a tetrahedron, 4, and the triangle-collapse schedules, which keep paper 000's valence rule,
