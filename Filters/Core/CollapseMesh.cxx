@@ -244,26 +244,41 @@ void CollapseMesh::Prefetch(Id t, int stage) const
 }
 
 //------------------------------------------------------------------------------
-int CollapseMesh::Valence(Id v, std::vector<Id>& scratch) const
+bool CollapseMesh::HasValenceAtLeast(Id v, int n, std::vector<Id>& scratch) const
 {
   if (!this->IsLocked(v) && !this->IsCurve(v))
   {
     // A manifold fan: as many neighbours as triangles, plus one when the fan is open.
-    return this->TriangleCounts[v] + (this->IsBoundary(v) ? 1 : 0);
+    return this->TriangleCounts[v] + (this->IsBoundary(v) ? 1 : 0) >= n;
   }
+  // Distinct neighbours, counted until there are n: a locked vertex can have thousands (cones
+  // sharing their apex), and sorting all of them for every check next to it took nearly the
+  // whole run.
   scratch.clear();
-  this->ForEachTriangle(v, [&](Id t) {
-    const Id* tri = this->Mesh.Triangle(t);
-    for (int k = 0; k < 3; ++k)
+  for (Id u = v; u != InvalidId; u = this->ChainNext[u])
+  {
+    for (Id i = this->Rows.Begin(u), end = this->Rows.End(u); i < end; ++i)
     {
-      if (tri[k] != v)
+      const Id t = this->Rows.Triangles[i];
+      const Id* tri = this->Mesh.Triangle(t);
+      if (!this->IsAlive(t) || CornerOf(tri, v) < 0)
       {
-        scratch.push_back(tri[k]);
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        if (tri[k] != v && std::find(scratch.begin(), scratch.end(), tri[k]) == scratch.end())
+        {
+          scratch.push_back(tri[k]);
+          if (static_cast<int>(scratch.size()) >= n)
+          {
+            return true;
+          }
+        }
       }
     }
-  });
-  std::sort(scratch.begin(), scratch.end());
-  return static_cast<int>(std::unique(scratch.begin(), scratch.end()) - scratch.begin());
+  }
+  return static_cast<int>(scratch.size()) >= n;
 }
 
 //------------------------------------------------------------------------------
@@ -636,7 +651,7 @@ bool CollapseMesh::MergeKeepsLinks(const Star& star, bool alongCurve) const
     }
     return b;
   };
-  std::vector<std::pair<Id, Id>>& seen = star.LinkIncidence;
+  std::vector<std::pair<Id, Id>>& seen = star.PairScratch;
   seen.clear();
   for (std::size_t i = 0; i < star.Ring.size(); ++i)
   {
@@ -826,7 +841,7 @@ bool CollapseMesh::LinkKeepsManifold(const Star& star, bool boundary, bool curve
   {
     linkFlags |= this->Flags[p];
   }
-  if (!curve && !LinkIsSimple(ends, boundary, star.LinkIncidence))
+  if (!curve && !LinkIsSimple(ends, boundary, star.PairScratch))
   {
     return false;
   }
@@ -852,24 +867,55 @@ Legality CollapseMesh::ApexValences(const Star& star, const CollapseRules& rules
     star.MemberCount == 3 ? rules.ForbidValenceThree : rules.ForbidValenceThreeForEdges;
   // Apexes lose edges: an apex shared by m dying triangles was joined to m + 1 members, which
   // become one vertex, so it loses m edges. Its valence must stay healthy.
-  for (std::size_t i = 0; i < star.Apexes.size(); ++i)
-  {
-    const Id p = star.Apexes[i];
-    if (std::find(star.Apexes.begin(), star.Apexes.begin() + i, p) != star.Apexes.begin() + i)
-    {
-      continue; // counted at its first occurrence
-    }
-    const int m = static_cast<int>(std::count(star.Apexes.begin(), star.Apexes.end(), p));
-    const int after = this->Valence(p, star.ValenceScratch) - m;
+  const auto keepsValence = [&](Id p, int m) {
     const int minimum = this->IsBoundary(p) ? 2 : (forbidValenceThree ? 4 : 3);
-    if (after < minimum)
+    return this->HasValenceAtLeast(p, minimum + m, star.ValenceScratch);
+  };
+  const std::vector<Id>& apexes = star.Apexes;
+  if (apexes.size() <= 8)
+  {
+    for (std::size_t i = 0; i < apexes.size(); ++i)
     {
-      star.BlockingApex = p;
-      return Legality::LowValenceApex;
+      const Id p = apexes[i];
+      if (std::find(apexes.begin(), apexes.begin() + i, p) != apexes.begin() + i)
+      {
+        continue; // counted at its first occurrence
+      }
+      if (!keepsValence(p, static_cast<int>(std::count(apexes.begin(), apexes.end(), p))))
+      {
+        star.BlockingApex = p;
+        return Legality::LowValenceApex;
+      }
+    }
+    return Legality::Legal;
+  }
+  // An edge on a curve where thousands of sheets meet has an apex per sheet: the same rule by
+  // sorting (apex, place), which blocks on the apex that comes first in the list, as above.
+  std::vector<std::pair<Id, Id>>& order = star.PairScratch;
+  order.clear();
+  for (std::size_t i = 0; i < apexes.size(); ++i)
+  {
+    order.emplace_back(apexes[i], static_cast<Id>(i));
+  }
+  std::sort(order.begin(), order.end());
+  Id firstBlocked = InvalidId;
+  for (std::size_t g = 0, next = 0; g < order.size(); g = next)
+  {
+    for (next = g + 1; next < order.size() && order[next].first == order[g].first; ++next)
+    {
+    }
+    const bool earlier = firstBlocked == InvalidId || order[g].second < firstBlocked;
+    if (earlier && !keepsValence(order[g].first, static_cast<int>(next - g)))
+    {
+      firstBlocked = order[g].second;
     }
   }
-
-  return Legality::Legal;
+  if (firstBlocked == InvalidId)
+  {
+    return Legality::Legal;
+  }
+  star.BlockingApex = apexes[firstBlocked];
+  return Legality::LowValenceApex;
 }
 
 //------------------------------------------------------------------------------

@@ -140,7 +140,7 @@ struct Star
   std::uint32_t Block = 0;
   bool Foreign = false;
   mutable std::vector<Id> LinkScratch;
-  mutable std::vector<std::pair<Id, Id>> LinkIncidence;
+  mutable std::vector<std::pair<Id, Id>> PairScratch; // the checks' sorting space, one at a time
   mutable std::vector<Id> ValenceScratch;
 };
 
@@ -248,8 +248,8 @@ public:
   /// Number of live triangles around v (kept up to date by Apply, so O(1)).
   Id TriangleCount(Id v) const { return this->TriangleCounts[v]; }
 
-  /// Number of distinct neighbours of v.
-  int Valence(Id v, std::vector<Id>& scratch) const;
+  /// Whether v has at least n distinct neighbours (n small: the walk stops at the n-th).
+  bool HasValenceAtLeast(Id v, int n, std::vector<Id>& scratch) const;
 
   /// Collect dying and ring triangles for merging `members` (2: an edge, 3: a triangle or a path
   /// of two edges, more: the vertices of a SmallPiece, whose triangles all die); false

@@ -1,6 +1,6 @@
 // vtkTriangleCollapseDecimation keeps the topology of what is not a closed manifold: open
-// surfaces with many small holes, and sheets meeting along a curve of non-manifold edges (the
-// surfaces between the regions of a segmented volume).
+// surfaces with many small holes, sheets meeting along a curve of non-manifold edges (the
+// surfaces between the regions of a segmented volume), and closed cones pinned at one vertex.
 #include "vtkTriangleCollapseDecimation.h"
 
 #include "MeshLODHierarchyChecks.h"
@@ -211,11 +211,61 @@ void TestSheetsMeetingAlongCurve()
             << d.RmsPercent() << "% of the diagonal\n";
   MESHLOD_CHECK_LE(d.HausdorffPercent(), 5.0);
 }
+
+// Spindles pinned at a shared apex: the apex, a non-manifold vertex, never moves, and each,
+// a closed surface, can only shrink to a tetrahedron on it. The apex's valence (thousands with
+// many spindles) is checked for every collapse next to it; counting all its neighbours each
+// time made 2,500 spindles of 8 sides take 6.4 s (now 0.07 s).
+void TestConesSharingApex()
+{
+  const int cones = 60, sides = 10;
+  vtkSmartPointer<vtkPolyData> input = testing::MakeConesSharingApex(cones, sides);
+  const testing::MeshReport in = testing::InspectMesh(input);
+  MESHLOD_CHECK_EQ(in.EulerCharacteristic, 1 + cones);
+  MESHLOD_CHECK_EQ(in.NonManifoldVertices, 1);
+  for (const int method : { vtkTriangleCollapseDecimation::QUADRIC,
+         vtkTriangleCollapseDecimation::CURVATURE })
+  {
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->SetInputData(input);
+    filter->SetMethod(method);
+    filter->SetTargetReduction(0.99);
+    filter->Update();
+    vtkMultiBlockDataSet* h = filter->GetHierarchy();
+    MESHLOD_CHECK_GE(h->GetNumberOfBlocks(), 3u);
+    MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
+    for (unsigned int i = 1; i < h->GetNumberOfBlocks(); ++i)
+    {
+      const testing::MeshReport r = testing::InspectMesh(Level(h, i));
+      MESHLOD_CHECK_EQ(r.EulerCharacteristic, 1 + cones);
+      MESHLOD_CHECK_EQ(r.NonManifoldVertices, 1);
+      MESHLOD_CHECK_EQ(r.NonManifoldEdges, 0);
+      MESHLOD_CHECK_EQ(r.BoundaryEdges, 0);
+      MESHLOD_CHECK_EQ(r.DegenerateTriangles, 0);
+      MESHLOD_CHECK_EQ(r.DuplicateTriangles, 0);
+      MESHLOD_CHECK(r.ConsistentlyOriented);
+    }
+    vtkPolyData* coarsest = Level(h, h->GetNumberOfBlocks() - 1);
+    std::cerr << "  " << cones << " cones sharing their apex, method " << method << ": "
+              << h->GetNumberOfBlocks() << " levels, the coarsest " << coarsest->GetNumberOfPolys()
+              << " triangles\n";
+    MESHLOD_CHECK_EQ(coarsest->GetNumberOfPolys(), 4 * cones); // a tetrahedron each
+    int atApex = 0;
+    for (vtkIdType p = 0; p < coarsest->GetNumberOfPoints(); ++p)
+    {
+      double x[3];
+      coarsest->GetPoint(p, x);
+      atApex += vtkMath::Norm(x) == 0.0 ? 1 : 0;
+    }
+    MESHLOD_CHECK_EQ(atApex, 1);
+  }
+}
 } // namespace
 
 int TestTriangleCollapseTopology(int, char*[])
 {
   TestTinyHoles();
   TestSheetsMeetingAlongCurve();
+  TestConesSharingApex();
   return meshlod::testing::Result();
 }

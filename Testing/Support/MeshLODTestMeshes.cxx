@@ -246,6 +246,36 @@ vtkSmartPointer<vtkPolyData> MakeFlatFanInRing(int n)
   return MakePolyData(points, triangles);
 }
 
+vtkSmartPointer<vtkPolyData> MakeConesSharingApex(int cones, int sides)
+{
+  std::vector<double> points = { 0.0, 0.0, 0.0 };
+  std::vector<long long> triangles;
+  const double golden = vtkMath::Pi() * (3.0 - std::sqrt(5.0));
+  for (int c = 0; c < cones; ++c)
+  {
+    const double z = 1.0 - 2.0 * (c + 0.5) / cones, r = std::sqrt(1.0 - z * z);
+    double d[3] = { r * std::cos(golden * c), r * std::sin(golden * c), z }, u[3], v[3];
+    vtkMath::Perpendiculars(d, u, v, 0.0);
+    const long long tip = static_cast<long long>(points.size() / 3), rim = tip + 1;
+    points.insert(points.end(), d, d + 3);
+    for (int i = 0; i < sides; ++i)
+    {
+      const double a = 2.0 * vtkMath::Pi() * i / sides;
+      for (int k = 0; k < 3; ++k)
+      {
+        points.push_back(0.8 * d[k] + 0.1 * (std::cos(a) * u[k] + std::sin(a) * v[k]));
+      }
+    }
+    for (long long i = 0; i < sides; ++i)
+    {
+      const long long p = rim + i, q = rim + (i + 1) % sides;
+      triangles.insert(triangles.end(), { 0, p, q }); // lateral
+      triangles.insert(triangles.end(), { tip, q, p }); // base
+    }
+  }
+  return MakePolyData(points, triangles);
+}
+
 void Scale(vtkPolyData* mesh, double scale)
 {
   for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)

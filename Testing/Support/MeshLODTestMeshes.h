@@ -68,6 +68,11 @@ vtkSmartPointer<vtkPolyData> MakeFan(int n);
 /// A flat disc in z = 0: a fan of n triangles around the origin out to radius 1, inside a ring
 /// of 2n triangles out to radius 2 (open there). The fan's centre and rim are interior.
 vtkSmartPointer<vtkPolyData> MakeFlatFanInRing(int n);
+/// `cones` closed spindles of `sides` sides, all with their apex at the origin, point 0 (a
+/// non-manifold vertex with a wing per spindle), pointing every way (a golden-angle spiral of
+/// directions): a fan from the apex to a ring of radius 0.1 at 0.8 along the direction, closed
+/// by a fan from the ring to the tip at 1.
+vtkSmartPointer<vtkPolyData> MakeConesSharingApex(int cones, int sides);
 /// Scan-like noise: every point's position vector scaled by 1 + amplitude (u - 1/2), u uniform
 /// in [0, 1) from vtkMinimalStandardRandomSequence with `seed`, in point order (for surfaces
 /// centred at the origin).
