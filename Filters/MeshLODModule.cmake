@@ -45,7 +45,8 @@ set(meshlod_private_headers
   Filters/MeshLODInputMesh.h
   Filters/MeshLODNearestCorrespondence.h
   Filters/MeshLODSettings.h
-  Filters/MeshLODTextureBaking.h)
+  Filters/MeshLODTextureBaking.h
+  Filters/MeshLODTriangleTree.h)
 
 set(meshlod_sources
   Filters/Core/ClusterTree.cxx
@@ -77,7 +78,8 @@ set(meshlod_sources
   Filters/MeshLODInputMesh.cxx
   Filters/MeshLODNearestCorrespondence.cxx
   Filters/MeshLODSurfaceDistance.cxx
-  Filters/MeshLODTextureBaking.cxx)
+  Filters/MeshLODTextureBaking.cxx
+  Filters/MeshLODTriangleTree.cxx)
 
 list(TRANSFORM meshlod_classes PREPEND "Filters/")
 

@@ -1,20 +1,16 @@
 #include "MeshLODTextureBaking.h"
-#include "MeshLODSurfaceDistance.h"
+#include "MeshLODTriangleTree.h"
 #include "Core/TriangulationFlips.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkDataArray.h"
-#include "vtkGenericCell.h"
-#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
-#include "vtkStaticCellLocator.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -27,9 +23,8 @@ namespace meshlod
 {
 struct TextureBaker::Internals
 {
-  vtkSmartPointer<vtkPolyData> Surface; // the input's points and triangles only
-  vtkSmartPointer<vtkStaticCellLocator> Locator;
-  std::vector<vtkIdType> Triangles; // 3 point ids per cell of Surface
+  TriangleTree Tree; // over Triangles and Points
+  std::vector<vtkIdType> Triangles; // 3 point ids per triangle of the input
   std::vector<double> Points;
   // Colour mode: 4 floats (0-255) per point.
   std::vector<float> Colors;
@@ -38,12 +33,9 @@ struct TextureBaker::Internals
   std::vector<float> Texture; // 4 floats (0-255) per texel
   int TextureWidth = 0;
   int TextureHeight = 0;
-  mutable vtkSMPThreadLocalObject<vtkGenericCell> Cells;
-  mutable vtkSMPThreadLocalObject<vtkIdList> Candidates;
   double Diagonal = 0.0; // of the surface's bounding box
 
   void TextureLookup(double u, double v, float rgba[4]) const;
-  vtkIdType LowestClosestTriangle(const double point[3], double dist2, double closest[3]) const;
 };
 
 namespace
@@ -131,9 +123,6 @@ TextureBaker::~TextureBaker()
 bool TextureBaker::SetSurface(vtkPolyData* surface, std::string& error)
 {
   Internals& impl = *this->Impl;
-  impl.Surface = vtkSmartPointer<vtkPolyData>::New();
-  impl.Surface->SetPoints(surface->GetPoints());
-  impl.Surface->SetPolys(surface->GetPolys());
   impl.Triangles.clear();
   auto it = vtk::TakeSmartPointer(surface->GetPolys()->NewIterator());
   for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
@@ -154,8 +143,9 @@ bool TextureBaker::SetSurface(vtkPolyData* surface, std::string& error)
   {
     surface->GetPoint(p, impl.Points.data() + 3 * p);
   }
-  impl.Locator = BuildCellLocator(impl.Surface);
-  impl.Diagonal = impl.Surface->GetLength();
+  impl.Tree.Build(impl.Points.data(), impl.Triangles.data(),
+    static_cast<vtkIdType>(impl.Triangles.size() / 3));
+  impl.Diagonal = surface->GetLength();
   return true;
 }
 
@@ -272,55 +262,12 @@ void TextureBaker::Internals::TextureLookup(double u, double v, float rgba[4]) c
 }
 
 //------------------------------------------------------------------------------
-// Of the triangles at the closest distance `dist2` from `point` (within rounding), the one with
-// the lowest id, and its closest point. The locator returns one of them, but which one depends
-// on the order its parallel build left the cells of a bin in, which differs between SMP
-// backends; where the triangles carry different texture coordinates at the shared closest
-// point (a sphere's pole, one u per triangle), 19 to 46 texels of a 128 x 128 atlas differed
-// between TBB and the Sequential backend.
-vtkIdType TextureBaker::Internals::LowestClosestTriangle(
-  const double point[3], double dist2, double closest[3]) const
-{
-  const double reach = std::sqrt(dist2) * (1.0 + 1e-6) + 1e-12 * this->Diagonal;
-  double bounds[6];
-  for (int c = 0; c < 3; ++c)
-  {
-    bounds[2 * c] = point[c] - reach;
-    bounds[2 * c + 1] = point[c] + reach;
-  }
-  vtkIdList* candidates = this->Candidates.Local();
-  this->Locator->FindCellsWithinBounds(bounds, candidates);
-  const double tie = dist2 * (1.0 + 1e-9) + 1e-24 * this->Diagonal * this->Diagonal;
-  vtkIdType best = -1;
-  for (vtkIdType i = 0; i < candidates->GetNumberOfIds(); ++i)
-  {
-    const vtkIdType cell = candidates->GetId(i);
-    if (best >= 0 && cell > best)
-    {
-      continue;
-    }
-    const vtkIdType* ids = this->Triangles.data() + 3 * cell;
-    double x[3];
-    const double d2 = ClosestPointOnTriangle(point, this->Points.data() + 3 * ids[0],
-      this->Points.data() + 3 * ids[1], this->Points.data() + 3 * ids[2], x);
-    if (d2 <= tie)
-    {
-      best = cell;
-      std::copy_n(x, 3, closest);
-    }
-  }
-  return best;
-}
-
-//------------------------------------------------------------------------------
 void TextureBaker::ColorAt(const double point[3], float rgba[4]) const
 {
   const Internals& impl = *this->Impl;
   double closest[3];
-  vtkIdType cellId = -1;
-  int subId = 0;
   double dist2 = 0.0;
-  impl.Locator->FindClosestPoint(point, closest, impl.Cells.Local(), cellId, subId, dist2);
+  vtkIdType cellId = impl.Tree.FindClosest(point, closest, dist2);
   if (cellId < 0)
   {
     rgba[0] = rgba[1] = rgba[2] = 0.0f;
@@ -334,13 +281,16 @@ void TextureBaker::ColorAt(const double point[3], float rgba[4]) const
       impl.Points.data() + 3 * ids[2], closest, w);
   };
   weigh();
-  // Closest on an edge or a corner: other triangles may be as close (LowestClosestTriangle).
-  // Well inside, only a triangle lying on this one, or one elsewhere at the very same
-  // distance, could be: the search is skipped (made for every texel, it made baking a quarter
-  // slower).
+  // Closest on an edge or a corner: other triangles are as close, within rounding, and which
+  // of them the search met first would decide the colour where they carry different texture
+  // coordinates at the shared point (a sphere's pole, one u per triangle). The lowest id of
+  // them is taken, the same on every run. Well inside, only a triangle lying on this one, or
+  // one elsewhere at the very same distance, could be: the search is skipped (made for every
+  // texel, it made baking a quarter slower).
   if (std::min({ w[0], w[1], w[2] }) <= 1e-6)
   {
-    const vtkIdType lowest = impl.LowestClosestTriangle(point, dist2, closest);
+    const double tie = dist2 * (1.0 + 1e-9) + 1e-24 * impl.Diagonal * impl.Diagonal;
+    const vtkIdType lowest = impl.Tree.FindLowestWithin(point, tie, closest);
     if (lowest >= 0 && lowest != cellId)
     {
       cellId = lowest;

@@ -24,7 +24,6 @@
 class vtkDataArray;
 class vtkImageData;
 class vtkPolyData;
-class vtkStaticCellLocator;
 
 namespace meshlod
 {

@@ -1,0 +1,162 @@
+// The texture baker's nearest-triangle search against a search of every triangle: the same
+// triangle (the lowest id of those at the smallest distance), the same distance, to the bit, at
+// random points and at points on vertices and edges, where several triangles tie.
+#include "MeshLODTriangleTree.h"
+#include "MeshLODTestCheck.h"
+#include "MeshLODTestMeshes.h"
+
+#include "Core/TriangulationFlips.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkMinimalStandardRandomSequence.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+
+#include <iostream>
+#include <limits>
+#include <vector>
+
+namespace
+{
+using namespace meshlod;
+
+struct FlatMesh
+{
+  std::vector<double> Points;
+  std::vector<vtkIdType> Triangles;
+  vtkIdType Count() const { return static_cast<vtkIdType>(this->Triangles.size() / 3); }
+  double ToTriangle(vtkIdType t, const double p[3], double x[3]) const
+  {
+    const vtkIdType* ids = this->Triangles.data() + 3 * t;
+    return ClosestPointOnTriangle(p, this->Points.data() + 3 * ids[0],
+      this->Points.data() + 3 * ids[1], this->Points.data() + 3 * ids[2], x);
+  }
+};
+
+FlatMesh Flatten(vtkPolyData* mesh)
+{
+  FlatMesh flat;
+  flat.Points.resize(3 * static_cast<std::size_t>(mesh->GetNumberOfPoints()));
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    mesh->GetPoint(p, flat.Points.data() + 3 * p);
+  }
+  auto it = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    flat.Triangles.insert(flat.Triangles.end(), ids, ids + 3);
+  }
+  return flat;
+}
+
+// Random points in the bounding box grown by a quarter of its size each way, then every
+// vertex, and the midpoint of every triangle's first edge.
+std::vector<double> QueryPoints(vtkPolyData* mesh, const FlatMesh& flat, int randomCount)
+{
+  double b[6];
+  mesh->GetBounds(b);
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(5);
+  std::vector<double> queries;
+  for (int i = 0; i < randomCount; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double size = b[2 * c + 1] - b[2 * c];
+      queries.push_back(b[2 * c] - 0.25 * size + 1.5 * size * random->GetValue());
+      random->Next();
+    }
+  }
+  queries.insert(queries.end(), flat.Points.begin(), flat.Points.end());
+  for (vtkIdType t = 0; t < flat.Count(); ++t)
+  {
+    const double* a = flat.Points.data() + 3 * flat.Triangles[3 * t];
+    const double* c = flat.Points.data() + 3 * flat.Triangles[3 * t + 1];
+    queries.insert(queries.end(), { 0.5 * (a[0] + c[0]), 0.5 * (a[1] + c[1]), 0.5 * (a[2] + c[2]) });
+  }
+  return queries;
+}
+
+void CompareWithEveryTriangle(const char* name, vtkPolyData* mesh)
+{
+  const FlatMesh flat = Flatten(mesh);
+  TriangleTree tree;
+  tree.Build(flat.Points.data(), flat.Triangles.data(), flat.Count());
+  const std::vector<double> queries = QueryPoints(mesh, flat, 2000);
+  int wrongClosest = 0, wrongLowest = 0, ties = 0;
+  for (std::size_t q = 0; q < queries.size(); q += 3)
+  {
+    const double* p = queries.data() + q;
+    // Every triangle: the smallest distance (lowest id on ties), and the lowest id within a
+    // little more than it.
+    vtkIdType nearest = -1;
+    double nearest2 = std::numeric_limits<double>::infinity();
+    for (vtkIdType t = 0; t < flat.Count(); ++t)
+    {
+      double x[3];
+      const double d2 = flat.ToTriangle(t, p, x);
+      if (d2 < nearest2)
+      {
+        nearest = t;
+        nearest2 = d2;
+      }
+    }
+    const double limit2 = nearest2 * (1.0 + 1e-9) + 1e-24;
+    vtkIdType lowest = -1;
+    int within = 0;
+    for (vtkIdType t = 0; t < flat.Count(); ++t)
+    {
+      double x[3];
+      if (flat.ToTriangle(t, p, x) <= limit2)
+      {
+        lowest = lowest < 0 ? t : lowest;
+        ++within;
+      }
+    }
+    ties += within > 1 ? 1 : 0;
+
+    double closest[3], distance2 = -1.0;
+    const vtkIdType found = tree.FindClosest(p, closest, distance2);
+    wrongClosest += found != nearest || distance2 != nearest2 ? 1 : 0;
+    double expected[3];
+    flat.ToTriangle(std::max(found, vtkIdType(0)), p, expected);
+    wrongClosest += closest[0] != expected[0] || closest[1] != expected[1] ||
+        closest[2] != expected[2]
+      ? 1
+      : 0;
+    wrongLowest += tree.FindLowestWithin(p, limit2, closest) != lowest ? 1 : 0;
+  }
+  std::cerr << "  " << name << ": " << flat.Count() << " triangles, " << queries.size() / 3
+            << " queries (" << ties << " with several triangles at the smallest distance), "
+            << wrongClosest << " wrong nearest, " << wrongLowest << " wrong lowest\n";
+  MESHLOD_CHECK_EQ(wrongClosest, 0);
+  MESHLOD_CHECK_EQ(wrongLowest, 0);
+  MESHLOD_CHECK_GT(ties, 0);
+}
+
+void TestEmpty()
+{
+  TriangleTree tree;
+  tree.Build(nullptr, nullptr, 0);
+  const double p[3] = { 0.0, 0.0, 0.0 };
+  double closest[3], distance2 = 0.0;
+  MESHLOD_CHECK_EQ(tree.FindClosest(p, closest, distance2), -1);
+  MESHLOD_CHECK_EQ(tree.FindLowestWithin(p, 1.0, closest), -1);
+}
+} // namespace
+
+int TestTriangleTree(int, char*[])
+{
+  TestEmpty();
+  CompareWithEveryTriangle("noisy isosurface", testing::MakeNoisyIsosurface(16, 0.5, 3));
+  // Long triangles all meeting at one point (the baker's slow case before the tree).
+  CompareWithEveryTriangle("spindles sharing an apex", testing::MakeConesSharingApex(40, 8));
+  // Coplanar triangles, many with a corner at one point: ties everywhere.
+  CompareWithEveryTriangle("flat fan in a ring", testing::MakeFlatFanInRing(300));
+  CompareWithEveryTriangle("octahedron", testing::MakeOctahedron());
+  return meshlod::testing::Result();
+}
