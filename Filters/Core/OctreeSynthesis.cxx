@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 namespace meshlod
 {
@@ -178,9 +179,11 @@ Id OctreeClustering::Internals::ReindexTriangles(Synthesis& s) const
 }
 
 //------------------------------------------------------------------------------
-// Triangles with the same three clusters as an earlier one, grouped by their smallest cluster
-// with the triangle order kept inside each group: SameDuplicate when an earlier one has the
-// same orientation, else OppositeDuplicate (the first of its orientation).
+// Triangles with the same three clusters as an earlier one: SameDuplicate when an earlier one
+// has the same orientation, else OppositeDuplicate (the first of its orientation). Triangles
+// are grouped by their smallest cluster, then sorted within the group by the other two, then
+// by their order: comparing every pair of a group was quadratic where one cluster keeps
+// thousands of triangles (cones sharing their apex).
 void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
 {
   const Id kept = static_cast<Id>(s.From.size());
@@ -203,28 +206,40 @@ void OctreeClustering::Internals::MarkDuplicates(Synthesis& s) const
     clusters,
     [&](Id begin, Id end)
     {
+      // Per triangle of the group: its other two clusters in turn from the smallest one (the
+      // orientation: the second below the third or not), and the triangle.
+      struct Entry
+      {
+        Id Second, Third, Triangle;
+        Id Low() const { return std::min(this->Second, this->Third); }
+        Id High() const { return std::max(this->Second, this->Third); }
+      };
+      std::vector<Entry> entries;
       for (Id k = begin; k < end; ++k)
       {
+        entries.clear();
         for (Id x = offsets[k]; x < offsets[k + 1]; ++x)
         {
           const Id* a = tris.data() + 3 * grouped[x];
-          const Id amax = std::max(a[0], std::max(a[1], a[2]));
-          const std::int64_t amid = std::int64_t(a[0]) + a[1] + a[2] - k - amax;
-          for (Id y = offsets[k]; y < x; ++y)
+          const int c = a[0] == k ? 0 : (a[1] == k ? 1 : 2);
+          entries.push_back({ a[(c + 1) % 3], a[(c + 2) % 3], grouped[x] });
+        }
+        std::sort(entries.begin(), entries.end(), [](const Entry& e, const Entry& f) {
+          return std::make_tuple(e.Low(), e.High(), e.Triangle) <
+            std::make_tuple(f.Low(), f.High(), f.Triangle);
+        });
+        bool seen[2] = { false, false }; // an earlier triangle of the run in each orientation
+        for (std::size_t i = 0; i < entries.size(); ++i)
+        {
+          const Entry& e = entries[i];
+          if (i == 0 || e.Low() != entries[i - 1].Low() || e.High() != entries[i - 1].High())
           {
-            const Id* b = tris.data() + 3 * grouped[y];
-            const Id bmax = std::max(b[0], std::max(b[1], b[2]));
-            if (bmax == amax && std::int64_t(b[0]) + b[1] + b[2] - k - bmax == amid)
-            {
-              const bool same = (a[0] == b[0] && a[1] == b[1]) ||
-                (a[0] == b[1] && a[1] == b[2]) || (a[0] == b[2] && a[1] == b[0]);
-              s.Duplicate[grouped[x]] = same ? SameDuplicate : OppositeDuplicate;
-              if (same)
-              {
-                break; // else keep looking: Opposite only if no earlier one has x's orientation
-              }
-            }
+            seen[0] = seen[1] = false;
           }
+          const int turn = e.Second < e.Third ? 0 : 1;
+          s.Duplicate[e.Triangle] =
+            seen[turn] ? SameDuplicate : (seen[1 - turn] ? OppositeDuplicate : 0);
+          seen[turn] = true;
         }
       }
     });
