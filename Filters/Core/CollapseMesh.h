@@ -53,9 +53,10 @@ enum VertexFlag : std::uint8_t
 ///   many, and a collapse next to it leaves their costs as they are (with every triangle of the
 ///   fan read by every fit, and re-fitted after every collapse next to it, the work grew with
 ///   the cube of the valence: a fan of 2,000 triangles took 88 s);
-/// - a star of more ring triangles is checked geometry first (CollapseMesh::IsLegal), a longer
-///   row is hinted in part (CollapseMesh::Prefetch), and the solved spokes of such a survivor
-///   are not kept (CostScratch::BeginSpokes);
+/// - a star of more ring triangles is checked geometry first (CollapseMesh::IsLegal), its
+///   link's shape with a hash table rather than a sort (LinkIsSimple), a longer row is hinted
+///   in part (CollapseMesh::Prefetch), and the solved spokes of such a survivor are not kept
+///   (CostScratch::BeginSpokes);
 /// - the parking lot looks at such a corner alone (ParkingLot::Release).
 constexpr Id FanTriangleLimit = 64;
 
@@ -141,7 +142,7 @@ struct Star
   bool Foreign = false;
   mutable std::vector<Id> LinkScratch;
   mutable std::vector<std::pair<Id, Id>> PairScratch; // the checks' sorting space, one at a time
-  mutable std::vector<Id> ValenceScratch;
+  mutable std::vector<Id> IdScratch; // the same, for ids
 };
 
 class VTKFILTERSMESHLOD_EXPORT CollapseMesh
