@@ -85,6 +85,11 @@
  * triangles (with the steps before it that remove none) are moved that fraction of the way to
  * their targets, so that raising CollapseFraction from 0 to 1 and then lowering the count
  * moves continuously. The output has the triangle count asked for whatever the fraction.
+ * The first count asked on a transition builds its order, once (kept until the input
+ * changes), in time that grows with the square of the number of points merging into one:
+ * 0.7 s for the first level of vtkTriangleCollapseDecimation's defaults on 672,724 triangles,
+ * 3.5 s from vtkVertexClusterOctree's first default level of the same mesh (16,662
+ * triangles), 44 s for a UV sphere's 636,800 -> 540; later counts take milliseconds.
  *
  * @par Point and cell data
  * Every point-data array of level i is carried to the output. Floating-point arrays are
