@@ -3,6 +3,7 @@
 #include "Core/TriangulationFlips.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -16,6 +17,13 @@ constexpr vtkIdType LeafTriangles = 8;
 // Pending nodes of a query: one per level at most (the farther child), and median splits of
 // 2^63 triangles make 60 levels.
 constexpr int StackSize = 96;
+// The closest point that ClosestPointOnTriangle computes can lie a little outside the
+// triangle's box through rounding (less than a unit in the last place of the coordinates, seen
+// with coordinates large against the distance: 512 against 1.2), its distance then smaller than
+// the box's. A box is passed over only when it is farther than the reach by more than this
+// fraction of the largest coordinate (the tree's or the query point's): the nearest triangle of
+// the search is then that of a search of every triangle.
+constexpr double RoundingSlack = 1e-10;
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -24,6 +32,7 @@ void TriangleTree::Build(const double* points, const vtkIdType* triangles, vtkId
   this->Points = points;
   this->Triangles = triangles;
   this->Nodes.clear();
+  this->Magnitude = 0.0;
   this->Order.resize(count);
   std::iota(this->Order.begin(), this->Order.end(), vtkIdType(0));
   if (count == 0)
@@ -43,6 +52,10 @@ void TriangleTree::Build(const double* points, const vtkIdType* triangles, vtkId
   this->Nodes.reserve(static_cast<std::size_t>(count / 2 + 2));
   this->Nodes.emplace_back();
   this->Split(0, 0, count, centroids);
+  for (const double bound : this->Nodes[0].Bounds)
+  {
+    this->Magnitude = std::max(this->Magnitude, std::abs(bound));
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -132,13 +145,22 @@ void TriangleTree::Descend(const double p[3], const double& reach2, Visit&& visi
   {
     return;
   }
+  const double slack = RoundingSlack *
+    std::max({ this->Magnitude, std::abs(p[0]), std::abs(p[1]), std::abs(p[2]) });
+  double reached = -1.0, limit = 0.0; // limit: reach2 widened by the slack
   vtkIdType stack[StackSize];
   int pending = 0;
   stack[pending++] = 0;
   while (pending > 0)
   {
     const Node& node = this->Nodes[stack[--pending]];
-    if (Distance2(node, p) > reach2)
+    if (reach2 != reached)
+    {
+      reached = reach2;
+      const double reach = std::sqrt(reach2) + slack;
+      limit = reach * reach;
+    }
+    if (Distance2(node, p) > limit)
     {
       continue;
     }

@@ -45,13 +45,15 @@ private:
   void Split(vtkIdType index, vtkIdType begin, vtkIdType end, const std::vector<double>& centroids);
   static double Distance2(const Node& node, const double p[3]);
   // Call visit(t) for the triangles of every leaf whose box is within squared distance reach2
-  // of p, nearer boxes first; reach2 is read again at every node (the caller may shrink it).
+  // of p (and a rounding slack), nearer boxes first; reach2 is read again at every node (the
+  // caller may shrink it).
   template <typename Visit>
   void Descend(const double p[3], const double& reach2, Visit&& visit) const;
   double ToTriangle(vtkIdType t, const double p[3], double closest[3]) const;
 
   std::vector<Node> Nodes; // the root first
   std::vector<vtkIdType> Order;
+  double Magnitude = 0.0; // the largest coordinate of the triangles, in absolute value
   const double* Points = nullptr;
   const vtkIdType* Triangles = nullptr;
 };

@@ -138,6 +138,33 @@ void CompareWithEveryTriangle(const char* name, vtkPolyData* mesh)
   MESHLOD_CHECK_GT(ties, 0);
 }
 
+// Rounding: the closest point computed on triangle 0 lies just outside its box (its distance
+// 1.4176818654678944 against the box's 1.4176818654680299), and a search that passed over the
+// box because it was farther than the best found so far returned triangle 4 (1.4176818654679622).
+void TestClosestPointOutsideItsBox()
+{
+  const std::vector<double> points = { -0.46385649489489167, 0.33231536783614168,
+    512.00000000000011, -0.18458379774506728, -0.69719920739597641, 512.0, 0.52344919136591828,
+    0.7966183005441323, 512.0, -60, -2, 513, -60.5, 2, 513, -60, 2, 513.5, -70, -2, 513, -70.5, 2,
+    513, -70, 2, 513.5, -80, -2, 513, -80.5, 2, 513, -80, 2, 513.5, 0.1258848215193972,
+    0.011394630040545039, 511.99999999999994, 0.1258848225193972, 0.011394630040545039,
+    511.99999999999994, 0.1258848215193972, 0.011394631040545038, 511.99999999999994, 60, -2, 513,
+    60.5, 2, 513, 60, 2, 513.5, 70, -2, 513, 70.5, 2, 513, 70, 2, 513.5, 80, -2, 513, 80.5, 2, 513,
+    80, 2, 513.5, 90, -2, 513, 90.5, 2, 513, 90, 2, 513.5 };
+  std::vector<vtkIdType> triangles(points.size() / 3);
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+  {
+    triangles[i] = static_cast<vtkIdType>(i);
+  }
+  TriangleTree tree;
+  tree.Build(points.data(), triangles.data(), static_cast<vtkIdType>(triangles.size() / 3));
+  const double p[3] = { 0.12588456128180478, 0.011394630040545039, 510.80933553615301 };
+  double closest[3], distance2 = 0.0;
+  MESHLOD_CHECK_EQ(tree.FindClosest(p, closest, distance2), 0);
+  MESHLOD_CHECK_EQ(distance2, 1.4176818654678944);
+  MESHLOD_CHECK_EQ(tree.FindLowestWithin(p, distance2, closest), 0);
+}
+
 void TestEmpty()
 {
   TriangleTree tree;
@@ -152,6 +179,7 @@ void TestEmpty()
 int TestTriangleTree(int, char*[])
 {
   TestEmpty();
+  TestClosestPointOutsideItsBox();
   CompareWithEveryTriangle("noisy isosurface", testing::MakeNoisyIsosurface(16, 0.5, 3));
   // Long triangles all meeting at one point (the baker's slow case before the tree).
   CompareWithEveryTriangle("spindles sharing an apex", testing::MakeConesSharingApex(40, 8));
