@@ -255,30 +255,17 @@ bool CollapseMesh::HasValenceAtLeast(Id v, int n, std::vector<Id>& scratch) cons
   // sharing their apex), and sorting all of them for every check next to it took nearly the
   // whole run.
   scratch.clear();
-  for (Id u = v; u != InvalidId; u = this->ChainNext[u])
-  {
-    for (Id i = this->Rows.Begin(u), end = this->Rows.End(u); i < end; ++i)
+  return this->AnyTriangle(v, [&](Id t) {
+    const Id* tri = this->Mesh.Triangle(t);
+    for (int k = 0; k < 3; ++k)
     {
-      const Id t = this->Rows.Triangles[i];
-      const Id* tri = this->Mesh.Triangle(t);
-      if (!this->IsAlive(t) || CornerOf(tri, v) < 0)
+      if (tri[k] != v && std::find(scratch.begin(), scratch.end(), tri[k]) == scratch.end())
       {
-        continue;
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        if (tri[k] != v && std::find(scratch.begin(), scratch.end(), tri[k]) == scratch.end())
-        {
-          scratch.push_back(tri[k]);
-          if (static_cast<int>(scratch.size()) >= n)
-          {
-            return true;
-          }
-        }
+        scratch.push_back(tri[k]);
       }
     }
-  }
-  return static_cast<int>(scratch.size()) >= n;
+    return static_cast<int>(scratch.size()) >= n;
+  });
 }
 
 //------------------------------------------------------------------------------
@@ -560,13 +547,55 @@ PieceKind CollapseMesh::SmallPiece(
 //------------------------------------------------------------------------------
 namespace
 {
+// The end of link edge {ends[2 edge], ends[2 edge + 1]} that is not v.
+Id OtherEnd(const std::vector<Id>& ends, Id edge, Id v)
+{
+  return ends[2 * edge] == v ? ends[2 * edge + 1] : ends[2 * edge];
+}
+
+// The end of LinkIsSimple, once every vertex is known to be on one or two edges, each edge
+// once: `pathEnds` vertices are on one edge (`start` one of them), and edgesOf(v) gives v's
+// edges (the second InvalidId at a path end). A simple cycle has no path end, a simple path
+// (boundary) two, and a walk from `start` (or round from ends[0]) passes every edge.
+template <typename EdgesOf>
+bool WalkCoversLink(
+  const std::vector<Id>& ends, bool boundary, int pathEnds, Id start, EdgesOf&& edgesOf)
+{
+  if (pathEnds != (boundary ? 2 : 0))
+  {
+    return false;
+  }
+  const Id edges = static_cast<Id>(ends.size() / 2);
+  const Id first = boundary ? start : ends[0];
+  Id at = first, previous = InvalidId, walked = 0;
+  for (;;)
+  {
+    const std::pair<Id, Id> around = edgesOf(at);
+    const Id next = around.first != previous ? around.first : around.second;
+    if (next == InvalidId)
+    {
+      break; // the far end of the path
+    }
+    at = OtherEnd(ends, next, at);
+    previous = next;
+    if (++walked > edges)
+    {
+      return false;
+    }
+    if (!boundary && at == first)
+    {
+      break; // round the cycle
+    }
+  }
+  return walked == edges; // less: several cycles or paths, the merge would pinch the surface
+}
+
 // LinkIsSimple for links of more than FanTriangleLimit edges: each vertex's (at most two)
 // edges in a hash table, linear, where the sort cost n log n for every check next to a vertex
 // of high valence (a closed cone with the independent sets: 3.4 s for 4,000 triangles, most of
 // it sorting). The same verdict. `table`: 3 entries per slot (vertex, first edge, second edge).
 bool LargeLinkIsSimple(const std::vector<Id>& ends, bool boundary, std::vector<Id>& table)
 {
-  const Id edges = static_cast<Id>(ends.size() / 2);
   std::size_t slots = 16;
   while (slots < 2 * ends.size())
   {
@@ -582,9 +611,7 @@ bool LargeLinkIsSimple(const std::vector<Id>& ends, bool boundary, std::vector<I
     }
     return 3 * s;
   };
-  const auto other = [&](Id edge, Id v) {
-    return ends[2 * edge] == v ? ends[2 * edge + 1] : ends[2 * edge];
-  };
+  const auto other = [&](Id edge, Id v) { return OtherEnd(ends, edge, v); };
   for (std::size_t i = 0; i < ends.size(); ++i)
   {
     const std::size_t s = slotOf(ends[i]);
@@ -613,32 +640,10 @@ bool LargeLinkIsSimple(const std::vector<Id>& ends, bool boundary, std::vector<I
       start = table[s];
     }
   }
-  if (pathEnds != (boundary ? 2 : 0))
-  {
-    return false;
-  }
-  const Id first = boundary ? start : ends[0];
-  Id at = first, previous = InvalidId, walked = 0;
-  for (;;)
-  {
-    const std::size_t s = slotOf(at);
-    const Id next = table[s + 1] != previous ? table[s + 1] : table[s + 2];
-    if (next == InvalidId)
-    {
-      break; // the far end of the path
-    }
-    at = other(next, at);
-    previous = next;
-    if (++walked > edges)
-    {
-      return false;
-    }
-    if (!boundary && at == first)
-    {
-      break; // round the cycle
-    }
-  }
-  return walked == edges;
+  return WalkCoversLink(ends, boundary, pathEnds, start, [&](Id v) {
+    const std::size_t s = slotOf(v);
+    return std::make_pair(table[s + 1], table[s + 2]);
+  });
 }
 
 // Whether the edges {ends[2 i], ends[2 i + 1]} form one simple cycle (or, for a boundary merge,
@@ -664,9 +669,7 @@ bool LinkIsSimple(const std::vector<Id>& ends, bool boundary,
     incidence[i] = { ends[i], static_cast<Id>(i / 2) };
   }
   std::sort(incidence.begin(), incidence.end());
-  const auto other = [&](Id edge, Id v) {
-    return ends[2 * edge] == v ? ends[2 * edge + 1] : ends[2 * edge];
-  };
+  const auto other = [&](Id edge, Id v) { return OtherEnd(ends, edge, v); };
   Id start = InvalidId;
   int pathEnds = 0;
   for (std::size_t i = 0; i < incidence.size();)
@@ -689,38 +692,15 @@ bool LinkIsSimple(const std::vector<Id>& ends, bool boundary,
     }
     i += run;
   }
-  if (pathEnds != (boundary ? 2 : 0))
-  {
-    return false;
-  }
-  const Id first = boundary ? start : ends[0];
-  Id at = first, previous = InvalidId, walked = 0;
-  for (;;)
-  {
+  return WalkCoversLink(ends, boundary, pathEnds, start, [&](Id v) {
     const auto k = static_cast<std::size_t>(
-      std::lower_bound(incidence.begin(), incidence.end(), std::make_pair(at, InvalidId)) -
+      std::lower_bound(incidence.begin(), incidence.end(), std::make_pair(v, InvalidId)) -
       incidence.begin());
-    const Id e1 = incidence[k].second;
-    const Id e2 = k + 1 < incidence.size() && incidence[k + 1].first == at
+    const Id second = k + 1 < incidence.size() && incidence[k + 1].first == v
       ? incidence[k + 1].second
       : InvalidId;
-    const Id next = e1 != previous ? e1 : e2;
-    if (next == InvalidId)
-    {
-      break; // the far end of the path
-    }
-    at = other(next, at);
-    previous = next;
-    if (++walked > edges)
-    {
-      return false;
-    }
-    if (!boundary && at == first)
-    {
-      break; // round the cycle
-    }
-  }
-  return walked == edges; // less: several cycles or paths, the merge would pinch the surface
+    return std::make_pair(incidence[k].second, second);
+  });
 }
 } // namespace
 

@@ -215,6 +215,24 @@ public:
     this->ForEachTriangle(v, 1, std::forward<F>(f));
   }
 
+  /// ... or until f(t) returns true, then true (false when it never does) ...
+  template <typename F>
+  bool AnyTriangle(Id v, F&& f) const
+  {
+    for (Id u = v; u != InvalidId; u = this->ChainNext[u])
+    {
+      for (Id i = this->Rows.Begin(u), end = this->Rows.End(u); i < end; ++i)
+      {
+        const Id t = this->Rows.Triangles[i];
+        if (this->IsAlive(t) && CornerOf(this->Mesh.Triangle(t), v) >= 0 && f(t))
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   /// ... or, with every > 1, for those at every every-th place of its rows (about one in every,
   /// in time proportional to those: a fan's centre has thousands).
   template <typename F>
