@@ -202,7 +202,10 @@ Legality Collapser::CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScra
     c = edge;
     return Legality::Legal;
   }
-  this->Legal(star, c); // restore the triangle's star for a swap
+  if (legality == Legality::LowValenceApex)
+  {
+    this->Legal(star, c); // restore the triangle's star for the swap (nothing else reads it)
+  }
   return legality;
 }
 
