@@ -317,6 +317,13 @@ public:
   Legality IsLegal(
     const Star& star, const double x[3], const double* planeNormal, const CollapseRules& rules) const;
 
+  /// IsLegal's rule on the apexes alone (paper 000's rule against new valence-3 vertices, see
+  /// CollapseRules): an apex that m of star.Apexes name loses m edges and must keep at least 2
+  /// (on a boundary), 4 or 3 (with or without the rule for the star's kind of collapse). The
+  /// first apex of the list that would not is star.BlockingApex (LowValenceApex). Reads
+  /// star.Apexes and star.MemberCount only, so a test may fill them by hand.
+  Legality ApexValences(const Star& star, const CollapseRules& rules) const;
+
   /// Merge the members into the first one (the lowest id) at x and return it. Does not touch
   /// AliveTriangles (collapses applied in parallel sum their dying counts afterwards).
   Id Apply(const Star& star, const double x[3]);
@@ -325,12 +332,10 @@ public:
   void RebuildRows();
 
 private:
-  // The three parts of IsLegal: the merged vertex's link is one simple cycle or path (and,
-  // where that is not enough, the link condition holds); no apex's valence drops too low
-  // (LowValenceApex, with Star::BlockingApex); no ring triangle folds, turns too far or
-  // degenerates, and the stencil stays star-shaped.
+  // The other two parts of IsLegal (the third is ApexValences): the merged vertex's link is one
+  // simple cycle or path (and, where that is not enough, the link condition holds); no ring
+  // triangle folds, turns too far or degenerates, and the stencil stays star-shaped.
   bool LinkKeepsManifold(const Star& star, bool boundary, bool curve) const;
-  Legality ApexValences(const Star& star, const CollapseRules& rules) const;
   bool GeometryKeepsShape(const Star& star, const double x[3], const double* planeNormal,
     const CollapseRules& rules, bool curve) const;
   /// The topology test of an edge collapse with a FlagCurve member (see IsLegal).

@@ -9,8 +9,10 @@
 #include "vtkPolyData.h"
 #include "vtkTriangleFilter.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <random>
 #include <vector>
 
 namespace
@@ -310,6 +312,125 @@ void TestLinkCondition()
   }
   MESHLOD_CHECK_EQ(refused, 3 * 18);
 }
+
+// The distinct neighbours of every vertex of a fresh mesh, counted over all of its triangles.
+std::vector<int> CountNeighbours(const TriangleMesh& mesh)
+{
+  std::vector<std::vector<Id>> around(mesh.GetNumberOfPoints());
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    const Id* tri = mesh.Triangle(t);
+    for (int k = 0; k < 3; ++k)
+    {
+      around[tri[k]].push_back(tri[(k + 1) % 3]);
+      around[tri[k]].push_back(tri[(k + 2) % 3]);
+    }
+  }
+  std::vector<int> counts;
+  for (std::vector<Id>& neighbours : around)
+  {
+    std::sort(neighbours.begin(), neighbours.end());
+    counts.push_back(static_cast<int>(
+      std::unique(neighbours.begin(), neighbours.end()) - neighbours.begin()));
+  }
+  return counts;
+}
+
+// Meshes with vertices of every kind the apex rule meets: locked (spindles sharing their apex,
+// a bow tie), on a curve where three sheets meet (a sphere and its equatorial disk), on a
+// boundary, and manifold inside.
+std::vector<vtkSmartPointer<vtkPolyData>> MeshesOfEveryVertexKind()
+{
+  return { testing::MakeSphereWithEquatorialDisk(8, 5, 2), testing::MakeConesSharingApex(6, 5),
+    testing::MakeBowTie(), testing::MakeGrid(3, 3), testing::MakeIcosphere(1) };
+}
+
+// HasValenceAtLeast reads a manifold vertex's triangle count, and walks the triangles of a
+// locked or curve vertex counting distinct neighbours until it has enough: both against a
+// count over every triangle, at the count and one above it.
+void TestValenceCounts()
+{
+  int wrong = 0, locked = 0, curve = 0, boundary = 0;
+  for (const vtkSmartPointer<vtkPolyData>& mesh : MeshesOfEveryVertexKind())
+  {
+    Fixture f(mesh);
+    const std::vector<int> counts = CountNeighbours(f.State.Mesh);
+    std::vector<Id> scratch;
+    for (Id v = 0; v < f.State.Mesh.GetNumberOfPoints(); ++v)
+    {
+      wrong += f.State.HasValenceAtLeast(v, counts[v], scratch) ? 0 : 1;
+      wrong += f.State.HasValenceAtLeast(v, counts[v] + 1, scratch) ? 1 : 0;
+      locked += f.State.IsLocked(v) ? 1 : 0;
+      curve += f.State.IsCurve(v) ? 1 : 0;
+      boundary += f.State.IsBoundary(v) ? 1 : 0;
+    }
+  }
+  MESHLOD_CHECK_EQ(wrong, 0);
+  MESHLOD_CHECK_EQ(locked, 2); // the spindles' apex and the bow tie's centre
+  MESHLOD_CHECK_EQ(curve, 8);  // the equator
+  MESHLOD_CHECK_GT(boundary, 12);
+}
+
+// ApexValences against the rule as stated, on random lists of apexes drawn with repeats from
+// vertices of every kind: the first apex of the list that has fewer distinct neighbours than
+// 2 (on a boundary), 4 or 3 (with or without the valence-3 rule for the collapse's kind), plus
+// the m entries naming it, blocks. A list of more than 8 apexes (thousands of sheets meeting
+// at one edge) takes a sorted path of its own: both lengths must follow the rule, passing and
+// blocking alike.
+void TestApexRule()
+{
+  std::mt19937 random(5);
+  std::array<int, 4> seen = { 0, 0, 0, 0 }; // short passed, short blocked, long ...
+  int wrong = 0;
+  for (const vtkSmartPointer<vtkPolyData>& mesh : MeshesOfEveryVertexKind())
+  {
+    Fixture f(mesh);
+    const std::vector<int> counts = CountNeighbours(f.State.Mesh);
+    const Id points = f.State.Mesh.GetNumberOfPoints();
+    Star& star = f.Stars;
+    for (int trial = 0; trial < 3000; ++trial)
+    {
+      std::vector<Id> pool(1 + random() % 32);
+      for (Id& p : pool)
+      {
+        p = static_cast<Id>(random() % points);
+      }
+      star.Apexes.resize(1 + random() % 24);
+      for (Id& p : star.Apexes)
+      {
+        p = pool[random() % pool.size()];
+      }
+      star.MemberCount = 2 + static_cast<int>(random() % 2);
+      f.Rules.ForbidValenceThree = random() % 2 == 0;
+      f.Rules.ForbidValenceThreeForEdges = random() % 2 == 0;
+      const bool forbid =
+        star.MemberCount == 3 ? f.Rules.ForbidValenceThree : f.Rules.ForbidValenceThreeForEdges;
+      Id expected = InvalidId;
+      for (const Id p : star.Apexes)
+      {
+        const int m = static_cast<int>(std::count(star.Apexes.begin(), star.Apexes.end(), p));
+        const int minimum = f.State.IsBoundary(p) ? 2 : (forbid ? 4 : 3);
+        if (counts[p] < minimum + m)
+        {
+          expected = p;
+          break;
+        }
+      }
+      star.BlockingApex = InvalidId;
+      const Legality verdict = f.State.ApexValences(star, f.Rules);
+      const bool blocked = verdict == Legality::LowValenceApex;
+      const bool right = blocked ? star.BlockingApex == expected
+                                 : verdict == Legality::Legal && expected == InvalidId;
+      wrong += right ? 0 : 1;
+      ++seen[(star.Apexes.size() > 8 ? 2 : 0) + (blocked ? 1 : 0)];
+    }
+  }
+  MESHLOD_CHECK_EQ(wrong, 0);
+  for (const int n : seen)
+  {
+    MESHLOD_CHECK_GT(n, 500);
+  }
+}
 } // namespace
 
 int TestTriangleCollapseRules(int, char*[])
@@ -320,5 +441,7 @@ int TestTriangleCollapseRules(int, char*[])
   TestBoundaryAndLocks();
   TestDegenerateRefused();
   TestLinkCondition();
+  TestValenceCounts();
+  TestApexRule();
   return meshlod::testing::Result();
 }
