@@ -2,6 +2,8 @@
 
 #include "Core/TriangulationFlips.h"
 
+#include "vtkSMPTools.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,6 +16,8 @@ namespace
 // Triangles per leaf at most: fewer makes more nodes (64 bytes each), more tests more
 // triangles per leaf reached.
 constexpr vtkIdType LeafTriangles = 8;
+// Below the top of the tree, subtrees of at most this many triangles are built in parallel.
+constexpr vtkIdType SubtreeTriangles = 16384;
 // Pending nodes of a query: one per level at most (the farther child), and median splits of
 // 2^63 triangles make 60 levels.
 constexpr int StackSize = 96;
@@ -27,31 +31,98 @@ constexpr double RoundingSlack = 1e-10;
 } // namespace
 
 //------------------------------------------------------------------------------
+// A triangle while the tree is built: three times its centroid (only the order along an axis
+// is used) next to its id, so that the splits read and move contiguous memory.
+struct TriangleTree::Item
+{
+  double Centroid[3];
+  vtkIdType Id;
+};
+
+//------------------------------------------------------------------------------
+vtkIdType TriangleTree::NodesFor(vtkIdType count, NodeCounts& memo)
+{
+  if (count <= LeafTriangles)
+  {
+    return 1;
+  }
+  // A split's halves differ by at most one triangle, so each depth has at most two sizes.
+  for (const auto& known : memo)
+  {
+    if (known.first == count)
+    {
+      return known.second;
+    }
+  }
+  const vtkIdType nodes = 1 + NodesFor(count / 2, memo) + NodesFor(count - count / 2, memo);
+  memo.emplace_back(count, nodes);
+  return nodes;
+}
+
+//------------------------------------------------------------------------------
 void TriangleTree::Build(const double* points, const vtkIdType* triangles, vtkIdType count)
 {
   this->Points = points;
   this->Triangles = triangles;
   this->Nodes.clear();
+  this->Order.clear();
   this->Magnitude = 0.0;
-  this->Order.resize(count);
-  std::iota(this->Order.begin(), this->Order.end(), vtkIdType(0));
   if (count == 0)
   {
     return;
   }
-  std::vector<double> centroids(3 * static_cast<std::size_t>(count));
-  for (vtkIdType t = 0; t < count; ++t)
-  {
-    for (int c = 0; c < 3; ++c)
+  std::vector<Item> items(count);
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType t = begin; t < end; ++t)
     {
-      // Three times the centroid: only the order along an axis is used.
-      centroids[3 * t + c] = points[3 * triangles[3 * t] + c] +
-        points[3 * triangles[3 * t + 1] + c] + points[3 * triangles[3 * t + 2] + c];
+      for (int c = 0; c < 3; ++c)
+      {
+        items[t].Centroid[c] = points[3 * triangles[3 * t] + c] +
+          points[3 * triangles[3 * t + 1] + c] + points[3 * triangles[3 * t + 2] + c];
+      }
+      items[t].Id = t;
     }
+  });
+  // Nodes in depth-first order, a node's first child right after it: the layout follows from
+  // the triangle count alone, so subtrees can be built at once, each into its own place.
+  NodeCounts memo;
+  this->Nodes.resize(static_cast<std::size_t>(NodesFor(count, memo)));
+  // The top of the tree is split here, one node after the other, down to subtrees of at most
+  // SubtreeTriangles; those are built in parallel, then the top's boxes from its children's.
+  std::vector<Subtree> subtrees, top;
+  std::vector<Subtree> pending = { { 0, 0, count } };
+  while (!pending.empty())
+  {
+    const Subtree part = pending.back();
+    pending.pop_back();
+    if (part.End - part.Begin <= SubtreeTriangles)
+    {
+      subtrees.push_back(part);
+      continue;
+    }
+    top.push_back(part);
+    const vtkIdType middle = this->Divide(part, items.data(), memo);
+    const vtkIdType second = this->Nodes[part.Node].End;
+    pending.push_back({ second, middle, part.End });
+    pending.push_back({ part.Node + 1, part.Begin, middle });
   }
-  this->Nodes.reserve(static_cast<std::size_t>(count / 2 + 2));
-  this->Nodes.emplace_back();
-  this->Split(0, 0, count, centroids);
+  const vtkIdType parts = static_cast<vtkIdType>(subtrees.size());
+  vtkSMPTools::For(0, parts, [&](vtkIdType begin, vtkIdType end) {
+    NodeCounts localMemo;
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      this->Split(subtrees[i], items.data(), localMemo);
+    }
+  });
+  for (auto part = top.rbegin(); part != top.rend(); ++part)
+  {
+    this->Enclose(part->Node);
+  }
+  this->Order.resize(count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    this->Order[i] = items[i].Id;
+  }
   for (const double bound : this->Nodes[0].Bounds)
   {
     this->Magnitude = std::max(this->Magnitude, std::abs(bound));
@@ -59,40 +130,21 @@ void TriangleTree::Build(const double* points, const vtkIdType* triangles, vtkId
 }
 
 //------------------------------------------------------------------------------
-void TriangleTree::Split(
-  vtkIdType index, vtkIdType begin, vtkIdType end, const std::vector<double>& centroids)
+vtkIdType TriangleTree::Divide(const Subtree& part, Item* items, NodeCounts& memo)
 {
-  Node node;
   double low[3], high[3]; // of the centroids, to choose the axis
   for (int c = 0; c < 3; ++c)
   {
-    node.Bounds[2 * c] = low[c] = std::numeric_limits<double>::max();
-    node.Bounds[2 * c + 1] = high[c] = std::numeric_limits<double>::lowest();
+    low[c] = std::numeric_limits<double>::max();
+    high[c] = std::numeric_limits<double>::lowest();
   }
-  for (vtkIdType i = begin; i < end; ++i)
+  for (vtkIdType i = part.Begin; i < part.End; ++i)
   {
-    const vtkIdType t = this->Order[i];
-    for (int k = 0; k < 3; ++k)
-    {
-      const double* x = this->Points + 3 * this->Triangles[3 * t + k];
-      for (int c = 0; c < 3; ++c)
-      {
-        node.Bounds[2 * c] = std::min(node.Bounds[2 * c], x[c]);
-        node.Bounds[2 * c + 1] = std::max(node.Bounds[2 * c + 1], x[c]);
-      }
-    }
     for (int c = 0; c < 3; ++c)
     {
-      low[c] = std::min(low[c], centroids[3 * t + c]);
-      high[c] = std::max(high[c], centroids[3 * t + c]);
+      low[c] = std::min(low[c], items[i].Centroid[c]);
+      high[c] = std::max(high[c], items[i].Centroid[c]);
     }
-  }
-  if (end - begin <= LeafTriangles)
-  {
-    node.Begin = begin;
-    node.End = end;
-    this->Nodes[index] = node;
-    return;
   }
   int axis = 0;
   for (int c = 1; c < 3; ++c)
@@ -101,20 +153,62 @@ void TriangleTree::Split(
   }
   // Half the triangles on each side (so the depth is log2 of the count whatever the shape),
   // ordered by centroid, then id: the same tree on every run.
-  const vtkIdType middle = begin + (end - begin) / 2;
-  std::nth_element(this->Order.begin() + begin, this->Order.begin() + middle,
-    this->Order.begin() + end, [&](vtkIdType a, vtkIdType b) {
-      const double ca = centroids[3 * a + axis], cb = centroids[3 * b + axis];
-      return ca < cb || (ca == cb && a < b);
+  const vtkIdType middle = part.Begin + (part.End - part.Begin) / 2;
+  std::nth_element(items + part.Begin, items + middle, items + part.End,
+    [axis](const Item& a, const Item& b) {
+      const double ca = a.Centroid[axis], cb = b.Centroid[axis];
+      return ca < cb || (ca == cb && a.Id < b.Id);
     });
-  const vtkIdType first = static_cast<vtkIdType>(this->Nodes.size());
+  Node& node = this->Nodes[part.Node];
   node.Begin = -1;
-  node.End = first;
-  this->Nodes[index] = node;
-  this->Nodes.emplace_back();
-  this->Nodes.emplace_back();
-  this->Split(first, begin, middle, centroids);
-  this->Split(first + 1, middle, end, centroids);
+  node.End = part.Node + 1 + NodesFor(middle - part.Begin, memo); // the second child
+  return middle;
+}
+
+//------------------------------------------------------------------------------
+void TriangleTree::Split(const Subtree& part, Item* items, NodeCounts& memo)
+{
+  Node& node = this->Nodes[part.Node];
+  if (part.End - part.Begin > LeafTriangles)
+  {
+    const vtkIdType middle = this->Divide(part, items, memo);
+    this->Split({ part.Node + 1, part.Begin, middle }, items, memo);
+    this->Split({ node.End, middle, part.End }, items, memo);
+    this->Enclose(part.Node);
+    return;
+  }
+  node.Begin = part.Begin;
+  node.End = part.End;
+  for (int c = 0; c < 3; ++c)
+  {
+    node.Bounds[2 * c] = std::numeric_limits<double>::max();
+    node.Bounds[2 * c + 1] = std::numeric_limits<double>::lowest();
+  }
+  for (vtkIdType i = part.Begin; i < part.End; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* x = this->Points + 3 * this->Triangles[3 * items[i].Id + k];
+      for (int c = 0; c < 3; ++c)
+      {
+        node.Bounds[2 * c] = std::min(node.Bounds[2 * c], x[c]);
+        node.Bounds[2 * c + 1] = std::max(node.Bounds[2 * c + 1], x[c]);
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void TriangleTree::Enclose(vtkIdType index)
+{
+  Node& node = this->Nodes[index];
+  const Node& a = this->Nodes[index + 1];
+  const Node& b = this->Nodes[node.End];
+  for (int c = 0; c < 3; ++c)
+  {
+    node.Bounds[2 * c] = std::min(a.Bounds[2 * c], b.Bounds[2 * c]);
+    node.Bounds[2 * c + 1] = std::max(a.Bounds[2 * c + 1], b.Bounds[2 * c + 1]);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -153,7 +247,8 @@ void TriangleTree::Descend(const double p[3], const double& reach2, Visit&& visi
   stack[pending++] = 0;
   while (pending > 0)
   {
-    const Node& node = this->Nodes[stack[--pending]];
+    const vtkIdType index = stack[--pending];
+    const Node& node = this->Nodes[index];
     if (reach2 != reached)
     {
       reached = reach2;
@@ -173,7 +268,7 @@ void TriangleTree::Descend(const double p[3], const double& reach2, Visit&& visi
       continue;
     }
     // The nearer child is searched first (pushed last): the reach shrinks sooner.
-    const vtkIdType a = node.End, b = node.End + 1;
+    const vtkIdType a = index + 1, b = node.End;
     const bool aNearer = Distance2(this->Nodes[a], p) <= Distance2(this->Nodes[b], p);
     stack[pending++] = aNearer ? b : a;
     stack[pending++] = aNearer ? a : b;

@@ -8,14 +8,16 @@
 // long triangle is one box, and a query descends only into boxes nearer than the best triangle
 // found so far.
 //
-// The tree is built once, sequentially and deterministically (median splits along the longest
-// axis, ties by triangle id); queries are const and may run on any number of threads.
+// The tree is built once, deterministically (median splits along the longest axis of the
+// centroids, ties by triangle id; the same tree for every thread count), its subtrees in
+// parallel; queries are const and may run on any number of threads.
 #ifndef MeshLODTriangleTree_h
 #define MeshLODTriangleTree_h
 
 #include "vtkFiltersMeshLODModule.h"
 #include "vtkType.h"
 
+#include <utility>
 #include <vector>
 
 namespace meshlod
@@ -40,9 +42,24 @@ private:
   {
     double Bounds[6]; // of the triangles' points: xmin, xmax, ymin, ymax, zmin, zmax
     vtkIdType Begin;  // leaf: its triangles are Order[Begin, End); inner node: -1
-    vtkIdType End;    // leaf: see Begin; inner node: the first child (the second follows it)
+    vtkIdType End;    // leaf: see Begin; inner node: the second child (the first follows it)
   };
-  void Split(vtkIdType index, vtkIdType begin, vtkIdType end, const std::vector<double>& centroids);
+  struct Item;
+  // Node counts of subtrees by their triangle count, as found so far.
+  using NodeCounts = std::vector<std::pair<vtkIdType, vtkIdType>>;
+  struct Subtree
+  {
+    vtkIdType Node, Begin, End; // the node, and its triangles' range of the items
+  };
+  // The number of nodes of a tree of `count` triangles.
+  static vtkIdType NodesFor(vtkIdType count, NodeCounts& memo);
+  // Order the part's items about their median along the longest axis of their centroids, and
+  // make its node an inner node; returns the middle.
+  vtkIdType Divide(const Subtree& part, Item* items, NodeCounts& memo);
+  // Build the part's subtree whole (its boxes included).
+  void Split(const Subtree& part, Item* items, NodeCounts& memo);
+  // An inner node's box from its children's.
+  void Enclose(vtkIdType index);
   static double Distance2(const Node& node, const double p[3]);
   // Call visit(t) for the triangles of every leaf whose box is within squared distance reach2
   // of p (and a rounding slack), nearer boxes first; reach2 is read again at every node (the

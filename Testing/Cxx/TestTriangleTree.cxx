@@ -54,8 +54,9 @@ FlatMesh Flatten(vtkPolyData* mesh)
 }
 
 // Random points in the bounding box grown by a quarter of its size each way, then every
-// vertex, and the midpoint of every triangle's first edge.
-std::vector<double> QueryPoints(vtkPolyData* mesh, const FlatMesh& flat, int randomCount)
+// `stride`-th vertex, and the midpoint of every `stride`-th triangle's first edge.
+std::vector<double> QueryPoints(
+  vtkPolyData* mesh, const FlatMesh& flat, int randomCount, vtkIdType stride)
 {
   double b[6];
   mesh->GetBounds(b);
@@ -71,8 +72,11 @@ std::vector<double> QueryPoints(vtkPolyData* mesh, const FlatMesh& flat, int ran
       random->Next();
     }
   }
-  queries.insert(queries.end(), flat.Points.begin(), flat.Points.end());
-  for (vtkIdType t = 0; t < flat.Count(); ++t)
+  for (std::size_t p = 0; p < flat.Points.size(); p += 3 * stride)
+  {
+    queries.insert(queries.end(), flat.Points.begin() + p, flat.Points.begin() + p + 3);
+  }
+  for (vtkIdType t = 0; t < flat.Count(); t += stride)
   {
     const double* a = flat.Points.data() + 3 * flat.Triangles[3 * t];
     const double* c = flat.Points.data() + 3 * flat.Triangles[3 * t + 1];
@@ -81,12 +85,13 @@ std::vector<double> QueryPoints(vtkPolyData* mesh, const FlatMesh& flat, int ran
   return queries;
 }
 
-void CompareWithEveryTriangle(const char* name, vtkPolyData* mesh)
+void CompareWithEveryTriangle(
+  const char* name, vtkPolyData* mesh, int randomCount = 2000, vtkIdType stride = 1)
 {
   const FlatMesh flat = Flatten(mesh);
   TriangleTree tree;
   tree.Build(flat.Points.data(), flat.Triangles.data(), flat.Count());
-  const std::vector<double> queries = QueryPoints(mesh, flat, 2000);
+  const std::vector<double> queries = QueryPoints(mesh, flat, randomCount, stride);
   int wrongClosest = 0, wrongLowest = 0, ties = 0;
   for (std::size_t q = 0; q < queries.size(); q += 3)
   {
@@ -186,5 +191,8 @@ int TestTriangleTree(int, char*[])
   // Coplanar triangles, many with a corner at one point: ties everywhere.
   CompareWithEveryTriangle("flat fan in a ring", testing::MakeFlatFanInRing(300));
   CompareWithEveryTriangle("octahedron", testing::MakeOctahedron());
+  // Large enough (81,920 triangles) for the top of the tree to be split before its subtrees
+  // are built in parallel, their boxes then joined.
+  CompareWithEveryTriangle("icosphere", testing::MakeIcosphere(6), 1000, 128);
   return meshlod::testing::Result();
 }
