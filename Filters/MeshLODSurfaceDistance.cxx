@@ -1,14 +1,12 @@
 #include "MeshLODSurfaceDistance.h"
+#include "MeshLODTriangleTree.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
-#include "vtkGenericCell.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkSMPThreadLocal.h"
-#include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
 #include "vtkStaticCellLocator.h"
 #include "vtkVersionMacros.h"
@@ -121,23 +119,22 @@ SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
   return samples;
 }
 
-// Closest-point queries on a mesh's surface. vtkTriangle finds no closest point on a triangle of
-// zero area (it reports an infinite distance), so the edges of (nearly) degenerate triangles get
-// a second locator of line cells: the distance to a triangle's edge is never less than the
-// distance to the triangle, so taking the smaller of both answers is exact for every triangle.
+// Closest-point queries on a mesh's surface: a TriangleTree over its triangles (its closest
+// point on a triangle of zero area may be no answer at all, for corners that coincide, or a
+// point of one edge only), plus, for every (nearly) degenerate triangle, its three edges as
+// triangles (u, v, v), on which the closest point is exact: the distance to a triangle's edge
+// is never less than the distance to the triangle, so the nearest of all is exact for every
+// triangle.
 struct SurfaceLocator
 {
-  vtkSmartPointer<vtkStaticCellLocator> Triangles;
-  vtkSmartPointer<vtkStaticCellLocator> DegenerateEdges; // null when there are none
+  std::vector<double> Points; // the mesh's points (as double), which the tree reads
+  std::vector<vtkIdType> Triangles;
+  TriangleTree Tree;
 };
 
-bool NearlyDegenerate(vtkPoints* points, const vtkIdType* ids)
+bool NearlyDegenerate(const double* points, const vtkIdType* ids)
 {
-  double x[3][3];
-  for (int k = 0; k < 3; ++k)
-  {
-    points->GetPoint(ids[k], x[k]);
-  }
+  const double* x[3] = { points + 3 * ids[0], points + 3 * ids[1], points + 3 * ids[2] };
   double e[3][3], longest2 = 0.0;
   for (int k = 0; k < 3; ++k)
   {
@@ -150,34 +147,32 @@ bool NearlyDegenerate(vtkPoints* points, const vtkIdType* ids)
   return vtkMath::Norm(normal) <= 1e-9 * longest2;
 }
 
-SurfaceLocator Locate(vtkPolyData* mesh, const std::vector<vtkIdType>& triangles)
+void Locate(vtkPolyData* mesh, std::vector<vtkIdType> triangles, SurfaceLocator& locator)
 {
-  SurfaceLocator result;
-  vtkNew<vtkPolyData> surface;
-  surface->SetPoints(mesh->GetPoints());
-  surface->SetPolys(mesh->GetPolys());
-  result.Triangles = BuildCellLocator(surface);
-
-  vtkNew<vtkCellArray> edges;
-  for (size_t t = 0; t < triangles.size(); t += 3)
-  {
-    if (NearlyDegenerate(mesh->GetPoints(), triangles.data() + t))
+  const vtkIdType np = mesh->GetNumberOfPoints();
+  locator.Points.resize(3 * static_cast<std::size_t>(np));
+  vtkPoints* points = mesh->GetPoints();
+  vtkSMPTools::For(0, np, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
     {
-      for (size_t k = 0; k < 3; ++k)
+      points->GetPoint(i, locator.Points.data() + 3 * i);
+    }
+  });
+  const std::size_t faces = triangles.size();
+  for (std::size_t t = 0; t < faces; t += 3)
+  {
+    if (NearlyDegenerate(locator.Points.data(), triangles.data() + t))
+    {
+      for (std::size_t k = 0; k < 3; ++k)
       {
-        const vtkIdType edge[2] = { triangles[t + k], triangles[t + (k + 1) % 3] };
-        edges->InsertNextCell(2, edge);
+        const vtkIdType u = triangles[t + k], v = triangles[t + (k + 1) % 3];
+        triangles.insert(triangles.end(), { u, v, v });
       }
     }
   }
-  if (edges->GetNumberOfCells() > 0)
-  {
-    vtkNew<vtkPolyData> lines;
-    lines->SetPoints(mesh->GetPoints());
-    lines->SetLines(edges);
-    result.DegenerateEdges = BuildCellLocator(lines);
-  }
-  return result;
+  locator.Triangles = std::move(triangles);
+  locator.Tree.Build(locator.Points.data(), locator.Triangles.data(),
+    static_cast<vtkIdType>(locator.Triangles.size() / 3));
 }
 
 // Distances from samples to a surface: the maximum over all samples and the sum of squares over
@@ -189,31 +184,11 @@ void DistancesTo(const SurfaceLocator& locator, const SampleSet& samples, double
 {
   const vtkIdType count = static_cast<vtkIdType>(samples.Positions.size() / 3);
   std::vector<double> distance(count, 0.0);
-  vtkSMPThreadLocalObject<vtkGenericCell> cells;
   vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-    vtkGenericCell* cell = cells.Local();
     for (vtkIdType i = begin; i < end; ++i)
     {
-      const double* x = samples.Positions.data() + 3 * i;
-      double closest[3];
-      vtkIdType cellId = -1;
-      int subId;
-      double dist2 = VTK_DOUBLE_MAX;
-      locator.Triangles->FindClosestPoint(x, closest, cell, cellId, subId, dist2);
-      if (cellId < 0 || !std::isfinite(dist2))
-      {
-        dist2 = VTK_DOUBLE_MAX;
-      }
-      if (locator.DegenerateEdges)
-      {
-        double edge2 = VTK_DOUBLE_MAX;
-        cellId = -1;
-        locator.DegenerateEdges->FindClosestPoint(x, closest, cell, cellId, subId, edge2);
-        if (cellId >= 0 && std::isfinite(edge2))
-        {
-          dist2 = std::min(dist2, edge2);
-        }
-      }
+      double closest[3], dist2;
+      locator.Tree.FindClosest(samples.Positions.data() + 3 * i, closest, dist2);
       distance[i] = std::sqrt(dist2);
     }
   });
@@ -273,12 +248,12 @@ SurfaceDistanceMeter::SurfaceDistanceMeter(
     return;
   }
   this->Impl->Diagonal = reference->GetNumberOfPoints() > 0 ? reference->GetLength() : 0.0;
-  const std::vector<vtkIdType> triangles = Triangles(reference);
+  std::vector<vtkIdType> triangles = Triangles(reference);
   this->Impl->Empty = triangles.empty();
   if (!this->Impl->Empty)
   {
     this->Impl->Samples = Sample(reference, triangles, options, options.Seed);
-    this->Impl->Locator = Locate(reference, triangles);
+    Locate(reference, std::move(triangles), this->Impl->Locator);
   }
 }
 
@@ -292,7 +267,7 @@ SurfaceDistance SurfaceDistanceMeter::Measure(vtkPolyData* other) const
   {
     return result;
   }
-  const std::vector<vtkIdType> triangles = Triangles(other);
+  std::vector<vtkIdType> triangles = Triangles(other);
   if (triangles.empty())
   {
     return result;
@@ -301,7 +276,9 @@ SurfaceDistance SurfaceDistanceMeter::Measure(vtkPolyData* other) const
   const SampleSet& samplesA = this->Impl->Samples;
   const SampleSet samplesB = Sample(other, triangles, options, SplitMix64(options.Seed));
   double sumAB = 0.0, sumBA = 0.0;
-  DistancesTo(Locate(other, triangles), samplesA, result.MaxAB, sumAB);
+  SurfaceLocator locator;
+  Locate(other, std::move(triangles), locator);
+  DistancesTo(locator, samplesA, result.MaxAB, sumAB);
   DistancesTo(this->Impl->Locator, samplesB, result.MaxBA, sumBA);
 
   const double nA = SquaredSampleCount(samplesA);

@@ -124,10 +124,11 @@ void TestSameForEveryBackend()
   MESHLOD_CHECK_EQ(sequential.Rms, parallel.Rms);
   MESHLOD_CHECK_GT(sequential.Hausdorff, 0.0);
 }
-// The cell locator pads cells in proportion to the data: on a sphere a millionth of a unit
+// BuildCellLocator pads cells in proportion to the data: on a sphere a millionth of a unit
 // across, a small box meets a few cells, not all of them. (VTK's default absolute padding of
-// 0.001 put every cell in every bucket: measuring the 327,680-triangle sphere below then asked
-// for tens of gigabytes and threw std::bad_alloc.)
+// 0.001 put every cell in every bucket: measuring the 327,680-triangle sphere below, when the
+// yardstick searched such a locator, asked for tens of gigabytes and threw std::bad_alloc.)
+// The yardstick's own search must measure that sphere too.
 void TestTinySurface()
 {
   vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(4);
@@ -142,7 +143,7 @@ void TestTinySurface()
   vtkSmartPointer<vtkPolyData> fine = testing::MakeIcosphere(7);
   testing::Scale(fine, 1e-6);
   vtkSmartPointer<vtkPolyData> larger = Shifted(fine, 0.0, 1.1);
-  SurfaceDistanceOptions few; // the locators are what this measures
+  SurfaceDistanceOptions few; // the search trees are what this measures
   few.SamplesPerSurface = 2000;
   few.MaximumVertexSamples = 2000;
   const SurfaceDistance d = MeasureSurfaceDistance(fine, larger, few);
