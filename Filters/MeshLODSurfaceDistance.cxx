@@ -119,33 +119,15 @@ SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
   return samples;
 }
 
-// Closest-point queries on a mesh's surface: a TriangleTree over its triangles (its closest
-// point on a triangle of zero area may be no answer at all, for corners that coincide, or a
-// point of one edge only), plus, for every (nearly) degenerate triangle, its three edges as
-// triangles (u, v, v), on which the closest point is exact: the distance to a triangle's edge
-// is never less than the distance to the triangle, so the nearest of all is exact for every
-// triangle.
+// Closest-point queries on a mesh's surface: a TriangleTree over its triangles. (Its closest
+// point on a triangle is exact to rounding whatever the triangle's shape, on one of zero area
+// too: ClosestPointOnTriangle measures such a triangle by its edges.)
 struct SurfaceLocator
 {
   std::vector<double> Points; // the mesh's points (as double), which the tree reads
   std::vector<vtkIdType> Triangles;
   TriangleTree Tree;
 };
-
-bool NearlyDegenerate(const double* points, const vtkIdType* ids)
-{
-  const double* x[3] = { points + 3 * ids[0], points + 3 * ids[1], points + 3 * ids[2] };
-  double e[3][3], longest2 = 0.0;
-  for (int k = 0; k < 3; ++k)
-  {
-    vtkMath::Subtract(x[(k + 1) % 3], x[k], e[k]);
-    longest2 = std::max(longest2, vtkMath::Dot(e[k], e[k]));
-  }
-  double normal[3];
-  vtkMath::Cross(e[0], e[1], normal);
-  // Relative threshold: slivers whose area is below 1e-9 of the square of their longest edge.
-  return vtkMath::Norm(normal) <= 1e-9 * longest2;
-}
 
 void Locate(vtkPolyData* mesh, std::vector<vtkIdType> triangles, SurfaceLocator& locator)
 {
@@ -158,18 +140,6 @@ void Locate(vtkPolyData* mesh, std::vector<vtkIdType> triangles, SurfaceLocator&
       points->GetPoint(i, locator.Points.data() + 3 * i);
     }
   });
-  const std::size_t faces = triangles.size();
-  for (std::size_t t = 0; t < faces; t += 3)
-  {
-    if (NearlyDegenerate(locator.Points.data(), triangles.data() + t))
-    {
-      for (std::size_t k = 0; k < 3; ++k)
-      {
-        const vtkIdType u = triangles[t + k], v = triangles[t + (k + 1) % 3];
-        triangles.insert(triangles.end(), { u, v, v });
-      }
-    }
-  }
   locator.Triangles = std::move(triangles);
   locator.Tree.Build(locator.Points.data(), locator.Triangles.data(),
     static_cast<vtkIdType>(locator.Triangles.size() / 3));

@@ -2,9 +2,9 @@
 //
 // Each surface is sampled area-uniformly (a fixed seed, so every run and every thread count
 // gives the same samples), and every sample's distance to the closest point of the other
-// surface is found with a bounding-box tree of its triangles (MeshLODTriangleTree.h; about 5
-// times faster than vtkStaticCellLocator on a 2M-triangle surface), which also holds the edges
-// of (nearly) zero-area triangles, where a closest point on the triangle itself is unreliable. A subset of each mesh's vertices joins the
+// surface is found with a bounding-box tree of its triangles (MeshLODTriangleTree.h; about 4
+// times faster than vtkStaticCellLocator on a 2M-triangle surface), to rounding on triangles of
+// every shape, zero-area ones included (measured by their edges). A subset of each mesh's vertices joins the
 // samples for the maxima, because the largest deviation of a simplified mesh usually sits at
 // one of its vertices. From both directions it reports the one-sided maxima and RMS values and
 // their symmetric combination:

@@ -320,8 +320,9 @@ public:
   /// IsLegal's rule on the apexes alone (paper 000's rule against new valence-3 vertices, see
   /// CollapseRules): an apex that m of star.Apexes name loses m edges and must keep at least 2
   /// (on a boundary), 4 or 3 (with or without the rule for the star's kind of collapse). The
-  /// first apex of the list that would not is star.BlockingApex (LowValenceApex). Reads
-  /// star.Apexes and star.MemberCount only, so a test may fill them by hand.
+  /// first apex of the list that would not is star.BlockingApex (LowValenceApex). Of the star
+  /// it reads Apexes and MemberCount only (and uses its scratch), so a test may fill them by
+  /// hand.
   Legality ApexValences(const Star& star, const CollapseRules& rules) const;
 
   /// Merge the members into the first one (the lowest id) at x and return it. Does not touch

@@ -284,6 +284,97 @@ bool HasEdge(const TriangleMesh& level, const VertexTriangleAdjacency& adjacency
 }
 } // namespace
 
+namespace
+{
+// From this squared sine of its largest angle (up to about 174 degrees) a triangle's closest
+// point comes from region tests, whose rounding errors grow like 1e-16 over that squared sine
+// (4e-12 at a sine of 0.1 with coordinates near 10). Thinner caps take the slower, exact path
+// of ClosestPointOnTriangle.
+constexpr double WellShapedSine2 = 1e-2;
+// Below this squared sine between two edges, their cross product is computed accurately.
+constexpr double ThinSine2 = 1e-6;
+
+// a * b - c * d to within a unit in the last place.
+double DifferenceOfProducts(double a, double b, double c, double d)
+{
+  const double cd = c * d;
+  const double error = std::fma(-c, d, cd); // cd - c * d, exactly
+  return std::fma(a, b, -cd) + error;
+}
+
+void AccurateCross(const double u[3], const double v[3], double out[3])
+{
+  out[0] = DifferenceOfProducts(u[1], v[2], u[2], v[1]);
+  out[1] = DifferenceOfProducts(u[2], v[0], u[0], v[2]);
+  out[2] = DifferenceOfProducts(u[0], v[1], u[1], v[0]);
+}
+
+// Ericson's region tests (Real-Time Collision Detection, 5.1.5) on the triangle with corner a
+// and edges ab, ac from it: which feature (corner, edge or face) is closest follows from the
+// signs of dot products of p's offsets with the edge vectors.
+double RegionClosestPoint(const double p[3], const double a[3], const double ab[3],
+  const double ac[3], double closest[3], bool& inside)
+{
+  inside = false;
+  auto at = [&](const double* origin, const double* direction, double t) {
+    for (int i = 0; i < 3; ++i)
+    {
+      closest[i] = origin[i] + t * direction[i];
+    }
+    return Distance2(p, closest);
+  };
+  double ap[3], bp[3], cp[3], b[3], c[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    b[i] = a[i] + ab[i];
+    c[i] = a[i] + ac[i];
+  }
+  Subtract(p, a, ap);
+  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0)
+  {
+    return at(a, ab, 0.0);
+  }
+  Subtract(ap, ab, bp);
+  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3)
+  {
+    return at(a, ab, 1.0);
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
+  {
+    return at(a, ab, d1 / (d1 - d3));
+  }
+  Subtract(ap, ac, cp);
+  const double d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6)
+  {
+    return at(a, ac, 1.0);
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
+  {
+    return at(a, ac, d2 / (d2 - d6));
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
+  {
+    double bc[3];
+    Subtract(ac, ab, bc);
+    return at(b, bc, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  }
+  inside = true;
+  const double total = va + vb + vc;
+  const double v = vb / total, w = vc / total;
+  for (int i = 0; i < 3; ++i)
+  {
+    closest[i] = a[i] + v * ab[i] + w * ac[i];
+  }
+  return Distance2(p, closest);
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 double ClosestPointOnTriangle(
   const double p[3], const double a[3], const double b[3], const double c[3], double closest[3])
@@ -299,70 +390,82 @@ double ClosestPointOnTriangle(const double p[3],
   double closest[3],
   bool& inside)
 {
-  inside = false;
-  // Which feature of the triangle (corner, edge or face) is closest follows from the signs of
-  // dot products of p's offsets with the edge vectors; see Ericson, Real-Time Collision
-  // Detection, 5.1.5.
-  double ab[3], ac[3], ap[3], bp[3], cp[3];
-  Subtract(b, a, ab);
-  Subtract(c, a, ac);
-  Subtract(p, a, ap);
-  auto at = [&](const double* origin, const double* direction, double t)
+  const double* corner[3] = { a, b, c };
+  double edge[3][3], length2[3];
+  int longest = 0;
+  for (int k = 0; k < 3; ++k)
   {
+    Subtract(corner[(k + 1) % 3], corner[k], edge[k]);
+    length2[k] = Dot(edge[k], edge[k]);
+    longest = length2[k] > length2[longest] ? k : longest;
+  }
+  // The corner facing the longest edge has the largest angle: from there the cross product of
+  // the edges, and the region tests below, are the most accurate. (Corner o lies between
+  // edge[o - 1] and edge[o]; the winding stays that of (b - a) x (c - a).)
+  const int o = (longest + 2) % 3;
+  const double* origin = corner[o];
+  double back[3], normal[3];
+  Subtract(corner[(o + 2) % 3], origin, back);
+  Cross(edge[o], back, normal);
+  double normal2 = Dot(normal, normal);
+  const double sides2 = length2[o] * Dot(back, back);
+  if (normal2 > 0.0 && normal2 >= WellShapedSine2 * sides2)
+  {
+    return RegionClosestPoint(p, origin, edge[o], back, closest, inside);
+  }
+  // A thin cap, every angle near 0 or 180 degrees: the region tests take barycentric
+  // coordinates from differences of nearly equal products, which rounding spoils (on a triangle
+  // 3.3 long and 3.3e-8 high, a point lying on it came out 2.5 units away), and divide 0 by 0
+  // where two corners coincide. Here: the projection on the plane where it falls inside, else
+  // the nearest of the closest points on the three edges.
+  if (normal2 < ThinSine2 * sides2)
+  {
+    // The cross product's rounding, about 1e-16 of the product of the edges' lengths, would
+    // tilt the normal by 1e-16 over the sine: each component again as a difference of two
+    // products to within a unit in the last place (Kahan's algorithm, fused multiply-adds).
+    AccurateCross(edge[o], back, normal);
+    normal2 = Dot(normal, normal);
+  }
+  // Below a sine of 1e-10 the triangle is a segment (or a point) to within rounding: its edges
+  // alone are exact to within its height.
+  inside = normal2 > 1e-20 * sides2;
+  for (int k = 0; k < 3 && inside; ++k)
+  {
+    double toP[3], side[3];
+    Subtract(p, corner[k], toP);
+    Cross(edge[k], toP, side);
+    inside = Dot(side, normal) > 0.0;
+  }
+  if (inside)
+  {
+    double toP[3];
+    Subtract(p, origin, toP);
+    const double height = Dot(toP, normal) / normal2;
     for (int i = 0; i < 3; ++i)
     {
-      closest[i] = origin[i] + t * direction[i];
+      closest[i] = p[i] - height * normal[i];
     }
-    return Distance2(p, closest);
-  };
-  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
-  if (d1 <= 0.0 && d2 <= 0.0)
-  {
-    return at(a, ab, 0.0);
+    return height * height * normal2;
   }
-  Subtract(p, b, bp);
-  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp);
-  if (d3 >= 0.0 && d4 <= d3)
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k)
   {
-    return at(b, ab, 0.0);
+    double toP[3], x[3];
+    Subtract(p, corner[k], toP);
+    const double t =
+      length2[k] > 0.0 ? std::max(0.0, std::min(1.0, Dot(toP, edge[k]) / length2[k])) : 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      x[i] = corner[k][i] + t * edge[k][i];
+    }
+    const double d2 = Distance2(p, x);
+    if (d2 < best)
+    {
+      best = d2;
+      std::copy_n(x, 3, closest);
+    }
   }
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
-  {
-    return at(a, ab, d1 / (d1 - d3));
-  }
-  Subtract(p, c, cp);
-  const double d5 = Dot(ab, cp), d6 = Dot(ac, cp);
-  if (d6 >= 0.0 && d5 <= d6)
-  {
-    return at(c, ac, 0.0);
-  }
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
-  {
-    return at(a, ac, d2 / (d2 - d6));
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
-  {
-    double bc[3];
-    Subtract(c, b, bc);
-    return at(b, bc, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  }
-  const double total = va + vb + vc;
-  if (!(total > 0.0))
-  {
-    // Degenerate (collinear corners) and p over its span: the closest of its corners and edges
-    // is on a segment, which the tests above decided already except in rounding cases.
-    return at(a, ab, std::max(0.0, std::min(1.0, d1 / std::max(Dot(ab, ab), 1e-300))));
-  }
-  inside = true;
-  const double v = vb / total, w = vc / total;
-  for (int i = 0; i < 3; ++i)
-  {
-    closest[i] = a[i] + v * ab[i] + w * ac[i];
-  }
-  return Distance2(p, closest);
+  return best;
 }
 
 //------------------------------------------------------------------------------

@@ -52,7 +52,8 @@ VTKFILTERSMESHLOD_EXPORT Id ImproveTriangulation(const TriangleMesh& input,
   TriangleMesh& level,
   const TriangulationFlipOptions& options = TriangulationFlipOptions());
 
-/// Closest point of triangle (a, b, c) to p; returns the squared distance.
+/// Closest point of triangle (a, b, c) to p; returns the squared distance. Exact to rounding
+/// on triangles of any shape, thin ones, segments (two corners equal) and points included.
 VTKFILTERSMESHLOD_EXPORT double ClosestPointOnTriangle(const double p[3],
   const double a[3],
   const double b[3],

@@ -60,6 +60,74 @@ void TestClosestPoint()
   double q[3];
   MESHLOD_CHECK_NEAR(ClosestPointOnTriangle(p, a, b, e, q), 1.0, 1e-12);
   MESHLOD_CHECK_NEAR(q[0], 1.5, 1e-12);
+  // Two corners equal (a segment) in every order, and all three (a point).
+  const double u[3] = { 0.3, -0.2, 0.7 }, v[3] = { 1.3, 0.8, -0.3 }, off[3] = { 1.3, -0.2, 0.2 };
+  const double* segments[][3] = { { u, v, v }, { u, u, v }, { v, u, v }, { u, v, u } };
+  for (const auto& s : segments)
+  {
+    // off is 0.5 of the way along (v - u) plus (0.5, -0.5, 0), which is perpendicular to it.
+    MESHLOD_CHECK_NEAR(ClosestPointOnTriangle(off, s[0], s[1], s[2], q), 0.5, 1e-14);
+  }
+  MESHLOD_CHECK_NEAR(ClosestPointOnTriangle(off, u, u, u, q), 1.25, 1e-14);
+}
+
+// Thin triangles in a tilted frame, caps, right-angled ones and needles, from 100 to 1e11 times
+// longer than high: points inside them, and points a quarter unit above those, are at the
+// distance they were placed at, to within 1e-12 (within the triangle's height from 1e10 times
+// longer than high, where its edges stand for it). The region tests of the earlier function were
+// off by more than 1e-12 in 58 of these 126 cases, by up to 0.27, and put a point lying on a
+// triangle 3.3 long and 3.3e-8 high 2.5 units away.
+void TestClosestPointOnThinTriangles()
+{
+  // An orthonormal frame: x along the triangle, y across it, n its normal.
+  const double norm = std::sqrt(1.0 + 4.0 + 9.0);
+  const double x[3] = { 1.0 / norm, 2.0 / norm, 3.0 / norm };
+  double y[3] = { 2.0, -1.0, 0.0 }; // perpendicular to x
+  const double ny = std::sqrt(5.0);
+  for (double& c : y)
+  {
+    c /= ny;
+  }
+  const double n[3] = { x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2],
+    x[0] * y[1] - x[1] * y[0] };
+  const double origin[3] = { 10.0, -4.0, 7.0 };
+  auto at = [&](double s, double t, double h, double out[3]) {
+    for (int i = 0; i < 3; ++i)
+    {
+      out[i] = origin[i] + s * x[i] + t * y[i] + h * n[i];
+    }
+  };
+  double worst = 0.0;
+  for (const double aspect : { 1e-2, 1e-4, 1e-6, 1e-8, 1e-9, 1e-10, 1e-11 })
+  {
+    for (const double apex : { 0.4, 1.0, 1e-3 }) // a cap, a right angle, a needle
+    {
+      const double length = 3.0, height = length * aspect;
+      double a[3], b[3], c[3];
+      at(0.0, 0.0, 0.0, a);
+      at(length, 0.0, 0.0, b);
+      at(apex * length, height, 0.0, c);
+      for (const double above : { 0.0, 0.25 })
+      {
+        for (const double w : { 0.2, 0.5, 0.8 })
+        {
+          // Inside: between the base and the apex, away from the edges.
+          double p[3], q[3];
+          const double s = w * length;
+          const double t = 0.3 * height *
+            std::min(s / (apex * length), (length - s) / (length - apex * length));
+          at(s, t, above, p);
+          bool inside = false;
+          const double d = std::sqrt(ClosestPointOnTriangle(p, a, b, c, q, inside));
+          // (Thinner than 1e-10 of its length, a triangle is measured as its three edges.)
+          const double allowed = aspect < 1e-10 ? height : 1e-12;
+          worst = std::max(worst, std::abs(d - above) / allowed);
+        }
+      }
+    }
+  }
+  std::cerr << "  thin triangles: largest distance error " << worst << " of the allowed\n";
+  MESHLOD_CHECK_LE(worst, 1.0);
 }
 
 //------------------------------------------------------------------------------
@@ -239,6 +307,7 @@ void TestOctreeFlips()
 int TestTriangulationFlips(int, char*[])
 {
   TestClosestPoint();
+  TestClosestPointOnThinTriangles();
   TestTentFlips();
   TestOctreeFlips();
   return meshlod::testing::Result();
