@@ -286,11 +286,14 @@ bool HasEdge(const TriangleMesh& level, const VertexTriangleAdjacency& adjacency
 
 namespace
 {
-// From this squared sine of its largest angle (up to about 174 degrees) a triangle's closest
-// point comes from region tests, whose rounding errors grow like 1e-16 over that squared sine
-// (4e-12 at a sine of 0.1 with coordinates near 10). Thinner caps take the slower, exact path
-// of ClosestPointOnTriangle.
+// A triangle's closest point comes from region tests when the squared sine of its largest
+// angle is at least WellShapedSine2 (the angle up to about 174 degrees) and its shortest edge
+// at least a hundredth of its longest. Their rounding errors grow like 1e-16 over that squared
+// sine (4e-12 at a sine of 0.1 with coordinates near 10) and with the ratio of the longest edge
+// to the shortest (1.4e-13 of the longest at 100, 2e-7 at 1e8, NaN where two corners nearly
+// coincide). Other triangles take the slower, exact path of ClosestPointOnTriangle.
 constexpr double WellShapedSine2 = 1e-2;
+constexpr double WellShapedEdgeRatio2 = 1e-4;
 // Below this squared sine between two edges, their cross product is computed accurately.
 constexpr double ThinSine2 = 1e-6;
 
@@ -392,12 +395,13 @@ double ClosestPointOnTriangle(const double p[3],
 {
   const double* corner[3] = { a, b, c };
   double edge[3][3], length2[3];
-  int longest = 0;
+  int longest = 0, shortest = 0;
   for (int k = 0; k < 3; ++k)
   {
     Subtract(corner[(k + 1) % 3], corner[k], edge[k]);
     length2[k] = Dot(edge[k], edge[k]);
     longest = length2[k] > length2[longest] ? k : longest;
+    shortest = length2[k] < length2[shortest] ? k : shortest;
   }
   // The corner facing the longest edge has the largest angle: from there the cross product of
   // the edges, and the region tests below, are the most accurate. (Corner o lies between
@@ -409,11 +413,13 @@ double ClosestPointOnTriangle(const double p[3],
   Cross(edge[o], back, normal);
   double normal2 = Dot(normal, normal);
   const double sides2 = length2[o] * Dot(back, back);
-  if (normal2 > 0.0 && normal2 >= WellShapedSine2 * sides2)
+  if (normal2 > 0.0 && normal2 >= WellShapedSine2 * sides2 &&
+    length2[shortest] >= WellShapedEdgeRatio2 * length2[longest])
   {
     return RegionClosestPoint(p, origin, edge[o], back, closest, inside);
   }
-  // A thin cap, every angle near 0 or 180 degrees: the region tests take barycentric
+  // A thin cap (every angle near 0 or 180 degrees) or a needle (an edge far shorter than the
+  // others, as between nearly coincident corners): the region tests take barycentric
   // coordinates from differences of nearly equal products, which rounding spoils (on a triangle
   // 3.3 long and 3.3e-8 high, a point lying on it came out 2.5 units away), and divide 0 by 0
   // where two corners coincide. Here: the projection on the plane where it falls inside, else
@@ -435,6 +441,16 @@ double ClosestPointOnTriangle(const double p[3],
     Subtract(p, corner[k], toP);
     Cross(edge[k], toP, side);
     inside = Dot(side, normal) > 0.0;
+  }
+  if (inside)
+  {
+    // Beyond a tip sharper than rounding resolves, a point can pass the side tests; but the
+    // triangle lies within the span of its longest edge (both angles at that edge are acute),
+    // and such a point does not.
+    double toP[3];
+    Subtract(p, corner[longest], toP);
+    const double along = Dot(toP, edge[longest]);
+    inside = along >= 0.0 && along <= length2[longest];
   }
   if (inside)
   {

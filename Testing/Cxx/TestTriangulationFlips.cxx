@@ -130,6 +130,60 @@ void TestClosestPointOnThinTriangles()
   MESHLOD_CHECK_LE(worst, 1.0);
 }
 
+// Corners that nearly coincide, found by a randomized comparison with exact rational
+// arithmetic (the expected distances are its): a needle whose short edge is 1.7e-21 long (the
+// region tests gave NaN), needles and a skewed cap with edges of 1e-15 to 1e-10 beside edges
+// of 0.07 to 4,100 (2e-4 to 4e-3 too far), and a point beyond a tip sharper than rounding
+// resolves, which passed the side tests (1.2e-15 instead of 212).
+void TestClosestPointNearCoincidentCorners()
+{
+  struct Case
+  {
+    double P[3], A[3], B[3], C[3];
+    double Distance;
+  };
+  const Case cases[] = {
+    { { 0.00019276225492827711, 4.5747833204438699e-05, 0.00047996844682112935 }, { 0, 0, 0 },
+      { -1.2932529818570011e-21, -9.1096483877555952e-22, 6.0621699280853125e-22 },
+      { 0.00018126589737832405, 4.3019428476814348e-05, 0.00045134308715512827 },
+      3.0968074613737408e-05 },
+    { { -0.43731946413710859, 0.11252309630735616, 0.19539724360620517 },
+      { -0.43387580242481721, 0.094853253710665206, 0.18573669962626882 },
+      { -0.44630176151194384, 0.15861234491257137, 0.22059538618820274 },
+      { -0.44630176151194384, 0.15861234491257192, 0.2205953861882041 }, 7.9134891071905946e-16 },
+    { { 0.24219017889109901, -0.32028818545520754, 0.079028679445251895 },
+      { 0.29589464112159469, -0.39131049047778632, 0.096552894299223452 }, { 0, 0, 0 },
+      { 0.29589464112140251, -0.39131049047736083, 0.096552894299182124 },
+      5.6850963230547076e-14 },
+    { { -950620.85247015697, -1496237.0873075542, -189893.92361563409 },
+      { -951376.99979034101, -1496608.7459056573, -189794.59223045455 },
+      { -947726.31920019654, -1494814.3775411365, -190274.16433259318 },
+      { -947726.31920019654, -1494814.3775411365, -190274.16433259309 }, 4.3717793521501185e-11 },
+    { { -191.37081960906121, -89.309010459248668, 20.408968481681462 },
+      { 1847.2472789494236, 862.07409726065271, -197.00188132635006 },
+      { 1847.2472789494368, 862.07409726065885, -197.00188132635145 }, { 0, 0, 0 },
+      212.16836696722794 },
+  };
+  for (const Case& k : cases)
+  {
+    double longest = 0.0;
+    const double* corner[3] = { k.A, k.B, k.C };
+    for (int e = 0; e < 3; ++e)
+    {
+      double d2 = 0.0;
+      for (int i = 0; i < 3; ++i)
+      {
+        const double d = corner[(e + 1) % 3][i] - corner[e][i];
+        d2 += d * d;
+      }
+      longest = std::max(longest, std::sqrt(d2));
+    }
+    double q[3];
+    const double d = std::sqrt(ClosestPointOnTriangle(k.P, k.A, k.B, k.C, q));
+    MESHLOD_CHECK_LE(std::abs(d - k.Distance), 1e-12 * longest);
+  }
+}
+
 //------------------------------------------------------------------------------
 // The tent z = height * (1 - |x|) over [-1, 1]^2 as an n x n grid (n even, so that the ridge
 // x = 0 is a grid line), triangles facing +z.
@@ -308,6 +362,7 @@ int TestTriangulationFlips(int, char*[])
 {
   TestClosestPoint();
   TestClosestPointOnThinTriangles();
+  TestClosestPointNearCoincidentCorners();
   TestTentFlips();
   TestOctreeFlips();
   return meshlod::testing::Result();
