@@ -53,7 +53,9 @@ VTKFILTERSMESHLOD_EXPORT Id ImproveTriangulation(const TriangleMesh& input,
   const TriangulationFlipOptions& options = TriangulationFlipOptions());
 
 /// Closest point of triangle (a, b, c) to p; returns the squared distance. Exact to rounding
-/// on triangles of any shape, thin ones, segments (two corners equal) and points included.
+/// on triangles of any shape, thin caps, needles, segments (two corners equal) and points
+/// included; a triangle whose edges meet at a sine below 1e-10 is measured by its edges, to
+/// within its height.
 VTKFILTERSMESHLOD_EXPORT double ClosestPointOnTriangle(const double p[3],
   const double a[3],
   const double b[3],
