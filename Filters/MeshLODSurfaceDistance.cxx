@@ -4,7 +4,6 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkMath.h"
-#include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
@@ -119,37 +118,13 @@ SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
   return samples;
 }
 
-// Closest-point queries on a mesh's surface: a TriangleTree over its triangles. (Its closest
-// point on a triangle is exact to rounding whatever the triangle's shape, on one of zero area
-// too: ClosestPointOnTriangle measures such a triangle by its edges.)
-struct SurfaceLocator
-{
-  std::vector<double> Points; // the mesh's points (as double), which the tree reads
-  std::vector<vtkIdType> Triangles;
-  TriangleTree Tree;
-};
-
-void Locate(vtkPolyData* mesh, std::vector<vtkIdType> triangles, SurfaceLocator& locator)
-{
-  const vtkIdType np = mesh->GetNumberOfPoints();
-  locator.Points.resize(3 * static_cast<std::size_t>(np));
-  vtkPoints* points = mesh->GetPoints();
-  vtkSMPTools::For(0, np, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      points->GetPoint(i, locator.Points.data() + 3 * i);
-    }
-  });
-  locator.Triangles = std::move(triangles);
-  locator.Tree.Build(locator.Points.data(), locator.Triangles.data(),
-    static_cast<vtkIdType>(locator.Triangles.size() / 3));
-}
-
 // Distances from samples to a surface: the maximum over all samples and the sum of squares over
 // the area samples (over all samples for a surface of zero area, which has vertex samples only).
 // Per-sample distances are stored first so the reduction order (and so the result) does not
 // depend on the thread count.
-void DistancesTo(const SurfaceLocator& locator, const SampleSet& samples, double& maximum,
+// (The closest point on a triangle is exact to rounding whatever the triangle's shape, on one of
+// zero area too: ClosestPointOnTriangle measures such a triangle by its edges.)
+void DistancesTo(const SurfaceTriangles& surface, const SampleSet& samples, double& maximum,
   double& sumOfSquares)
 {
   const vtkIdType count = static_cast<vtkIdType>(samples.Positions.size() / 3);
@@ -158,7 +133,7 @@ void DistancesTo(const SurfaceLocator& locator, const SampleSet& samples, double
     for (vtkIdType i = begin; i < end; ++i)
     {
       double closest[3], dist2;
-      locator.Tree.FindClosest(samples.Positions.data() + 3 * i, closest, dist2);
+      surface.Tree.FindClosest(samples.Positions.data() + 3 * i, closest, dist2);
       distance[i] = std::sqrt(dist2);
     }
   });
@@ -204,7 +179,7 @@ struct SurfaceDistanceMeter::Internals
   double Diagonal = 0.0;
   bool Empty = true;
   SampleSet Samples;
-  SurfaceLocator Locator;
+  SurfaceTriangles Surface;
 };
 
 SurfaceDistanceMeter::SurfaceDistanceMeter(
@@ -223,7 +198,7 @@ SurfaceDistanceMeter::SurfaceDistanceMeter(
   if (!this->Impl->Empty)
   {
     this->Impl->Samples = Sample(reference, triangles, options, options.Seed);
-    Locate(reference, std::move(triangles), this->Impl->Locator);
+    this->Impl->Surface.Build(reference->GetPoints(), std::move(triangles));
   }
 }
 
@@ -246,10 +221,10 @@ SurfaceDistance SurfaceDistanceMeter::Measure(vtkPolyData* other) const
   const SampleSet& samplesA = this->Impl->Samples;
   const SampleSet samplesB = Sample(other, triangles, options, SplitMix64(options.Seed));
   double sumAB = 0.0, sumBA = 0.0;
-  SurfaceLocator locator;
-  Locate(other, std::move(triangles), locator);
-  DistancesTo(locator, samplesA, result.MaxAB, sumAB);
-  DistancesTo(this->Impl->Locator, samplesB, result.MaxBA, sumBA);
+  SurfaceTriangles surface;
+  surface.Build(other->GetPoints(), std::move(triangles));
+  DistancesTo(surface, samplesA, result.MaxAB, sumAB);
+  DistancesTo(this->Impl->Surface, samplesB, result.MaxBA, sumBA);
 
   const double nA = SquaredSampleCount(samplesA);
   const double nB = SquaredSampleCount(samplesB);

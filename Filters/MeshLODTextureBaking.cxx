@@ -23,9 +23,7 @@ namespace meshlod
 {
 struct TextureBaker::Internals
 {
-  TriangleTree Tree; // over Triangles and Points
-  std::vector<vtkIdType> Triangles; // 3 point ids per triangle of the input
-  std::vector<double> Points;
+  SurfaceTriangles Surface; // the input's triangles and points, and the tree over them
   // Colour mode: 4 floats (0-255) per point.
   std::vector<float> Colors;
   // Texture mode.
@@ -123,7 +121,7 @@ TextureBaker::~TextureBaker()
 bool TextureBaker::SetSurface(vtkPolyData* surface, std::string& error)
 {
   Internals& impl = *this->Impl;
-  impl.Triangles.clear();
+  std::vector<vtkIdType> triangles;
   auto it = vtk::TakeSmartPointer(surface->GetPolys()->NewIterator());
   for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
   {
@@ -135,16 +133,9 @@ bool TextureBaker::SetSurface(vtkPolyData* surface, std::string& error)
       error = "the surface to bake from must be made of triangles";
       return false;
     }
-    impl.Triangles.insert(impl.Triangles.end(), ids, ids + 3);
+    triangles.insert(triangles.end(), ids, ids + 3);
   }
-  const vtkIdType np = surface->GetNumberOfPoints();
-  impl.Points.resize(3 * static_cast<size_t>(np));
-  for (vtkIdType p = 0; p < np; ++p)
-  {
-    surface->GetPoint(p, impl.Points.data() + 3 * p);
-  }
-  impl.Tree.Build(impl.Points.data(), impl.Triangles.data(),
-    static_cast<vtkIdType>(impl.Triangles.size() / 3));
+  impl.Surface.Build(surface->GetPoints(), std::move(triangles));
   impl.Diagonal = surface->GetLength();
   return true;
 }
@@ -267,18 +258,18 @@ void TextureBaker::ColorAt(const double point[3], float rgba[4]) const
   const Internals& impl = *this->Impl;
   double closest[3];
   double dist2 = 0.0;
-  vtkIdType cellId = impl.Tree.FindClosest(point, closest, dist2);
+  vtkIdType cellId = impl.Surface.Tree.FindClosest(point, closest, dist2);
   if (cellId < 0)
   {
     rgba[0] = rgba[1] = rgba[2] = 0.0f;
     rgba[3] = 255.0f;
     return;
   }
-  const vtkIdType* ids = impl.Triangles.data() + 3 * cellId;
+  const vtkIdType* ids = impl.Surface.Triangles.data() + 3 * cellId;
   double w[3];
+  const double* points = impl.Surface.Points.data();
   auto weigh = [&]() {
-    Barycentric(impl.Points.data() + 3 * ids[0], impl.Points.data() + 3 * ids[1],
-      impl.Points.data() + 3 * ids[2], closest, w);
+    Barycentric(points + 3 * ids[0], points + 3 * ids[1], points + 3 * ids[2], closest, w);
   };
   weigh();
   // Closest on an edge or a corner: other triangles are as close, within rounding, and which
@@ -290,11 +281,11 @@ void TextureBaker::ColorAt(const double point[3], float rgba[4]) const
   if (std::min({ w[0], w[1], w[2] }) <= 1e-6)
   {
     const double tie = dist2 * (1.0 + 1e-9) + 1e-24 * impl.Diagonal * impl.Diagonal;
-    const vtkIdType lowest = impl.Tree.FindLowestWithin(point, tie, closest);
+    const vtkIdType lowest = impl.Surface.Tree.FindLowestWithin(point, tie, closest);
     if (lowest >= 0 && lowest != cellId)
     {
       cellId = lowest;
-      ids = impl.Triangles.data() + 3 * cellId;
+      ids = impl.Surface.Triangles.data() + 3 * cellId;
       weigh();
     }
   }

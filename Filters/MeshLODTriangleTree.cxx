@@ -2,12 +2,12 @@
 
 #include "Core/TriangulationFlips.h"
 
+#include "vtkPoints.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 namespace meshlod
 {
@@ -311,5 +311,21 @@ vtkIdType TriangleTree::FindLowestWithin(
     }
   });
   return best;
+}
+
+//------------------------------------------------------------------------------
+void SurfaceTriangles::Build(vtkPoints* points, std::vector<vtkIdType> triangles)
+{
+  const vtkIdType np = points ? points->GetNumberOfPoints() : 0;
+  this->Points.resize(3 * static_cast<std::size_t>(np));
+  vtkSMPTools::For(0, np, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      points->GetPoint(i, this->Points.data() + 3 * i);
+    }
+  });
+  this->Triangles = std::move(triangles);
+  this->Tree.Build(this->Points.data(), this->Triangles.data(),
+    static_cast<vtkIdType>(this->Triangles.size() / 3));
 }
 } // namespace meshlod

@@ -20,6 +20,8 @@
 #include <utility>
 #include <vector>
 
+class vtkPoints;
+
 namespace meshlod
 {
 class VTKFILTERSMESHLOD_EXPORT TriangleTree
@@ -73,6 +75,22 @@ private:
   double Magnitude = 0.0; // the largest coordinate of the triangles, in absolute value
   const double* Points = nullptr;
   const vtkIdType* Triangles = nullptr;
+};
+
+/// A TriangleTree with the arrays it reads, for a vtkPolyData's surface (whose points may be
+/// float): the points as double and the triangles. Not copyable: the tree points into them.
+struct VTKFILTERSMESHLOD_EXPORT SurfaceTriangles
+{
+  std::vector<double> Points;        // x, y, z per point
+  std::vector<vtkIdType> Triangles;  // 3 point ids per triangle
+  TriangleTree Tree;                 // over the two
+
+  SurfaceTriangles() = default;
+  SurfaceTriangles(const SurfaceTriangles&) = delete;
+  SurfaceTriangles& operator=(const SurfaceTriangles&) = delete;
+
+  /// Copy `points` (none when null), take `triangles` and build the tree over them.
+  void Build(vtkPoints* points, std::vector<vtkIdType> triangles);
 };
 } // namespace meshlod
 

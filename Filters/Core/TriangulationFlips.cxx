@@ -434,12 +434,16 @@ double ClosestPointOnTriangle(const double p[3],
   }
   // Below a sine of 1e-10 the triangle is a segment (or a point) to within rounding: its edges
   // alone are exact to within its height.
+  double offset[3][3]; // p - corner[k]
+  for (int k = 0; k < 3; ++k)
+  {
+    Subtract(p, corner[k], offset[k]);
+  }
   inside = normal2 > 1e-20 * sides2;
   for (int k = 0; k < 3 && inside; ++k)
   {
-    double toP[3], side[3];
-    Subtract(p, corner[k], toP);
-    Cross(edge[k], toP, side);
+    double side[3];
+    Cross(edge[k], offset[k], side);
     inside = Dot(side, normal) > 0.0;
   }
   if (inside)
@@ -447,16 +451,12 @@ double ClosestPointOnTriangle(const double p[3],
     // Beyond a tip sharper than rounding resolves, a point can pass the side tests; but the
     // triangle lies within the span of its longest edge (both angles at that edge are acute),
     // and such a point does not.
-    double toP[3];
-    Subtract(p, corner[longest], toP);
-    const double along = Dot(toP, edge[longest]);
+    const double along = Dot(offset[longest], edge[longest]);
     inside = along >= 0.0 && along <= length2[longest];
   }
   if (inside)
   {
-    double toP[3];
-    Subtract(p, origin, toP);
-    const double height = Dot(toP, normal) / normal2;
+    const double height = Dot(offset[o], normal) / normal2;
     for (int i = 0; i < 3; ++i)
     {
       closest[i] = p[i] - height * normal[i];
@@ -466,10 +466,9 @@ double ClosestPointOnTriangle(const double p[3],
   double best = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k)
   {
-    double toP[3], x[3];
-    Subtract(p, corner[k], toP);
+    double x[3];
     const double t =
-      length2[k] > 0.0 ? std::max(0.0, std::min(1.0, Dot(toP, edge[k]) / length2[k])) : 0.0;
+      length2[k] > 0.0 ? std::max(0.0, std::min(1.0, Dot(offset[k], edge[k]) / length2[k])) : 0.0;
     for (int i = 0; i < 3; ++i)
     {
       x[i] = corner[k][i] + t * edge[k][i];
