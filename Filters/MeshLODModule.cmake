@@ -28,6 +28,7 @@ set(meshlod_private_headers
   Filters/Core/LevelData.h
   Filters/Core/LevelTracker.h
   Filters/Core/LocalSurfaceFit.h
+  Filters/Core/MergedLink.h
   Filters/Core/OctreeClustering.h
   Filters/Core/OctreeClusteringInternals.h
   Filters/Core/ParallelCompact.h

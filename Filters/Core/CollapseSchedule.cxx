@@ -1,10 +1,12 @@
 #include "CollapseSchedule.h"
 #include "GroupByKey.h"
+#include "MergedLink.h"
 #include "Vector3.h"
 
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <limits>
 #include <utility>
@@ -430,9 +432,158 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     }
     return nextLevelValid[t] == 1;
   };
+  // The link of the target whose collapse is being settled (`tracked`), kept by `link` (see
+  // MergedLink): the link edge triangle `tri` gives the vertex of class `root`, if any.
+  MergedLink link; // sized when first used (most transitions have no large collapse)
+  bool linkSized = false;
+  Id tracked = Unassigned;
+  auto linkEdge = [&](Id tri, Id root, Id& from, Id& to) {
+    const Id* v = triangles + 3 * static_cast<size_t>(tri);
+    const Id c[3] = { Find(parent, v[0]), Find(parent, v[1]), Find(parent, v[2]) };
+    if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
+    {
+      return false;
+    }
+    const int k = c[0] == root ? 0 : (c[1] == root ? 1 : (c[2] == root ? 2 : -1));
+    if (k < 0)
+    {
+      return false;
+    }
+    from = c[(k + 1) % 3];
+    to = c[(k + 2) % 3];
+    return true;
+  };
+  // Track target t: its link listed from its settled points.
+  auto track = [&](Id t) {
+    if (!linkSized)
+    {
+      link.Reset(numberOfPoints, numberOfTriangles);
+      linkSized = true;
+    }
+    link.Clear();
+    tracked = t;
+    if (settledOn[t] == Unassigned)
+    {
+      return;
+    }
+    const Id root = Find(parent, settledOn[t]);
+    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
+    {
+      const Id q = targetPoints[i];
+      for (Id j = adjacency.Begin(q); j < adjacency.End(q) && this->Step[q] != Unassigned; ++j)
+      {
+        const Id tri = adjacency.Triangles[j];
+        Id from, to;
+        if (!link.Holds(tri) && linkEdge(tri, root, from, to))
+        {
+          link.Add(tri, from, to);
+        }
+      }
+    }
+  };
+  // Point q (a class of its own) joins class `root` of the tracked target: the link edges of
+  // its triangles change. With `undo`, the edges removed are kept there for leave().
+  std::vector<std::array<Id, 3>> undo;
+  auto join = [&](Id q, Id root, std::vector<std::array<Id, 3>>* removed) {
+    for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
+    {
+      const Id tri = adjacency.Triangles[j];
+      if (link.Holds(tri))
+      {
+        const std::pair<Id, Id> e = link.Remove(tri);
+        if (removed)
+        {
+          removed->push_back({ tri, e.first, e.second });
+        }
+      }
+    }
+    parent[q] = root;
+    for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
+    {
+      const Id tri = adjacency.Triangles[j];
+      Id from, to;
+      if (linkEdge(tri, root, from, to))
+      {
+        link.Add(tri, from, to);
+      }
+    }
+  };
+  // Undoes join(q, ..., &removed): q is a class of its own again.
+  auto leave = [&](Id q, const std::vector<std::array<Id, 3>>& removed) {
+    for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
+    {
+      const Id tri = adjacency.Triangles[j];
+      if (link.Holds(tri))
+      {
+        link.Remove(tri);
+      }
+    }
+    parent[q] = q;
+    for (const auto& e : removed)
+    {
+      link.Add(e[0], e[1], e[2]);
+    }
+  };
+  // Per target, whether two of the triangles around its points use the same directed edge (0:
+  // not asked yet, 1: no, 2: yes). Asked when a fan test fails; where no such edge is, the test
+  // for a surface without consistent orientation cannot pass for any of its points.
+  std::vector<std::uint8_t> inconsistentAt(numberOfTargets, 0);
+  auto mayBeInconsistent = [&](Id t) {
+    if (inconsistentAt[t] == 0)
+    {
+      std::vector<Id> all(
+        targetPoints.begin() + targetOffsets[t], targetPoints.begin() + targetOffsets[t + 1]);
+      inconsistentAt[t] = HasRepeatedDirectedEdge(triangles, adjacency, all, around, directed) ? 2 : 1;
+    }
+    return inconsistentAt[t] == 2;
+  };
+  // fanIsValid for the tracked target t, whose link holds the points settled and `extra`.
+  auto trackedFanIsValid = [&](Id t, Id extra) {
+    if (link.IsOneFan())
+    {
+      return true;
+    }
+    const int sheets = sheetsAt(t);
+    if (sheets <= 2 && !mayBeInconsistent(t))
+    {
+      return false;
+    }
+    link.Export(from, to);
+    if (sheets > 2)
+    {
+      return LinkHasShape(from, to, sheets, 2);
+    }
+    members.clear();
+    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
+    {
+      const Id q = targetPoints[i];
+      if (q == extra || this->Step[q] != Unassigned)
+      {
+        members.push_back(q);
+      }
+    }
+    return (LinkHasShape(from, to, 1, 2) || LinkHasShape(from, to, 2, 0)) &&
+      HasRepeatedDirectedEdge(triangles, adjacency, members, around, directed);
+  };
   // Whether the points settled on target t (and `extra`, when given) form one vertex with one
-  // fan; `extra` must already point at the class root.
+  // fan; `extra` must already point at the class root, except for the tracked target.
   auto hasOneFan = [&](Id t, Id extra) {
+    if (t == tracked)
+    {
+      bool valid = false;
+      if (extra == Unassigned)
+      {
+        valid = trackedFanIsValid(t, extra);
+      }
+      else
+      {
+        undo.clear();
+        join(extra, Find(parent, settledOn[t]), &undo);
+        valid = trackedFanIsValid(t, extra);
+        leave(extra, undo);
+      }
+      return valid || !validInNextLevel(t);
+    }
     members.clear();
     for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
     {
@@ -450,6 +601,10 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     if (settledOn[t] == Unassigned)
     {
       return true; // the first point of its target only moves
+    }
+    if (t == tracked)
+    {
+      return hasOneFan(t, p);
     }
     const Id saved = parent[p];
     parent[p] = Find(parent, settledOn[t]);
@@ -537,6 +692,14 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     if (settledOn[t] == Unassigned)
     {
       settledOn[t] = p;
+      if (t == tracked)
+      {
+        track(t);
+      }
+    }
+    else if (t == tracked)
+    {
+      join(p, Find(parent, settledOn[t]), nullptr);
     }
     parent[Find(parent, p)] = Find(parent, settledOn[t]);
     if (!ok && std::find(broken.begin(), broken.end(), t) == broken.end())
@@ -556,9 +719,33 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   // whose merge keeps a valid mesh and folds no triangle around it; else the first whose merge
   // keeps a valid mesh; else the first anyway (the step is then passed through, not stopped
   // at). `wholeValid`: the whole merge was found valid, so the last point needs no test.
+  // Those joined points, the frontier, are kept sorted as points settle: a point settling
+  // joins its neighbours in the collapse, and nothing else does.
+  std::vector<size_t> collapseOfPoint(numberOfPoints, collapses.size());
+  for (size_t c = 0; c < collapses.size(); ++c)
+  {
+    for (size_t i = collapses[c].first; i < collapses[c].second; ++i)
+    {
+      collapseOfPoint[moving[i]] = c;
+    }
+  }
+  std::vector<Id> frontier;
+  std::vector<std::uint8_t> inFrontier(numberOfPoints, 0);
+  auto enter = [&](Id q) {
+    if (!inFrontier[q])
+    {
+      inFrontier[q] = 1;
+      frontier.insert(std::lower_bound(frontier.begin(), frontier.end(), q), q);
+    }
+  };
   auto settle = [&](size_t c, bool wholeValid) {
     const size_t begin = collapses[c].first, end = collapses[c].second;
     const Id t = target[moving[begin]];
+    const bool large = end - begin >= std::max<size_t>(1, this->TrackedCollapsePoints);
+    if (large)
+    {
+      track(t);
+    }
     // The collapse's points not settled yet, in increasing id.
     const auto listLeft = [&]() {
       joined.clear();
@@ -570,61 +757,109 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
         }
       }
     };
+    // Whether point q has a neighbour settled on t.
+    const auto nextToSettled = [&](Id q) {
+      for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
+      {
+        const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
+        for (int k = 0; k < 3; ++k)
+        {
+          if (tri[k] != q && target[tri[k]] == t && this->Step[tri[k]] != Unassigned)
+          {
+            return true;
+          }
+        }
+      }
+      return false;
+    };
+    // The frontier listed from scratch: for a large collapse once, then kept up to date.
+    const auto listFrontier = [&]() {
+      for (const Id q : frontier)
+      {
+        inFrontier[q] = 0;
+      }
+      frontier.clear();
+      for (size_t i = begin; i < end; ++i)
+      {
+        const Id q = moving[i]; // increasing id: a collapse's points are sorted by id
+        if (this->Step[q] == Unassigned && nextToSettled(q))
+        {
+          inFrontier[q] = 1;
+          frontier.push_back(q);
+        }
+      }
+    };
     for (size_t settled = begin; settled < end; ++settled)
     {
+      if (settled == begin || !large)
+      {
+        listFrontier();
+      }
       if (wholeValid && settled + 1 == end)
       {
         listLeft();
         record(joined.front(), t, true);
         break;
       }
-      joined.clear();
-      for (size_t i = begin; i < end; ++i)
-      {
-        const Id q = moving[i];
-        bool next = false;
-        for (Id j = adjacency.Begin(q);
-             j < adjacency.End(q) && !next && this->Step[q] == Unassigned; ++j)
-        {
-          const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
-          for (int k = 0; k < 3; ++k)
-          {
-            next = next ||
-              (tri[k] != q && target[tri[k]] == t && this->Step[tri[k]] != Unassigned);
-          }
-        }
-        if (next)
-        {
-          joined.push_back(q); // increasing id: a collapse's points are sorted by id
-        }
-      }
       // None joined to a settled one (the target's first point, among others): any may go.
-      if (joined.empty())
+      const std::vector<Id>* choices = &frontier;
+      if (frontier.empty())
       {
         listLeft();
+        choices = &joined;
       }
       // Each test reads the whole merged vertex, so trying every joined point of every step
       // cost a collapse of m points about m^3 (a sphere with points crowded at a pole had one
       // of 6,971 points: 97 s). At most TestBudget / m joined points are tried per step: the
       // first valid merge that folds nothing, else the first valid merge, else the first point.
-      // The fold test reads q's own triangles, the fan test the whole merged vertex: the fold
+      // The fold test reads q's own triangles, the fan test the merged vertex's link: the fold
       // test goes first, and the fan test of the first valid point is made only when none of
       // them passes both (where merged points drag long triangles across, most tries fold; a
       // UV sphere's octree levels spent 13 s on fan tests of points that folded).
-      const size_t tries = std::min(joined.size(), std::max<size_t>(1, TestBudget / (end - begin)));
+      const size_t tries =
+        std::min(choices->size(), std::max<size_t>(1, TestBudget / (end - begin)));
       Id p = Unassigned;
       for (size_t i = 0; i < tries && p == Unassigned; ++i)
       {
-        const Id q = joined[i];
+        const Id q = (*choices)[i];
         p = !foldsAround(q) && validWith(q) ? q : Unassigned;
       }
       for (size_t i = 0; i < tries && p == Unassigned; ++i)
       {
-        p = validWith(joined[i]) ? joined[i] : Unassigned;
+        p = validWith((*choices)[i]) ? (*choices)[i] : Unassigned;
       }
       const bool ok = p != Unassigned;
-      record(ok ? p : joined.front(), t, ok);
+      p = ok ? p : choices->front();
+      record(p, t, ok);
+      if (!large)
+      {
+        continue;
+      }
+      if (inFrontier[p])
+      {
+        inFrontier[p] = 0;
+        frontier.erase(std::lower_bound(frontier.begin(), frontier.end(), p));
+      }
+      for (Id j = adjacency.Begin(p); j < adjacency.End(p); ++j)
+      {
+        const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
+        for (int k = 0; k < 3; ++k)
+        {
+          const Id q = tri[k];
+          if (collapseOfPoint[q] == c && this->Step[q] == Unassigned)
+          {
+            enter(q);
+          }
+        }
+      }
     }
+    for (const Id q : frontier)
+    {
+      inFrontier[q] = 0;
+    }
+    frontier.clear();
+    link.Clear();
+    tracked = Unassigned;
   };
 
   // Whether collapse c, made whole now, would leave its target with one fan: its points merged
@@ -717,14 +952,6 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   // level, so the steps between groups can be stopped at (made in plain order, one broken
   // target kept every later step unstoppable: an extruded text's 19,820-triangle level was the
   // only count below 31,579).
-  std::vector<size_t> collapseOfPoint(numberOfPoints, collapses.size());
-  for (size_t c = 0; c < collapses.size(); ++c)
-  {
-    for (size_t i = collapses[c].first; i < collapses[c].second; ++i)
-    {
-      collapseOfPoint[moving[i]] = c;
-    }
-  }
   std::vector<size_t> group;
   for (size_t c = 0; c < collapses.size(); ++c)
   {

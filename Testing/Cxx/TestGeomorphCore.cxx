@@ -2,13 +2,28 @@
 // schedule of the exact-count mode and the edge merge of the nearest-vertex mode.
 #include "Core/CollapseSchedule.h"
 #include "Core/EdgeMerge.h"
+#include "Core/MergedLink.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestHierarchies.h"
 #include "MeshLODTestMeshes.h"
 
+#include "MeshLODHierarchy.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkParametricBoy.h"
+#include "vtkParametricFunctionSource.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkTriangleCollapseDecimation.h"
+#include "vtkTriangleFilter.h"
+#include "vtkVertexClusterOctree.h"
 
+#include <algorithm>
 #include <initializer_list>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace
@@ -24,6 +39,11 @@ using namespace meshlod;
 //    8 [9 10] 11
 //    4 [5  6]  7
 //    0  1  2  3
+// The hand-made cases run twice: with every collapse's link kept up to date as its points join
+// (MergedLink, as for collapses of many points), and listed again for each test (as for
+// collapses of a few points). Both must give the same schedule.
+size_t TrackedCollapsePoints = 1;
+
 // The transition inputs of CollapseSchedule::Build on the 3x3 grid below: every point fixed
 // at its own target until Collapse() moves some.
 struct GridCollapses
@@ -55,6 +75,7 @@ struct GridCollapses
   }
   void Build(CollapseSchedule& s) const
   {
+    s.TrackedCollapsePoints = TrackedCollapsePoints;
     s.Build(this->Grid.Triangles.data(), 18, 16, this->Target.data(), this->Rank.data(),
       this->AtTarget.data());
   }
@@ -119,6 +140,47 @@ void TestCluster()
   MESHLOD_CHECK(s.CountAfter == std::vector<Id>({ 18, 18, 17, 17 }));
 }
 
+// The link of a merged vertex, edge by edge (the triangle ids only name the edges).
+void TestMergedLink()
+{
+  MergedLink link;
+  link.Reset(10, 10);
+  MESHLOD_CHECK(link.IsOneFan()); // no edge
+  link.Add(0, 1, 2);
+  link.Add(1, 2, 3);
+  MESHLOD_CHECK(link.IsOneFan()); // a path 1 -> 2 -> 3
+  link.Add(2, 3, 1);
+  MESHLOD_CHECK(link.IsOneFan()); // a cycle of three
+  link.Add(3, 1, 4);
+  MESHLOD_CHECK(!link.IsOneFan()); // two edges leave 1
+  MESHLOD_CHECK(link.Remove(3) == std::make_pair(Id(1), Id(4)));
+  link.Add(4, 5, 6);
+  link.Add(5, 6, 7);
+  link.Add(6, 7, 5);
+  MESHLOD_CHECK(!link.IsOneFan()); // two cycles
+  link.Remove(2);
+  MESHLOD_CHECK(!link.IsOneFan()); // a path and a cycle
+  link.Remove(5);
+  MESHLOD_CHECK(!link.IsOneFan()); // two paths: two starts
+  link.Remove(4);
+  link.Remove(6);
+  MESHLOD_CHECK(link.IsOneFan()); // 1 -> 2 -> 3
+  link.Add(7, 3, 2);
+  MESHLOD_CHECK(!link.IsOneFan()); // 2 entered twice
+  link.Remove(7);
+  link.Add(8, 3, 1);
+  link.Remove(0);
+  MESHLOD_CHECK(link.IsOneFan()); // 2 -> 3 -> 1
+  link.Add(9, 1, 2);
+  MESHLOD_CHECK(link.IsOneFan()); // the cycle again, its edges held by other triangles
+  MESHLOD_CHECK(link.Holds(9) && !link.Holds(0));
+  link.Clear();
+  MESHLOD_CHECK(link.IsOneFan() && !link.Holds(9));
+  link.Add(0, 1, 2);
+  link.Add(1, 2, 1);
+  MESHLOD_CHECK(!link.IsOneFan()); // a cycle of two edges is no fan
+}
+
 // The 1x1 grid: edges (0,1) (0,2) (0,3) (1,3) (2,3); merging along (1,3) and (2,3).
 void TestEdgeMerge()
 {
@@ -153,6 +215,58 @@ void TestPinchOfTheNextLevel()
   grid.Build(s);
   MESHLOD_CHECK(s.Order == std::vector<Id>({ 0, 15, 1, 2 }));
   MESHLOD_CHECK(s.Stops == std::vector<Id>({ 0, 1, 2, 3, 4 }));
+
+  // The same with a third point: 3 joined to 0 is not one fan either, but neither is the
+  // target in the next level, so the step is a stop.
+  grid.Reset();
+  grid.Collapse({ 0, 3, 15 }, 0, 0);
+  grid.Build(s);
+  MESHLOD_CHECK(s.Order == std::vector<Id>({ 0, 3, 15 }));
+  MESHLOD_CHECK(s.Stops == std::vector<Id>({ 0, 1, 2, 3 }));
+}
+
+// A collapse along a curve where three sheets meet (the equator of a sphere with an equatorial
+// disk): the points near one equator point merge into it one at a time. The merged vertex
+// then has three fans between its two neighbours on the curve, a valid vertex there.
+void TestCollapseOnCurve()
+{
+  const TriangleMesh mesh =
+    testing::ToTriangleMesh(testing::MakeSphereWithEquatorialDisk(32, 17, 8));
+  const Id n = mesh.GetNumberOfPoints();
+  Id centre = 0;
+  for (Id p = 1; p < n; ++p)
+  {
+    const double* x = mesh.Point(p);
+    centre = std::abs(x[2]) < 1e-9 && x[0] > mesh.Point(centre)[0] ? p : centre;
+  }
+  std::vector<Id> target(n);
+  std::vector<std::int64_t> rank(n, -1);
+  std::vector<std::uint8_t> atTarget(n, 1);
+  Id moving = 0;
+  for (Id p = 0; p < n; ++p)
+  {
+    const double* x = mesh.Point(p);
+    const double* c = mesh.Point(centre);
+    const double d2 = (x[0] - c[0]) * (x[0] - c[0]) + (x[1] - c[1]) * (x[1] - c[1]) +
+      (x[2] - c[2]) * (x[2] - c[2]);
+    target[p] = d2 < 0.35 * 0.35 ? centre : p;
+    if (target[p] != p)
+    {
+      rank[p] = 0;
+      atTarget[p] = 0;
+      ++moving;
+    }
+  }
+  CollapseSchedule s;
+  s.TrackedCollapsePoints = TrackedCollapsePoints;
+  s.Build(mesh.Triangles.data(), mesh.GetNumberOfTriangles(), n, target.data(), rank.data(),
+    atTarget.data());
+  // 16 points, each step a stop; 34 triangles go (two per edge collapse on a sheet, three
+  // where the collapse runs along the curve).
+  MESHLOD_CHECK_EQ(moving, 16);
+  MESHLOD_CHECK_EQ(s.NumberOfSteps(), 16);
+  MESHLOD_CHECK_EQ(s.Stops.size(), size_t(17));
+  MESHLOD_CHECK_EQ(s.CountAfter.front() - s.CountAfter.back(), 34);
 }
 
 // A collapse whose merge is valid only after its neighbour's waits for it. Points 1 and 4
@@ -172,13 +286,157 @@ void TestCollapseWaitsForNeighbour()
   MESHLOD_CHECK(s.Stops == std::vector<Id>({ 0, 1, 2, 3, 4 }));
   MESHLOD_CHECK(s.CountAfter == std::vector<Id>({ 18, 18, 16, 16, 16 }));
 }
+// The transition from a hierarchy's level to the next, read as vtkLODGeomorph reads it.
+struct Transition
+{
+  TriangleMesh Mesh;
+  std::vector<Id> Target;
+  std::vector<std::int64_t> Rank;
+  std::vector<std::uint8_t> AtTarget;
+  std::vector<double> To;
+
+  explicit Transition(vtkPolyData* level)
+    : Mesh(testing::ToTriangleMesh(level))
+  {
+    vtkPointData* pd = level->GetPointData();
+    vtkDataArray* target = pd->GetArray(names::MorphTargetId);
+    vtkDataArray* rank = pd->GetArray(names::CollapseRank);
+    vtkDataArray* to = pd->GetArray(names::MorphTarget);
+    const Id n = this->Mesh.GetNumberOfPoints();
+    this->To.resize(3 * static_cast<size_t>(n));
+    for (Id p = 0; p < n; ++p)
+    {
+      this->Target.push_back(static_cast<Id>(target->GetComponent(p, 0)));
+      this->Rank.push_back(static_cast<std::int64_t>(rank->GetComponent(p, 0)));
+      to->GetTuple(p, this->To.data() + 3 * static_cast<size_t>(p));
+      const double* from = this->Mesh.Point(p);
+      const double* x = this->To.data() + 3 * static_cast<size_t>(p);
+      this->AtTarget.push_back(from[0] == x[0] && from[1] == x[1] && from[2] == x[2] ? 1 : 0);
+    }
+  }
+
+  // The schedule, with the link of collapses of at least `tracked` points kept up to date.
+  void Build(CollapseSchedule& s, size_t tracked, bool waitForFolds) const
+  {
+    s.TrackedCollapsePoints = tracked;
+    s.Build(this->Mesh.Triangles.data(), this->Mesh.GetNumberOfTriangles(),
+      this->Mesh.GetNumberOfPoints(), this->Target.data(), this->Rank.data(),
+      this->AtTarget.data(), this->Mesh.Points.data(), this->To.data(), waitForFolds);
+  }
+
+  // The most points of one collapse (same target and rank).
+  Id LargestCollapse() const
+  {
+    std::map<std::pair<Id, std::int64_t>, Id> sizes;
+    Id largest = 0;
+    for (size_t p = 0; p < this->Target.size(); ++p)
+    {
+      if (!this->AtTarget[p])
+      {
+        largest = std::max(largest, ++sizes[{ this->Target[p], this->Rank[p] }]);
+      }
+    }
+    return largest;
+  }
+};
+
+// Every transition of a hierarchy scheduled with the link of every collapse kept up to date
+// and with it listed again for each test: the same steps, stops and counts. Returns the most
+// points of one collapse and the smallest share of steps that can be stopped at.
+void CheckTrackedLinks(const char* name, vtkMultiBlockDataSet* hierarchy, Id& largest,
+  double& reachable)
+{
+  largest = 0;
+  reachable = 1.0;
+  for (unsigned level = 0; level + 1 < hierarchy->GetNumberOfBlocks(); ++level)
+  {
+    const Transition transition(vtkPolyData::SafeDownCast(hierarchy->GetBlock(level)));
+    largest = std::max(largest, transition.LargestCollapse());
+    for (const bool waitForFolds : { true, false })
+    {
+      CollapseSchedule tracked, listed;
+      transition.Build(tracked, 1, waitForFolds);
+      transition.Build(listed, std::numeric_limits<size_t>::max(), waitForFolds);
+      const bool same = tracked.Order == listed.Order && tracked.Stops == listed.Stops &&
+        tracked.CountAfter == listed.CountAfter &&
+        tracked.WaitedForFolds == listed.WaitedForFolds;
+      if (!same)
+      {
+        std::cerr << name << ", level " << level << (waitForFolds ? ", waiting for folds" : "")
+                  << ": the schedules differ\n";
+      }
+      MESHLOD_CHECK(same);
+      reachable = std::min(reachable,
+        static_cast<double>(tracked.Stops.size()) / (tracked.NumberOfSteps() + 1.0));
+    }
+  }
+}
+
+// Octree levels of smooth surfaces merge hundreds of points into one, the case the link is kept
+// up to date for: on a manifold sphere, along a curve where three sheets meet (the equatorial
+// disk), and on a surface without consistent orientation (Boy's surface, whose test for one
+// fan falls back to the link's shape); and a single level of a few triangles from
+// vtkTriangleCollapseDecimation, whose every target takes thousands of small collapses.
+void TestTrackedLinks()
+{
+  struct Case
+  {
+    const char* Name;
+    vtkSmartPointer<vtkMultiBlockDataSet> Hierarchy;
+    Id LargestAtLeast;
+    double ReachableAtLeast;
+  };
+  std::vector<Case> cases;
+  const auto octree = [](vtkPolyData* mesh) {
+    vtkNew<vtkVertexClusterOctree> filter;
+    filter->SetInputData(mesh);
+    filter->Update();
+    return vtkSmartPointer<vtkMultiBlockDataSet>(filter->GetHierarchy());
+  };
+  cases.push_back({ "icosphere", octree(testing::MakeIcosphere(5)), 50, 0.99 });
+  cases.push_back(
+    { "sphere with a disk", octree(testing::MakeSphereWithEquatorialDisk(64, 33, 16)), 100, 0.98 });
+  vtkNew<vtkParametricBoy> boy;
+  vtkNew<vtkParametricFunctionSource> boySource;
+  boySource->SetParametricFunction(boy);
+  boySource->SetUResolution(60);
+  boySource->SetVResolution(60);
+  boySource->GenerateNormalsOff();
+  vtkNew<vtkTriangleFilter> boyTriangles;
+  boyTriangles->SetInputConnection(boySource->GetOutputPort());
+  boyTriangles->Update();
+  cases.push_back({ "Boy's surface", octree(boyTriangles->GetOutput()), 100, 0.99 });
+  vtkNew<vtkTriangleCollapseDecimation> single;
+  single->SetInputData(testing::MakeIcosphere(3));
+  single->SetNumberOfLevels(1);
+  single->SetTargetReduction(0.99);
+  single->Update();
+  cases.push_back({ "single level", single->GetHierarchy(), 100, 0.99 });
+  for (const Case& c : cases)
+  {
+    Id largest = 0;
+    double reachable = 0.0;
+    CheckTrackedLinks(c.Name, c.Hierarchy, largest, reachable);
+    std::cout << c.Name << ": largest collapse " << largest << " points, steps to stop at "
+              << reachable << "\n";
+    MESHLOD_CHECK_GE(largest, c.LargestAtLeast);
+    MESHLOD_CHECK_GE(reachable, c.ReachableAtLeast);
+  }
+}
 } // namespace
 
 int TestGeomorphCore(int, char*[])
 {
-  TestCluster();
-  TestPinchOfTheNextLevel();
-  TestCollapseWaitsForNeighbour();
+  for (const size_t tracked : { size_t(1), std::numeric_limits<size_t>::max() })
+  {
+    TrackedCollapsePoints = tracked;
+    TestCluster();
+    TestPinchOfTheNextLevel();
+    TestCollapseWaitsForNeighbour();
+    TestCollapseOnCurve();
+  }
   TestEdgeMerge();
+  TestMergedLink();
+  TestTrackedLinks();
   return meshlod::testing::Result();
 }
