@@ -619,6 +619,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   // target can stay broken (a non-manifold edge, a doubled triangle) while later steps
   // elsewhere pass theirs.
   std::vector<Id> broken;
+  std::vector<Id> near; // the targets of the settled points next to a point that settles
   std::vector<std::uint8_t> valid(1, 1);
 
   // Geometry, when given: a point is at its own position until it settles, then at its
@@ -707,9 +708,28 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       broken.push_back(t);
     }
     // The broken targets (this one included, when it was broken before) may have one fan
-    // again now.
+    // again now: t, and those with a point settled next to p. (Another target's vertex keeps
+    // its link: only triangles with p as a corner change, and those with a corner settled on
+    // it are next to p. Testing every broken target again after every step cost a single
+    // level of 158,400 -> 1,584 triangles 3.4 of its 3.8 s.)
+    near.clear();
+    for (Id j = adjacency.Begin(p); j < adjacency.End(p) && !broken.empty(); ++j)
+    {
+      const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
+      for (int k = 0; k < 3; ++k)
+      {
+        if (this->Step[tri[k]] != Unassigned)
+        {
+          near.push_back(target[tri[k]]);
+        }
+      }
+    }
     broken.erase(std::remove_if(broken.begin(), broken.end(),
-                   [&](Id b) { return (b != t || ok) && settledHaveOneFan(b); }),
+                   [&](Id b) {
+                     const bool changed =
+                       b == t || std::find(near.begin(), near.end(), b) != near.end();
+                     return changed && (b != t || ok) && settledHaveOneFan(b);
+                   }),
       broken.end());
     valid.push_back(ok && broken.empty() ? 1 : 0);
   };

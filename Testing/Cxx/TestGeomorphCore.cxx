@@ -375,8 +375,10 @@ void CheckTrackedLinks(const char* name, vtkMultiBlockDataSet* hierarchy, Id& la
 // Octree levels of smooth surfaces merge hundreds of points into one, the case the link is kept
 // up to date for: on a manifold sphere, along a curve where three sheets meet (the equatorial
 // disk), and on a surface without consistent orientation (Boy's surface, whose test for one
-// fan falls back to the link's shape); and a single level of a few triangles from
-// vtkTriangleCollapseDecimation, whose every target takes thousands of small collapses.
+// fan falls back to the link's shape); and a single level of 1% from
+// vtkTriangleCollapseDecimation, whose targets take many collapses each, some of them left
+// without one fan until a neighbour's collapse repairs them (79% of the steps can be stopped
+// at; 22% if only a target's own steps were tested again).
 void TestTrackedLinks()
 {
   struct Case
@@ -407,11 +409,11 @@ void TestTrackedLinks()
   boyTriangles->Update();
   cases.push_back({ "Boy's surface", octree(boyTriangles->GetOutput()), 100, 0.99 });
   vtkNew<vtkTriangleCollapseDecimation> single;
-  single->SetInputData(testing::MakeIcosphere(3));
+  single->SetInputData(testing::MakeIcosphere(5));
   single->SetNumberOfLevels(1);
   single->SetTargetReduction(0.99);
   single->Update();
-  cases.push_back({ "single level", single->GetHierarchy(), 100, 0.99 });
+  cases.push_back({ "single level", single->GetHierarchy(), 100, 0.75 });
   for (const Case& c : cases)
   {
     Id largest = 0;
