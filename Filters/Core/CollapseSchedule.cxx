@@ -500,15 +500,17 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     parent[q] = root;
     for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
     {
+      // (A triangle listed twice around q has q twice: degenerate, it gives no edge.)
       const Id tri = adjacency.Triangles[j];
       Id from, to;
-      if (linkEdge(tri, root, from, to))
+      if (!link.Holds(tri) && linkEdge(tri, root, from, to))
       {
         link.Add(tri, from, to);
       }
     }
   };
-  // Undoes join(q, ..., &removed): q is a class of its own again.
+  // Undoes join(q, ..., &removed): q is a class of its own again (an unsettled point always is,
+  // and no other point's parent is it).
   auto leave = [&](Id q, const std::vector<std::array<Id, 3>>& removed) {
     for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
     {
