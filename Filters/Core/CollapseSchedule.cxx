@@ -390,12 +390,10 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   // Whether `members` of target t, merged into class `root` of `classes`, form one vertex with
   // one fan (or the fan of a curve point where sheets meet, or of a surface without
   // consistent orientation).
-  auto fanIsValid = [&](std::vector<Id>& classes, Id t, Id root) {
-    if (HasOneFan(triangles, adjacency, classes, members, root, from, to))
-    {
-      return true;
-    }
-    // HasOneFan left the merged vertex's link edges in from and to.
+  // When the link in from and to (of the vertex merged from `members`) is not one fan: whether
+  // it is the fan of a curve point where sheets meet, or one fan of a surface without
+  // consistent orientation.
+  auto otherFanIsValid = [&](Id t) {
     const int sheets = sheetsAt(t);
     if (sheets > 2)
     {
@@ -405,6 +403,11 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     // orientation test sorts the whole star.)
     return (LinkHasShape(from, to, 1, 2) || LinkHasShape(from, to, 2, 0)) &&
       HasRepeatedDirectedEdge(triangles, adjacency, members, around, directed);
+  };
+  auto fanIsValid = [&](std::vector<Id>& classes, Id t, Id root) {
+    // (HasOneFan leaves the merged vertex's link edges in from and to.)
+    return HasOneFan(triangles, adjacency, classes, members, root, from, to) ||
+      otherFanIsValid(t);
   };
   // Whether target t's vertex in the next level (every point merged) passes that test. A
   // level with non-manifold vertices (vertex clustering with PreserveTopology off) has
@@ -481,8 +484,9 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       }
     }
   };
-  // Point q (a class of its own) joins class `root` of the tracked target: the link edges of
-  // its triangles change. With `undo`, the edges removed are kept there for leave().
+  // Point q (a class of its own until now; a trial may already point it at `root`) joins class
+  // `root` of the tracked target: the link edges of its triangles change (the held ones are
+  // removed by triangle, whatever q's class). With `removed`, they are kept there for leave().
   std::vector<std::array<Id, 3>> undo;
   auto join = [&](Id q, Id root, std::vector<std::array<Id, 3>>* removed) {
     for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
@@ -539,22 +543,8 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     }
     return inconsistentAt[t] == 2;
   };
-  // fanIsValid for the tracked target t, whose link holds the points settled and `extra`.
-  auto trackedFanIsValid = [&](Id t, Id extra) {
-    if (link.IsOneFan())
-    {
-      return true;
-    }
-    const int sheets = sheetsAt(t);
-    if (sheets <= 2 && !mayBeInconsistent(t))
-    {
-      return false;
-    }
-    link.Export(from, to);
-    if (sheets > 2)
-    {
-      return LinkHasShape(from, to, sheets, 2);
-    }
+  // The points settled on target t, and `extra` (when given), into `members`.
+  auto listMembers = [&](Id t, Id extra) {
     members.clear();
     for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
     {
@@ -564,11 +554,23 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
         members.push_back(q);
       }
     }
-    return (LinkHasShape(from, to, 1, 2) || LinkHasShape(from, to, 2, 0)) &&
-      HasRepeatedDirectedEdge(triangles, adjacency, members, around, directed);
+  };
+  // fanIsValid for the tracked target t, whose link holds the points settled and `extra`.
+  auto trackedFanIsValid = [&](Id t, Id extra) {
+    if (link.IsOneFan())
+    {
+      return true;
+    }
+    if (sheetsAt(t) <= 2 && !mayBeInconsistent(t))
+    {
+      return false;
+    }
+    link.Export(from, to);
+    listMembers(t, extra);
+    return otherFanIsValid(t);
   };
   // Whether the points settled on target t (and `extra`, when given) form one vertex with one
-  // fan; `extra` must already point at the class root, except for the tracked target.
+  // fan; `extra` must already point at the class root.
   auto hasOneFan = [&](Id t, Id extra) {
     if (t == tracked)
     {
@@ -586,15 +588,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       }
       return valid || !validInNextLevel(t);
     }
-    members.clear();
-    for (Id i = targetOffsets[t]; i < targetOffsets[t + 1]; ++i)
-    {
-      const Id q = targetPoints[i];
-      if (q == extra || this->Step[q] != Unassigned)
-      {
-        members.push_back(q);
-      }
-    }
+    listMembers(t, extra);
     return fanIsValid(parent, t, Find(parent, settledOn[t])) || !validInNextLevel(t);
   };
   // Whether settling p now leaves a valid mesh (p's target keeps one fan).
@@ -603,10 +597,6 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     if (settledOn[t] == Unassigned)
     {
       return true; // the first point of its target only moves
-    }
-    if (t == tracked)
-    {
-      return hasOneFan(t, p);
     }
     const Id saved = parent[p];
     parent[p] = Find(parent, settledOn[t]);

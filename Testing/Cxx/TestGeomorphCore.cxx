@@ -3,6 +3,7 @@
 #include "Core/CollapseSchedule.h"
 #include "Core/EdgeMerge.h"
 #include "Core/MergedLink.h"
+#include "Core/Vector3.h"
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestHierarchies.h"
 #include "MeshLODTestMeshes.h"
@@ -245,11 +246,7 @@ void TestCollapseOnCurve()
   Id moving = 0;
   for (Id p = 0; p < n; ++p)
   {
-    const double* x = mesh.Point(p);
-    const double* c = mesh.Point(centre);
-    const double d2 = (x[0] - c[0]) * (x[0] - c[0]) + (x[1] - c[1]) * (x[1] - c[1]) +
-      (x[2] - c[2]) * (x[2] - c[2]);
-    target[p] = d2 < 0.35 * 0.35 ? centre : p;
+    target[p] = Distance2(mesh.Point(p), mesh.Point(centre)) < 0.35 * 0.35 ? centre : p;
     if (target[p] != p)
     {
       rank[p] = 0;
