@@ -66,15 +66,20 @@ void TriangleTree::Build(const double* points, const vtkIdType* triangles, vtkId
   this->Triangles = triangles;
   this->Nodes.clear();
   this->Order.clear();
+  this->Corners.clear();
   this->Magnitude = 0.0;
   if (count == 0)
   {
     return;
   }
   std::vector<Item> items(count);
+  this->Corners.resize(count);
   vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType t = begin; t < end; ++t)
     {
+      const vtkIdType* ids = triangles + 3 * t;
+      this->Corners[t] = static_cast<signed char>(ClosestPointCorner(
+        points + 3 * ids[0], points + 3 * ids[1], points + 3 * ids[2]));
       for (int c = 0; c < 3; ++c)
       {
         items[t].Centroid[c] = points[3 * triangles[3 * t] + c] +
@@ -217,7 +222,10 @@ double TriangleTree::Distance2(const Node& node, const double p[3])
   double d2 = 0.0;
   for (int c = 0; c < 3; ++c)
   {
-    const double d = std::max({ node.Bounds[2 * c] - p[c], p[c] - node.Bounds[2 * c + 1], 0.0 });
+    // (Plain comparisons: std::max of an initializer list cost more here, in the innermost
+    // loop of every search.)
+    const double below = node.Bounds[2 * c] - p[c], above = p[c] - node.Bounds[2 * c + 1];
+    const double d = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
     d2 += d * d;
   }
   return d2;
@@ -227,8 +235,12 @@ double TriangleTree::Distance2(const Node& node, const double p[3])
 double TriangleTree::ToTriangle(vtkIdType t, const double p[3], double closest[3]) const
 {
   const vtkIdType* ids = this->Triangles + 3 * t;
-  return ClosestPointOnTriangle(
-    p, this->Points + 3 * ids[0], this->Points + 3 * ids[1], this->Points + 3 * ids[2], closest);
+  const double* a = this->Points + 3 * ids[0];
+  const double* b = this->Points + 3 * ids[1];
+  const double* c = this->Points + 3 * ids[2];
+  const int corner = this->Corners[t];
+  return corner >= 0 ? ClosestPointFromCorner(p, a, b, c, corner, closest)
+                     : ClosestPointOnTriangle(p, a, b, c, closest);
 }
 
 //------------------------------------------------------------------------------
@@ -242,12 +254,13 @@ void TriangleTree::Descend(const double p[3], const double& reach2, Visit&& visi
   const double slack = RoundingSlack *
     std::max({ this->Magnitude, std::abs(p[0]), std::abs(p[1]), std::abs(p[2]) });
   double reached = -1.0, limit = 0.0; // limit: reach2 widened by the slack
-  vtkIdType stack[StackSize];
+  // Pending nodes with their boxes' distances (measured when pushed, for the order).
+  std::pair<vtkIdType, double> stack[StackSize];
   int pending = 0;
-  stack[pending++] = 0;
+  stack[pending++] = { 0, Distance2(this->Nodes[0], p) };
   while (pending > 0)
   {
-    const vtkIdType index = stack[--pending];
+    const auto [index, distance2] = stack[--pending];
     const Node& node = this->Nodes[index];
     if (reach2 != reached)
     {
@@ -255,7 +268,7 @@ void TriangleTree::Descend(const double p[3], const double& reach2, Visit&& visi
       const double reach = std::sqrt(reach2) + slack;
       limit = reach * reach;
     }
-    if (Distance2(node, p) > limit)
+    if (distance2 > limit)
     {
       continue;
     }
@@ -269,9 +282,17 @@ void TriangleTree::Descend(const double p[3], const double& reach2, Visit&& visi
     }
     // The nearer child is searched first (pushed last): the reach shrinks sooner.
     const vtkIdType a = index + 1, b = node.End;
-    const bool aNearer = Distance2(this->Nodes[a], p) <= Distance2(this->Nodes[b], p);
-    stack[pending++] = aNearer ? b : a;
-    stack[pending++] = aNearer ? a : b;
+    const double da = Distance2(this->Nodes[a], p), db = Distance2(this->Nodes[b], p);
+    if (da <= db)
+    {
+      stack[pending++] = { b, db };
+      stack[pending++] = { a, da };
+    }
+    else
+    {
+      stack[pending++] = { a, da };
+      stack[pending++] = { b, db };
+    }
   }
 }
 

@@ -72,6 +72,7 @@ private:
 
   std::vector<Node> Nodes; // the root first
   std::vector<vtkIdType> Order;
+  std::vector<signed char> Corners; // per triangle its ClosestPointCorner, found once
   double Magnitude = 0.0; // the largest coordinate of the triangles, in absolute value
   const double* Points = nullptr;
   const vtkIdType* Triangles = nullptr;

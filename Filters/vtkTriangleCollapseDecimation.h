@@ -634,10 +634,10 @@ public:
   /**
    * Measure every level's symmetric Hausdorff and RMS surface distance to level 0 and store them as
    * MeasuredHausdorff and MeasuredRMS field data (10,000 area samples per surface plus up to 10,000
-   * vertices; level 0 is sampled once). Default off: it adds about half to the run on one thread, a
-   * quarter on two (8 levels of a 977,200-triangle UV sphere: 1.5 s on top of 3.1 s on one thread,
-   * 0.5 s on top of 2.1 s on two; a search tree over level 0 is much of it). For a finer
-   * measurement use MeasureSurfaceDistance (MeshLODSurfaceDistance.h) with more samples.
+   * vertices; level 0 is sampled once). Default off: it adds about two fifths to the run on one
+   * thread, a third on two (8 levels of a 977,200-triangle UV sphere: 1.2 s on top of 3.0 s on
+   * one thread, 0.65 s on top of 1.8 s on two; a search tree over level 0 is much of it). For a
+   * finer measurement use MeasureSurfaceDistance (MeshLODSurfaceDistance.h) with more samples.
    */
   vtkSetMacro(ComputeLevelError, bool);
   vtkGetMacro(ComputeLevelError, bool);

@@ -326,12 +326,7 @@ double RegionClosestPoint(const double p[3], const double a[3], const double ab[
     }
     return Distance2(p, closest);
   };
-  double ap[3], bp[3], cp[3], b[3], c[3];
-  for (int i = 0; i < 3; ++i)
-  {
-    b[i] = a[i] + ab[i];
-    c[i] = a[i] + ac[i];
-  }
+  double ap[3], bp[3], cp[3];
   Subtract(p, a, ap);
   const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
   if (d1 <= 0.0 && d2 <= 0.0)
@@ -363,7 +358,11 @@ double RegionClosestPoint(const double p[3], const double a[3], const double ab[
   const double va = d3 * d6 - d5 * d4;
   if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
   {
-    double bc[3];
+    double b[3], bc[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      b[i] = a[i] + ab[i];
+    }
     Subtract(ac, ab, bc);
     return at(b, bc, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
   }
@@ -376,6 +375,42 @@ double RegionClosestPoint(const double p[3], const double a[3], const double ab[
   }
   return Distance2(p, closest);
 }
+
+// What ClosestPointOnTriangle needs to know of a triangle's shape before measuring: its edges,
+// the corner facing the longest edge (the largest angle: from there the cross product of the
+// edges, and the region tests, are the most accurate; corner o lies between Edge[o - 1] and
+// Edge[o], and the winding stays that of (b - a) x (c - a)), and whether the region tests may
+// measure it.
+struct TriangleShape
+{
+  const double* Corner[3];
+  double Edge[3][3], Length2[3];
+  int Longest = 0, Shortest = 0, Origin = 0;
+  double Back[3], Normal[3]; // Back: from the origin to the corner before it
+  double Normal2, Sides2;
+
+  TriangleShape(const double a[3], const double b[3], const double c[3])
+    : Corner{ a, b, c }
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      Subtract(this->Corner[(k + 1) % 3], this->Corner[k], this->Edge[k]);
+      this->Length2[k] = Dot(this->Edge[k], this->Edge[k]);
+      this->Longest = this->Length2[k] > this->Length2[this->Longest] ? k : this->Longest;
+      this->Shortest = this->Length2[k] < this->Length2[this->Shortest] ? k : this->Shortest;
+    }
+    this->Origin = (this->Longest + 2) % 3;
+    Subtract(this->Corner[(this->Origin + 2) % 3], this->Corner[this->Origin], this->Back);
+    Cross(this->Edge[this->Origin], this->Back, this->Normal);
+    this->Normal2 = Dot(this->Normal, this->Normal);
+    this->Sides2 = this->Length2[this->Origin] * Dot(this->Back, this->Back);
+  }
+  bool IsWellShaped() const
+  {
+    return this->Normal2 > 0.0 && this->Normal2 >= WellShapedSine2 * this->Sides2 &&
+      this->Length2[this->Shortest] >= WellShapedEdgeRatio2 * this->Length2[this->Longest];
+  }
+};
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -386,6 +421,28 @@ double ClosestPointOnTriangle(
   return ClosestPointOnTriangle(p, a, b, c, closest, inside);
 }
 
+int ClosestPointCorner(const double a[3], const double b[3], const double c[3])
+{
+  const TriangleShape shape(a, b, c);
+  return shape.IsWellShaped() ? shape.Origin : -1;
+}
+
+double ClosestPointFromCorner(const double p[3],
+  const double a[3],
+  const double b[3],
+  const double c[3],
+  int corner,
+  double closest[3])
+{
+  const double* corners[3] = { a, b, c };
+  const double* origin = corners[corner];
+  double edge[3], back[3];
+  Subtract(corners[(corner + 1) % 3], origin, edge);
+  Subtract(corners[(corner + 2) % 3], origin, back);
+  bool inside;
+  return RegionClosestPoint(p, origin, edge, back, closest, inside);
+}
+
 double ClosestPointOnTriangle(const double p[3],
   const double a[3],
   const double b[3],
@@ -393,31 +450,20 @@ double ClosestPointOnTriangle(const double p[3],
   double closest[3],
   bool& inside)
 {
-  const double* corner[3] = { a, b, c };
-  double edge[3][3], length2[3];
-  int longest = 0, shortest = 0;
-  for (int k = 0; k < 3; ++k)
+  TriangleShape shape(a, b, c);
+  if (shape.IsWellShaped())
   {
-    Subtract(corner[(k + 1) % 3], corner[k], edge[k]);
-    length2[k] = Dot(edge[k], edge[k]);
-    longest = length2[k] > length2[longest] ? k : longest;
-    shortest = length2[k] < length2[shortest] ? k : shortest;
+    return RegionClosestPoint(
+      p, shape.Corner[shape.Origin], shape.Edge[shape.Origin], shape.Back, closest, inside);
   }
-  // The corner facing the longest edge has the largest angle: from there the cross product of
-  // the edges, and the region tests below, are the most accurate. (Corner o lies between
-  // edge[o - 1] and edge[o]; the winding stays that of (b - a) x (c - a).)
-  const int o = (longest + 2) % 3;
-  const double* origin = corner[o];
-  double back[3], normal[3];
-  Subtract(corner[(o + 2) % 3], origin, back);
-  Cross(edge[o], back, normal);
-  double normal2 = Dot(normal, normal);
-  const double sides2 = length2[o] * Dot(back, back);
-  if (normal2 > 0.0 && normal2 >= WellShapedSine2 * sides2 &&
-    length2[shortest] >= WellShapedEdgeRatio2 * length2[longest])
-  {
-    return RegionClosestPoint(p, origin, edge[o], back, closest, inside);
-  }
+  const double* const* corner = shape.Corner;
+  const auto& edge = shape.Edge;
+  const auto& length2 = shape.Length2;
+  const int longest = shape.Longest, o = shape.Origin;
+  double* normal = shape.Normal;
+  double normal2 = shape.Normal2;
+  const double sides2 = shape.Sides2;
+  const double* back = shape.Back;
   // A thin cap (every angle near 0 or 180 degrees) or a needle (an edge far shorter than the
   // others, as between nearly coincident corners): the region tests take barycentric
   // coordinates from differences of nearly equal products, which rounding spoils (on a triangle

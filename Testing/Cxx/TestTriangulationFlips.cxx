@@ -17,6 +17,7 @@
 #include <array>
 #include <iostream>
 #include <cmath>
+#include <random>
 #include <vector>
 
 namespace
@@ -182,6 +183,84 @@ void TestClosestPointNearCoincidentCorners()
     const double d = std::sqrt(ClosestPointOnTriangle(k.P, k.A, k.B, k.C, q));
     MESHLOD_CHECK_LE(std::abs(d - k.Distance), 1e-12 * longest);
   }
+}
+
+//------------------------------------------------------------------------------
+// The search's shortcut (TriangleTree keeps each triangle's ClosestPointCorner and measures
+// with ClosestPointFromCorner) against ClosestPointOnTriangle: the same distance and point to
+// the bit on random triangles of every shape (compact ones, caps, needles, segments, points)
+// at points near them and far, and -1 for exactly the triangles the fast tests may not measure.
+void TestClosestPointFromCorner()
+{
+  std::mt19937_64 random(20261205);
+  auto uniform = [&]() { return static_cast<double>(random() >> 11) * 0x1.0p-53 * 2.0 - 1.0; };
+  int measured = 0, thin = 0, mismatches = 0;
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    double corners[3][3];
+    const int shape = trial % 5;
+    for (int k = 0; k < 3; ++k)
+    {
+      for (double& x : corners[k])
+      {
+        x = 3.0 * uniform();
+      }
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+      const double* a = corners[0];
+      double* b = corners[1];
+      double* c = corners[2];
+      if (shape == 1) // a cap: c near the line ab
+      {
+        c[i] = a[i] + 0.37 * (b[i] - a[i]) + 1e-7 * uniform();
+      }
+      else if (shape == 2) // a needle: c next to b
+      {
+        c[i] = b[i] + 1e-5 * uniform();
+      }
+      else if (shape == 3) // a segment: c on b
+      {
+        c[i] = b[i];
+      }
+      else if (shape == 4) // a point
+      {
+        b[i] = c[i] = a[i];
+      }
+    }
+    const int corner = ClosestPointCorner(corners[0], corners[1], corners[2]);
+    (corner >= 0 ? measured : thin) += 1;
+    if (shape == 0 && corner < 0)
+    {
+      continue; // a random triangle that happens to be thin
+    }
+    for (int q = 0; q < 4; ++q)
+    {
+      double p[3], expected[3], got[3];
+      for (double& x : p)
+      {
+        x = (q < 2 ? 0.5 : 6.0) * uniform();
+      }
+      const double d2 = ClosestPointOnTriangle(p, corners[0], corners[1], corners[2], expected);
+      if (corner < 0)
+      {
+        continue;
+      }
+      const double e2 =
+        ClosestPointFromCorner(p, corners[0], corners[1], corners[2], corner, got);
+      mismatches += (e2 != d2 || !std::equal(got, got + 3, expected)) ? 1 : 0;
+    }
+    if (shape >= 1)
+    {
+      // Caps, needles, segments and points must take the slow path.
+      mismatches += corner >= 0 ? 1 : 0;
+    }
+  }
+  std::cerr << "  closest point from a kept corner: " << measured << " triangles measured, "
+            << thin << " thin, " << mismatches << " mismatches\n";
+  MESHLOD_CHECK_EQ(mismatches, 0);
+  MESHLOD_CHECK_GE(measured, 3000);
+  MESHLOD_CHECK_GE(thin, 16000);
 }
 
 //------------------------------------------------------------------------------
@@ -363,6 +442,7 @@ int TestTriangulationFlips(int, char*[])
   TestClosestPoint();
   TestClosestPointOnThinTriangles();
   TestClosestPointNearCoincidentCorners();
+  TestClosestPointFromCorner();
   TestTentFlips();
   TestOctreeFlips();
   return meshlod::testing::Result();
