@@ -274,14 +274,14 @@ public:
    * whose every stencil holds it (one collapse there per pass), or where most collapses are
    * refused (long thin triangles with the TRIANGLES operator). After 64 passes in a row that
    * each removed under 1% of their budget, the greedy loop makes the rest of the level, and the
-   * passes take up the next one. With it, a fan of 30,000 triangles around one point takes
-   * 0.8 s with the quadric method and 1.3 s with the curvature method (GREEDY: 0.7 s and 1.1 s;
-   * 12 s and 13 s before the fallback), a UV sphere of 384,000 triangles with poles of valence
-   * 4,000 2.7 s and 9.8 s (GREEDY: 0.5 s and 4.8 s), and a UV sphere of 116,000 long thin
-   * triangles (theta resolution 1,000, phi 60) with the TRIANGLES operator 7 s where it had not
-   * finished after five minutes (GREEDY: 3 s). With the TRIANGLES operator a fan of 3,000
-   * takes 2-4 s (each refusal sorts the fan's link). GREEDY is the better choice for such
-   * meshes.
+   * passes take up the next one. With it, on one thread, a fan of 30,000 triangles around one
+   * point takes 0.26 s with the quadric method and 1.5 s with the curvature method (GREEDY:
+   * 0.11 s and 1.4 s; 12 s and 13 s before the fallback), a UV sphere of 384,000 triangles with
+   * poles of valence 4,000 3.7 s and 18 s (GREEDY: 1.1 s and 10.5 s; on two threads 3.4 s and
+   * 11 s, GREEDY 0.6 s and 6 s), and a UV sphere of 116,000 long thin triangles (theta
+   * resolution 1,000, phi 60) with the TRIANGLES operator 4.8 s where it had not finished after
+   * five minutes (GREEDY: 1.7 s). With the TRIANGLES operator a fan of 3,000 takes 0.7 s either
+   * way. GREEDY is the better choice for such meshes.
    */
   vtkSetClampMacro(Schedule, int, INDEPENDENT_SETS, GREEDY);
   vtkGetMacro(Schedule, int);

@@ -378,8 +378,8 @@ public:
   ///@{
   /**
    * Measure every level's surface distance to level 0 (MeasuredHausdorff, MeasuredRMS field
-   * data). Costs about half the simplification's time (0.6 s on top of 1.3 s for the levels of
-   * a 977,200-triangle UV sphere, one thread). Default off.
+   * data). Costs about a third of the simplification's time (0.5 s on top of 1.3 s for the
+   * levels of a 977,200-triangle UV sphere, one thread). Default off.
    */
   vtkSetMacro(MeasureLevelErrors, bool);
   vtkGetMacro(MeasureLevelErrors, bool);
