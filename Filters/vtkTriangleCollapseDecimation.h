@@ -150,10 +150,10 @@
  * (world units) stops early when the next collapse's estimated error exceeds it; the coarsest
  * mesh reached is then the last level. By default every connected piece stays, each at least
  * a tetrahedron, with its genus: on the isosurface of a noisy volume (103,940 triangles, 328
- * specks of 8 triangles around single noisy samples besides the main surface) the levels
- * stopped at 2,072 triangles for a target of 1,039, most of them specks, and that level was 5.1
- * times as far from the input (Hausdorff distance) as vtkQuadricDecimation's output of the same
- * count, which drops the specks. With PreserveTopology off small closed pieces vanish and the
+ * specks around single noisy samples besides the main surface, 312 of them of 8 triangles) the
+ * levels stopped at 2,072 triangles for a target of 1,039, most of them specks, and that level was
+ * 5.1 times as far from the input (Hausdorff distance) as vtkQuadricDecimation's output of the
+ * same count, which drops the specks. With PreserveTopology off small closed pieces vanish and the
  * levels reach their counts (Benchmarks/RESULTS.md, "Beyond isosurfaces"). A warning reports a
  * coarsest level short of its target,
  * and a level whose estimated error jumps far beyond what the fall in its triangle count
@@ -322,7 +322,7 @@ public:
    * cannot collapse (a corner on a curve where sheets meet). On the isosurfaces and the other
    * smooth or noisy meshes of the benchmark the levels are those of triangle collapses (within the
    * benchmark's noise); a faceted cylinder at 1% keeps its shape exactly instead of losing its rims
-   * (11% of the diagonal with TRIANGLES), and the surfaces of a segmented volume reach 1% instead
+   * (4.4% of the diagonal with TRIANGLES), and the surfaces of a segmented volume reach 1% instead
    * of stopping at 3.3%. With WEIGHT, triangles only.
    */
   vtkSetClampMacro(Operator, int, TRIANGLES, TRIANGLES_AND_EDGES);
@@ -451,7 +451,9 @@ public:
    * alpha + wv V) from the three weights above, at the collapse point described in the class docs.
    * The fit and the legality rules are the same for both. On the benchmark isosurfaces
    * FIT_DEVIATION's Hausdorff distance is 0.91-1.34x and its RMS distance 0.94-1.19x
-   * vtkQuadricDecimation's, against 5.8-8.9x and 2.4-2.8x for WEIGHT (Benchmarks/RESULTS.md): the
+   * vtkQuadricDecimation's, against 5.8-8.9x and 2.4-2.8x for WEIGHT (Benchmarks/RESULTS.md,
+   * where WEIGHT runs with the INDEPENDENT_SETS schedule; with GREEDY its RMS distance on the
+   * metaballs at 10% is 3.05x vtkQuadricDecimation's): the
    * paper's weight is dominated by the area, so it evens out the triangles' sizes instead of
    * keeping small ones where the surface bends. On the other meshes of the benchmark (a torus,
    * noisy spheres, Boy's surface, a superquadric, a faceted cylinder and the surfaces of a
@@ -534,8 +536,9 @@ public:
    * the same count (Benchmarks/RESULTS.md, the first and the AreaNormalization 0 tables of
    * "Beyond isosurfaces"; Hausdorff distance ratio, 0 -> 0.25), on the 11 meshes there that are
    * not at rounding level or topology-bound, the geometric mean went from 0.95 to 0.90 at 10%
-   * and from 1.01 to 0.94 at 1%, the RMS distance unchanged (0.91 and 0.87). At 1% lower on 7 of
-   * the 11 (parametric torus 0.95 -> 0.73, Boy's surface 1.15 -> 0.77), higher on 4 (noisy UV
+   * and from 1.01 to 0.94 at 1%, the RMS distance unchanged (0.91 and 0.87). At 1% lower on 6 of
+   * the 11 (parametric torus 0.95 -> 0.73, Boy's surface 1.15 -> 0.77), the same on one
+   * (segmented balls, 0.98), higher on 4 (noisy UV
    * sphere, seed 9, 0.73 -> 1.06; very noisy sphere 1.03 -> 1.05; terrain 1.08 -> 1.11;
    * superquadric 1.03 -> 1.07). On the benchmark isosurfaces ("paper cost" rows), at 10% / 1%:
    * metaballs 0.94 / 0.95 -> 0.88 / 0.92, gyroid (611k) 0.97 / 1.02 -> 0.81 / 1.26, gyroid
@@ -617,8 +620,8 @@ public:
    * quarter of the input's triangles moves along its normal by the area-weighted mean signed
    * distance of the input around it, as far as the largest deviation around the point does
    * not grow and at most a quarter of its shortest edge. On the metaballs isosurface (154k
-   * triangles) this lowered the RMS distance by 10% at 10% of the triangles and 21% at 1%, the
-   * Hausdorff distance by 10% and 0%; on a gyroid, which curves as much one way as the other,
+   * triangles) this lowers the RMS distance by 9% at 10% of the triangles and 22% at 1%, the
+   * Hausdorff distance by about 16% and 7%; on a gyroid, which curves as much one way as the other,
    * by 2-3%. Not moved: boundary and non-manifold points, creases and corners (a triangle more
    * than 35 degrees from the point's normal), planar facets (which stay exact), and points that
    * keep their place between two levels (CollapseRank -1 holds). The triangles, counts and
