@@ -146,8 +146,8 @@
  * one cluster share a rank; -1 for points whose cluster did not change).
  *
  * Output port 1 (with BakeTexture): a vtkMultiBlockDataSet of vtkImageData textures, block i
- * for level i. Block 0 is the input texture (or empty when the colours come from a point
- * array). For each simplified level a texture atlas is built as in §4: every triangle gets a
+ * for level i. Block 0 is the input texture (or null, no block, when the colours come from a
+ * point array). For each simplified level a texture atlas is built as in §4: every triangle gets a
  * half-square triangle in a TextureResolution^2 texture, sized by its area in power-of-two
  * steps; adjacent triangles are paired into squares that share their diagonal, and edge texels
  * are sampled at the same points from both sides wherever the two triangles got the same size.
