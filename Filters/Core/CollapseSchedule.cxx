@@ -18,6 +18,10 @@ namespace
 constexpr Id Unassigned = -1;
 // A collapse of m points tries at most max(1, TestBudget / m) next points per step (see Build).
 constexpr size_t TestBudget = 16384;
+// The points of collapses left waiting at the end join interleaved when together they number at
+// most this many (each step may test up to TestBudget / m candidates, m the group's largest
+// collapse), else one collapse after the other.
+constexpr size_t InterleavedGroupPoints = 1024;
 // A triangle faces a direction m when its normal n has n . m > FacingTolerance |m|^2 (both are
 // twice-area vectors): three corners on a line up to rounding do not.
 constexpr double FacingTolerance = 1e-12;
@@ -965,6 +969,14 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   // target kept every later step unstoppable: an extruded text's 19,820-triangle level was the
   // only count below 31,579).
   std::vector<size_t> group;
+  std::vector<Id> groupPoints, candidates; // candidates: indices into groupPoints, increasing
+  std::vector<Id> groupIndex;              // per point: its index in groupPoints, or -1
+  std::vector<std::uint8_t> isCandidate, starterSeen;
+  if (waitingNow > 0)
+  {
+    groupIndex.assign(numberOfPoints, -1);
+    starterSeen.assign(numberOfTargets, 0);
+  }
   for (size_t c = 0; c < collapses.size(); ++c)
   {
     if (!waiting[c])
@@ -976,7 +988,6 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     for (size_t g = 0; g < group.size(); ++g)
     {
       const size_t made = group[g];
-      settle(made, false);
       for (size_t i = collapses[made].first; i < collapses[made].second; ++i)
       {
         const Id q = moving[i];
@@ -994,6 +1005,126 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
           }
         }
       }
+    }
+    size_t groupSize = 0, largest = 0;
+    for (const size_t made : group)
+    {
+      groupSize += collapses[made].second - collapses[made].first;
+      largest = std::max(largest, collapses[made].second - collapses[made].first);
+    }
+    if (groupSize > InterleavedGroupPoints)
+    {
+      for (const size_t made : group)
+      {
+        settle(made, false);
+      }
+      continue;
+    }
+    // The group's points join their targets interleaved. The candidates, in the group's
+    // order: the points next to a point settled on their target, and the first point of each
+    // target with none settled. Each step takes the first candidate whose join leaves its
+    // target with one fan, one of a broken target first, one that folds nothing around it
+    // first; else the first candidate.
+    groupPoints.clear();
+    for (const size_t made : group)
+    {
+      for (size_t i = collapses[made].first; i < collapses[made].second; ++i)
+      {
+        groupIndex[moving[i]] = static_cast<Id>(groupPoints.size());
+        groupPoints.push_back(moving[i]);
+      }
+    }
+    candidates.clear();
+    const auto candidate = [&](Id q) {
+      const Id i = groupIndex[q];
+      if (i >= 0 && this->Step[q] == Unassigned && !isCandidate[i])
+      {
+        isCandidate[i] = 1;
+        candidates.insert(std::lower_bound(candidates.begin(), candidates.end(), i), i);
+      }
+    };
+    isCandidate.assign(groupPoints.size(), 0);
+    for (const Id q : groupPoints)
+    {
+      const Id t = target[q];
+      if (settledOn[t] == Unassigned)
+      {
+        if (!starterSeen[t])
+        {
+          starterSeen[t] = 1;
+          candidate(q);
+        }
+        continue;
+      }
+      for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
+      {
+        const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
+        for (int k = 0; k < 3; ++k)
+        {
+          if (tri[k] != q && target[tri[k]] == t && this->Step[tri[k]] != Unassigned)
+          {
+            candidate(q);
+          }
+        }
+      }
+    }
+    for (size_t left = groupPoints.size(); left > 0; --left)
+    {
+      Id best = Unassigned;
+      // 1 + 2 when it fixes a broken target, + 1 when it folds nothing around it; 0: its
+      // target is left without one fan.
+      int bestClass = 0;
+      const int topClass = broken.empty() ? 2 : 4;
+      size_t tests = std::max<size_t>(1, TestBudget / largest);
+      for (size_t c = 0; c < candidates.size() && tests > 0 && bestClass < topClass;
+           ++c, --tests)
+      {
+        const Id q = groupPoints[static_cast<size_t>(candidates[c])];
+        const bool fixes = std::find(broken.begin(), broken.end(), target[q]) != broken.end();
+        const int least = 1 + (fixes ? 2 : 0); // its class if valid, folding or not
+        if (least + 1 <= bestClass || !validWith(q))
+        {
+          continue;
+        }
+        const int cls = least + (foldsAround(q) ? 0 : 1);
+        if (cls > bestClass)
+        {
+          best = q;
+          bestClass = cls;
+        }
+      }
+      Id p = best;
+      if (p == Unassigned)
+      {
+        p = candidates.empty() ? Unassigned : groupPoints[static_cast<size_t>(candidates.front())];
+        for (size_t i = 0; p == Unassigned && i < groupPoints.size(); ++i)
+        {
+          p = this->Step[groupPoints[i]] == Unassigned ? groupPoints[i] : Unassigned;
+        }
+      }
+      record(p, target[p], best != Unassigned);
+      const Id ip = groupIndex[p];
+      if (isCandidate[ip])
+      {
+        isCandidate[ip] = 0;
+        candidates.erase(std::lower_bound(candidates.begin(), candidates.end(), ip));
+      }
+      for (Id j = adjacency.Begin(p); j < adjacency.End(p); ++j)
+      {
+        const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
+        for (int k = 0; k < 3; ++k)
+        {
+          if (target[tri[k]] == target[p])
+          {
+            candidate(tri[k]);
+          }
+        }
+      }
+    }
+    for (const Id q : groupPoints)
+    {
+      groupIndex[q] = -1;
+      starterSeen[target[q]] = 0;
     }
   }
   this->Stops.clear();

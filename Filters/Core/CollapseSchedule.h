@@ -30,7 +30,13 @@
 //   the steps up to that neighbour were unreachable. After each collapse, the waiting ones with
 //   a point next to it are tried again and made as soon as they are valid. Those still waiting
 //   at the end need each other: they are made last, by groups of neighbours one group after
-//   the other, so that the steps between groups can be stopped at.
+//   the other, so that the steps between groups can be stopped at. Inside a group of at most
+//   1,024 points the points of its collapses join interleaved: each step the first point (in
+//   the group's order, among those next to a point settled on their target and the first point
+//   of each target not begun) whose join leaves its target with one fan, one of a target left
+//   without one first, one that folds nothing first. (Joined one collapse after the other, the
+//   thin strokes of an extruded text, shrunk into single points each merging up to 103, left
+//   433 of a transition's 5,487 counts out of reach, by up to 472 triangles; now 21, by 36.)
 // - Both rules apply only to targets that have one fan in the next level (every point merged).
 //   A level with non-manifold vertices (vertex clustering with PreserveTopology off) has
 //   targets that no step can give one: they neither wait nor hold later steps up, so the steps
