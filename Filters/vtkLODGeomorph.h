@@ -72,9 +72,8 @@
  * 79,280 triangles of the Python test, whose thin strokes shrink into single points, the
  * default 8 levels miss 14 of 26,163 counts by more, by up to 35 triangles (310, by up to 471,
  * before the points of collapses that wait for each other joined interleaved), and levels at
- * 75% and 95% of it miss 452 of 8,495 counts of their first transition, by up to 1,475, where
- * such a group holds more points than are joined interleaved. A single level made straight
- * from the input can block
+ * 75% and 95% of it miss 20 of 8,495 counts of their first transition, by up to 19 (1,482, by
+ * up to 1,475, before). A single level made straight from the input can block
  * most: between a Moebius strip's 7,080 and 240 triangles, every count from 6,472 down to 400
  * gave 400; hierarchies of the default 8 levels reach them. Merged on its own, most clusters
  * of such a level are not one fan: a jagged rim touches a neighbouring point twice, a pinch

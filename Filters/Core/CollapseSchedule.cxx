@@ -21,7 +21,7 @@ constexpr size_t TestBudget = 16384;
 // The points of collapses left waiting at the end join interleaved when together they number at
 // most this many (each step may test up to TestBudget / m candidates, m the group's largest
 // collapse), else one collapse after the other.
-constexpr size_t InterleavedGroupPoints = 1024;
+constexpr size_t InterleavedGroupPoints = 2048;
 // A triangle faces a direction m when its normal n has n . m > FacingTolerance |m|^2 (both are
 // twice-area vectors): three corners on a line up to rounding do not.
 constexpr double FacingTolerance = 1e-12;

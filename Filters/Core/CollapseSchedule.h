@@ -31,7 +31,7 @@
 //   a point next to it are tried again and made as soon as they are valid. Those still waiting
 //   at the end need each other: they are made last, by groups of neighbours one group after
 //   the other, so that the steps between groups can be stopped at. Inside a group of at most
-//   1,024 points the points of its collapses join interleaved: each step the first point (in
+//   2,048 points the points of its collapses join interleaved: each step the first point (in
 //   the group's order, among those next to a point settled on their target and the first point
 //   of each target not begun) whose join leaves its target with one fan, one of a target left
 //   without one first, one that folds nothing first. (Joined one collapse after the other, the
