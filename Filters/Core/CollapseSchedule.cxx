@@ -297,6 +297,39 @@ std::vector<Id> SortMovingPoints(
   });
   return moving;
 }
+
+// Ids in increasing order, each at most once, with a flag per possible id: the candidates of a
+// step, kept up to date as points settle instead of listed again.
+struct SortedIds
+{
+  std::vector<Id> Items;
+  std::vector<std::uint8_t> In; // per id
+
+  void Add(Id i)
+  {
+    if (!this->In[i])
+    {
+      this->In[i] = 1;
+      this->Items.insert(std::lower_bound(this->Items.begin(), this->Items.end(), i), i);
+    }
+  }
+  void Remove(Id i)
+  {
+    if (this->In[i])
+    {
+      this->In[i] = 0;
+      this->Items.erase(std::lower_bound(this->Items.begin(), this->Items.end(), i));
+    }
+  }
+  void Clear()
+  {
+    for (const Id i : this->Items)
+    {
+      this->In[i] = 0;
+    }
+    this->Items.clear();
+  }
+};
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -745,15 +778,23 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       collapseOfPoint[moving[i]] = c;
     }
   }
-  std::vector<Id> frontier;
-  std::vector<std::uint8_t> inFrontier(numberOfPoints, 0);
-  auto enter = [&](Id q) {
-    if (!inFrontier[q])
+  // Whether point q has a neighbour settled on target t.
+  const auto nextToSettled = [&](Id q, Id t) {
+    for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
     {
-      inFrontier[q] = 1;
-      frontier.insert(std::lower_bound(frontier.begin(), frontier.end(), q), q);
+      const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
+      for (int k = 0; k < 3; ++k)
+      {
+        if (tri[k] != q && target[tri[k]] == t && this->Step[tri[k]] != Unassigned)
+        {
+          return true;
+        }
+      }
     }
+    return false;
   };
+  SortedIds frontier;
+  frontier.In.assign(numberOfPoints, 0);
   auto settle = [&](size_t c, bool wholeValid) {
     const size_t begin = collapses[c].first, end = collapses[c].second;
     const Id t = target[moving[begin]];
@@ -773,35 +814,15 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
         }
       }
     };
-    // Whether point q has a neighbour settled on t.
-    const auto nextToSettled = [&](Id q) {
-      for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
-      {
-        const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
-        for (int k = 0; k < 3; ++k)
-        {
-          if (tri[k] != q && target[tri[k]] == t && this->Step[tri[k]] != Unassigned)
-          {
-            return true;
-          }
-        }
-      }
-      return false;
-    };
     // The frontier listed from scratch: for a large collapse once, then kept up to date.
     const auto listFrontier = [&]() {
-      for (const Id q : frontier)
-      {
-        inFrontier[q] = 0;
-      }
-      frontier.clear();
+      frontier.Clear();
       for (size_t i = begin; i < end; ++i)
       {
         const Id q = moving[i]; // increasing id: a collapse's points are sorted by id
-        if (this->Step[q] == Unassigned && nextToSettled(q))
+        if (this->Step[q] == Unassigned && nextToSettled(q, t))
         {
-          inFrontier[q] = 1;
-          frontier.push_back(q);
+          frontier.Add(q); // (at the end: the ids come in increasing order)
         }
       }
     };
@@ -818,8 +839,8 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
         break;
       }
       // None joined to a settled one (the target's first point, among others): any may go.
-      const std::vector<Id>* choices = &frontier;
-      if (frontier.empty())
+      const std::vector<Id>* choices = &frontier.Items;
+      if (frontier.Items.empty())
       {
         listLeft();
         choices = &joined;
@@ -851,11 +872,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       {
         continue;
       }
-      if (inFrontier[p])
-      {
-        inFrontier[p] = 0;
-        frontier.erase(std::lower_bound(frontier.begin(), frontier.end(), p));
-      }
+      frontier.Remove(p);
       for (Id j = adjacency.Begin(p); j < adjacency.End(p); ++j)
       {
         const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
@@ -864,16 +881,12 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
           const Id q = tri[k];
           if (collapseOfPoint[q] == c && this->Step[q] == Unassigned)
           {
-            enter(q);
+            frontier.Add(q);
           }
         }
       }
     }
-    for (const Id q : frontier)
-    {
-      inFrontier[q] = 0;
-    }
-    frontier.clear();
+    frontier.Clear();
     link.Clear();
     tracked = Unassigned;
   };
@@ -969,9 +982,10 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
   // target kept every later step unstoppable: an extruded text's 19,820-triangle level was the
   // only count below 31,579).
   std::vector<size_t> group;
-  std::vector<Id> groupPoints, candidates; // candidates: indices into groupPoints, increasing
-  std::vector<Id> groupIndex;              // per point: its index in groupPoints, or -1
-  std::vector<std::uint8_t> isCandidate, starterSeen;
+  std::vector<Id> groupPoints;
+  SortedIds candidates;       // indices into groupPoints
+  std::vector<Id> groupIndex; // per point: its index in groupPoints, or -1
+  std::vector<std::uint8_t> starterSeen;
   if (waitingNow > 0)
   {
     groupIndex.assign(numberOfPoints, -1);
@@ -1034,38 +1048,21 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
         groupPoints.push_back(moving[i]);
       }
     }
-    candidates.clear();
+    candidates.Items.clear();
+    candidates.In.assign(groupPoints.size(), 0);
     const auto candidate = [&](Id q) {
-      const Id i = groupIndex[q];
-      if (i >= 0 && this->Step[q] == Unassigned && !isCandidate[i])
+      if (groupIndex[q] >= 0 && this->Step[q] == Unassigned)
       {
-        isCandidate[i] = 1;
-        candidates.insert(std::lower_bound(candidates.begin(), candidates.end(), i), i);
+        candidates.Add(groupIndex[q]);
       }
     };
-    isCandidate.assign(groupPoints.size(), 0);
     for (const Id q : groupPoints)
     {
       const Id t = target[q];
-      if (settledOn[t] == Unassigned)
+      if (settledOn[t] == Unassigned ? !starterSeen[t] : nextToSettled(q, t))
       {
-        if (!starterSeen[t])
-        {
-          starterSeen[t] = 1;
-          candidate(q);
-        }
-        continue;
-      }
-      for (Id j = adjacency.Begin(q); j < adjacency.End(q); ++j)
-      {
-        const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
-        for (int k = 0; k < 3; ++k)
-        {
-          if (tri[k] != q && target[tri[k]] == t && this->Step[tri[k]] != Unassigned)
-          {
-            candidate(q);
-          }
-        }
+        starterSeen[t] = 1;
+        candidate(q);
       }
     }
     for (size_t left = groupPoints.size(); left > 0; --left)
@@ -1076,10 +1073,10 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       int bestClass = 0;
       const int topClass = broken.empty() ? 2 : 4;
       size_t tests = std::max<size_t>(1, TestBudget / largest);
-      for (size_t c = 0; c < candidates.size() && tests > 0 && bestClass < topClass;
+      for (size_t c = 0; c < candidates.Items.size() && tests > 0 && bestClass < topClass;
            ++c, --tests)
       {
-        const Id q = groupPoints[static_cast<size_t>(candidates[c])];
+        const Id q = groupPoints[static_cast<size_t>(candidates.Items[c])];
         const bool fixes = std::find(broken.begin(), broken.end(), target[q]) != broken.end();
         const int least = 1 + (fixes ? 2 : 0); // its class if valid, folding or not
         if (least + 1 <= bestClass || !validWith(q))
@@ -1096,19 +1093,15 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
       Id p = best;
       if (p == Unassigned)
       {
-        p = candidates.empty() ? Unassigned : groupPoints[static_cast<size_t>(candidates.front())];
+        p = candidates.Items.empty() ? Unassigned
+                                     : groupPoints[static_cast<size_t>(candidates.Items.front())];
         for (size_t i = 0; p == Unassigned && i < groupPoints.size(); ++i)
         {
           p = this->Step[groupPoints[i]] == Unassigned ? groupPoints[i] : Unassigned;
         }
       }
       record(p, target[p], best != Unassigned);
-      const Id ip = groupIndex[p];
-      if (isCandidate[ip])
-      {
-        isCandidate[ip] = 0;
-        candidates.erase(std::lower_bound(candidates.begin(), candidates.end(), ip));
-      }
+      candidates.Remove(groupIndex[p]);
       for (Id j = adjacency.Begin(p); j < adjacency.End(p); ++j)
       {
         const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[j]);
