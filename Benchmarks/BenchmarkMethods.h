@@ -10,6 +10,7 @@
 #ifndef BenchmarkMethods_h
 #define BenchmarkMethods_h
 
+#include "MeshLODTestMeshes.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
@@ -58,6 +59,14 @@ Method SimpleMethod(const std::string& name,
 /// `integer` is set. Returns the best x tried (closest count in ratio).
 double SearchSetting(
   double first, vtkIdType target, bool integer, const std::function<vtkIdType(double x)>& count);
+
+/// The benchmark's input: the flying-edges isosurface of `field` at the resolution that gives
+/// about `triangles` triangles, cleaned (exactly coincident points merged, the triangles that
+/// collapse dropped: on the uncleaned 2.3M-triangle gyroid vtkQuadricDecimation stops after
+/// about 2000 collapses). Gives the volume's resolution and the number of triangles dropped.
+/// (BenchmarkMeshes.cxx)
+vtkSmartPointer<vtkPolyData> MakeBenchmarkMesh(
+  meshlod::testing::Field field, double triangles, int& resolution, vtkIdType& dropped);
 
 /// VTK's decimators (VTKMethods.cxx).
 void RegisterVTKMethods(std::vector<Method>& methods);

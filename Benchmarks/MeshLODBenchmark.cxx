@@ -30,7 +30,6 @@
 #include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestMeshes.h"
 
-#include "vtkCleanPolyData.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
@@ -277,24 +276,6 @@ struct Mesh
   vtkSmartPointer<vtkPolyData> Data;
 };
 
-/// Merges exactly coincident points and drops the triangles that collapse. Flying edges makes
-/// such points where the field is exactly 0 at a grid vertex; on the 2.3M-triangle gyroid,
-/// vtkQuadricDecimation stops after about 2000 collapses on the uncleaned mesh (a non-finite
-/// cost from a zero-length edge is the likely cause) and reaches the target on the cleaned one.
-vtkSmartPointer<vtkPolyData> Clean(vtkPolyData* mesh)
-{
-  vtkNew<vtkCleanPolyData> clean;
-  clean->SetInputData(mesh);
-  clean->PointMergingOn();
-  clean->SetTolerance(0.0);
-  clean->ConvertPolysToLinesOff();
-  clean->ConvertLinesToPointsOff();
-  clean->Update();
-  auto cleaned = vtkSmartPointer<vtkPolyData>::New();
-  cleaned->ShallowCopy(clean->GetOutput());
-  return cleaned;
-}
-
 /// One timed run of a method: its outputs, time and memory.
 struct Run
 {
@@ -408,19 +389,6 @@ std::vector<TimedJob> MakeJobs(const Method& method,
   return jobs;
 }
 
-/// Generates and cleans the isosurface of a --meshes entry; gives the volume's resolution and
-/// the number of triangles the cleaning dropped.
-vtkSmartPointer<vtkPolyData> MakeMesh(const std::pair<meshlod::testing::Field, double>& spec,
-  int& resolution,
-  vtkIdType& dropped)
-{
-  resolution = meshlod::testing::ResolutionForTriangles(spec.first, spec.second);
-  vtkSmartPointer<vtkPolyData> surface = meshlod::testing::MakeIsosurface(spec.first, resolution);
-  vtkSmartPointer<vtkPolyData> cleaned = Clean(surface);
-  dropped = surface->GetNumberOfPolys() - cleaned->GetNumberOfPolys();
-  return cleaned;
-}
-
 std::string ShellQuoted(const std::string& text)
 {
   std::string quoted = "'";
@@ -503,7 +471,8 @@ public:
       Mesh mesh;
       mesh.Field = meshlod::testing::FieldName(spec.first);
       const Clock::time_point start = Clock::now();
-      mesh.Data = MakeMesh(spec, mesh.Resolution, mesh.Dropped);
+      mesh.Data = meshlod::benchmark::MakeBenchmarkMesh(
+        spec.first, spec.second, mesh.Resolution, mesh.Dropped);
       mesh.Seconds = SecondsSince(start);
       mesh.Label = mesh.Field + " " + Thousands(mesh.Data->GetNumberOfPolys());
       std::printf("mesh %s: %d^3 volume, %lld triangles (%lld degenerate dropped), %.2f s\n",
@@ -966,7 +935,8 @@ int RunMemoryProbe(const Options& options, const std::vector<Method>& methods, c
   UseAllCores(smp);
   int resolution = 0;
   vtkIdType dropped = 0;
-  vtkSmartPointer<vtkPolyData> input = MakeMesh(options.Meshes[0], resolution, dropped);
+  vtkSmartPointer<vtkPolyData> input = meshlod::benchmark::MakeBenchmarkMesh(
+    options.Meshes[0].first, options.Meshes[0].second, resolution, dropped);
   const std::vector<TimedJob> jobs =
     MakeJobs(methods[0], input, TargetCounts(input, options.Targets), smp);
   UseTimedBackend(smp, options.Threads);
