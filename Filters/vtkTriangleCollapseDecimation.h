@@ -35,9 +35,9 @@
  *   triangles meet, such as a fan's centre, a cone's tip or a UV sphere's pole, a fit reads
  *   about 64 of them, each standing for its share, and a collapse next to it does not re-fit
  *   them all: otherwise the work grows with the cube of the valence, 88 s for a fan of 2,000
- *   triangles, against 0.14 s now with the default CurvatureCost; with CurvatureCost WEIGHT,
+ *   triangles, against 0.06 s now with the default CurvatureCost; with CurvatureCost WEIGHT,
  *   whose valence term changes for every triangle at such a vertex with each collapse there,
- *   the work still grows with its square: 8 s for a fan of 2,000, 41 s for 4,000).
+ *   the work still grows with its square: 9 s for a fan of 2,000, 47 s for 4,000).
  *   Collapses are ranked by CurvatureCost. By default
  *   (FIT_DEVIATION) a collapse costs the integral over the new triangles of their squared
  *   height above the fitted surface, or the merged planes'
@@ -276,12 +276,12 @@ public:
    * refused (long thin triangles with the TRIANGLES operator). After 64 passes in a row that
    * each removed under 1% of their budget, the greedy loop makes the rest of the level, and the
    * passes take up the next one. With it, on one thread, a fan of 30,000 triangles around one
-   * point takes 0.26 s with the quadric method and 1.5 s with the curvature method (GREEDY:
-   * 0.11 s and 1.4 s; 12 s and 13 s before the fallback), a UV sphere of 384,000 triangles with
+   * point takes 0.2 s with the quadric method and 1.0 s with the curvature method (GREEDY:
+   * 0.07 s and 0.8 s; 12 s and 13 s before the fallback), a UV sphere of 384,000 triangles with
    * poles of valence 4,000 3.7 s and 18 s (GREEDY: 1.1 s and 10.5 s; on two threads 3.4 s and
    * 11 s, GREEDY 0.6 s and 6 s), and a UV sphere of 116,000 long thin triangles (theta
    * resolution 1,000, phi 60) with the TRIANGLES operator 4.8 s where it had not finished after
-   * five minutes (GREEDY: 1.7 s). With the TRIANGLES operator a fan of 3,000 takes 0.7 s either
+   * five minutes (GREEDY: 1.7 s). With the TRIANGLES operator a fan of 3,000 takes 1.3 s either
    * way. GREEDY is the better choice for such meshes.
    */
   vtkSetClampMacro(Schedule, int, INDEPENDENT_SETS, GREEDY);
@@ -325,6 +325,13 @@ public:
    * benchmark's noise); a faceted cylinder at 1% keeps its shape exactly instead of losing its rims
    * (4.4% of the diagonal with TRIANGLES), and the surfaces of a segmented volume reach 1% instead
    * of stopping at 3.3%. With WEIGHT, triangles only.
+   * With TRIANGLES_AND_EDGES, a triangle with one corner where more than 64 triangles meet (a
+   * hub: a fan's centre, a cone's tip, a UV sphere's pole) is priced by its edge away from the
+   * hub alone, as its collapse and its fallback edge (quadric method; the curvature method's
+   * fallback edge likewise): the hub keeps its place while it is one. A collapse that moves a
+   * hub changes every triangle around it, and re-weighing and re-checking all of them after
+   * each such move made a flat fan of 16,000 triangles inside a ring of 32,000 take 4.8 s and
+   * one of 20,000 in 40,000 36 s; now 0.41 s and 0.69 s (one thread).
    */
   vtkSetClampMacro(Operator, int, TRIANGLES, TRIANGLES_AND_EDGES);
   vtkGetMacro(Operator, int);

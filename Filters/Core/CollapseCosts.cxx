@@ -420,16 +420,43 @@ void CollapseCostModel::SolveEdge(Id a, Id b, EdgeSolution& e, CostScratch* scra
   }
 }
 
+int CollapseCostModel::HubEdgesToSkip(const Id* tri) const
+{
+  int hubs = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    hubs |= this->State.TriangleCount(tri[k]) > FanTriangleLimit ? 1 << k : 0;
+  }
+  if (hubs == 0)
+  {
+    return 0;
+  }
+  // Edge k joins corners k and k + 1: it is skipped when either is a hub, unless that leaves
+  // no edge (two or three hubs).
+  int skip = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    skip |= (hubs & ((1 << k) | (1 << ((k + 1) % 3)))) != 0 ? 1 << k : 0;
+  }
+  return skip == 7 ? 0 : skip;
+}
+
 double CollapseCostModel::BestEdge(
   const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const
 {
-  // Solve the three edges, keep the cheapest (ties: the first).
+  // Solve the three edges, keep the cheapest (ties: the first); a triangle at a hub only its
+  // edge away from it (see HubEdgesToSkip).
+  const int skip = this->HubEdgesToSkip(tri);
   EdgeSolution edge, best;
   best.Cost = Infinity;
   int bestEdge = 0;
   worst = 0.0;
   for (int k = 0; k < 3; ++k)
   {
+    if ((skip & (1 << k)) != 0)
+    {
+      continue;
+    }
     this->SolveEdge(tri[k], tri[(k + 1) % 3], edge, scratch);
     worst = std::max(worst, edge.Value);
     if (edge.Cost < best.Cost)
@@ -470,6 +497,10 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
   }
   double worst;
   const double best = this->BestEdge(tri, c, worst, &scratch);
+  if (this->HubEdgesToSkip(tri) != 0)
+  {
+    return true; // the triangle collapse would move the hub
+  }
   // A triangle collapse removes twice the triangles of an edge collapse: it is taken when it
   // costs at most TriangleCostFactor times the cheapest edge, and ranked by its cost over that
   // factor. Its quadric contains each edge's, so its value is at least the largest edge's: when

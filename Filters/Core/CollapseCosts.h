@@ -171,6 +171,16 @@ private:
   // Curvature method (FitDeviation), TrianglesAndEdges: the triangle collapse, or its cheapest
   // edge where the triangle costs CreaseEdgeFactor times more (a crease) or cannot collapse.
   bool EvaluateTriangleOrCreaseEdge(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const;
+  // Around a hub (a vertex of more than FanTriangleLimit triangles: a fan's centre, a cone's
+  // tip, a UV sphere's pole) a collapse that moves the hub changes every triangle of its fan,
+  // and the fan's triangles, re-weighed and re-checked against all of it after each such
+  // move, made the work grow with the square of the valence or worse (a flat fan of 20,000
+  // triangles inside a ring of 40,000: 36 s, now 0.7 s). So a triangle with one hub corner collapses by its edge
+  // away from the hub only, which removes the triangle and lowers the hub's valence without
+  // moving it; the hub itself moves once its valence is back to FanTriangleLimit. Returns a
+  // bit per edge to skip (edge k joins corners k and k + 1), 0 for a triangle with no hub or
+  // with more than one.
+  int HubEdgesToSkip(const Id* tri) const;
   // The cheapest edge of the triangle into c; returns its cost, and the largest of the edges'
   // quadric values in worst.
   double BestEdge(const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const;

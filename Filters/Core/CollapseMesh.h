@@ -57,7 +57,9 @@ enum VertexFlag : std::uint8_t
 ///   link's shape with a hash table rather than a sort (LinkIsSimple), a longer row is hinted
 ///   in part (CollapseMesh::Prefetch), and the solved spokes of such a survivor are not kept
 ///   (CostScratch::BeginSpokes);
-/// - the parking lot looks at such a corner alone (ParkingLot::Release).
+/// - the parking lot looks at such a corner alone (ParkingLot::Release);
+/// - with edges allowed, a triangle with one such corner is priced by its edge away from it,
+///   so that the corner stays in place while it is one (CollapseCostModel::HubEdgesToSkip).
 constexpr Id FanTriangleLimit = 64;
 
 /// The largest connected piece that may vanish (TriangleCollapseOptions::PreserveTopology

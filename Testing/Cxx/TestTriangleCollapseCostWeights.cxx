@@ -33,6 +33,7 @@
 #include "vtkExecutive.h"
 #include "vtkTriangleFilter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -328,6 +329,40 @@ void TestTriangleOrEdge(double areaNormalization)
   }
 }
 
+// Around a hub (more than FanTriangleLimit triangles at a vertex) a triangle is priced by its
+// edge away from the hub only: in a flat fan of 100 triangles inside a ring, where every
+// collapse costs 0 and the triangle collapse wins the tie, each fan triangle's choice is its
+// rim edge. In a fan of 40 each chooses the triangle, which moves the centre.
+void TestHubTriangles()
+{
+  for (const int n : { 100, 40 })
+  {
+    State all;
+    Initialize(testing::MakeFlatFanInRing(n), 0.25, CollapseMethod::Quadric, all);
+    const CollapseCostModel model(all.Options, all.Mesh, all.Tracker, all.Original);
+    CostScratch scratch;
+    int atCentre = 0, rimEdges = 0;
+    for (Id t = 0; t < all.Mesh.Mesh.GetNumberOfTriangles(); ++t)
+    {
+      const Id* tri = all.Mesh.Mesh.Triangle(t);
+      if (std::find(tri, tri + 3, 0) == tri + 3)
+      {
+        continue; // a triangle of the ring
+      }
+      CollapseCandidate chosen;
+      MESHLOD_CHECK(model.Evaluate(t, chosen, scratch));
+      const Id* members = chosen.Members;
+      const bool centre = std::find(members, members + chosen.MemberCount, 0) !=
+        members + chosen.MemberCount;
+      atCentre += centre ? 1 : 0;
+      rimEdges += !centre && chosen.MemberCount == 2 ? 1 : 0;
+    }
+    std::cout << "flat fan of " << n << ": " << atCentre << " choices move the centre, "
+              << rimEdges << " are rim edges\n";
+    MESHLOD_CHECK_EQ(n > FanTriangleLimit ? rimEdges : atCentre, n);
+  }
+}
+
 // A collapse sums its vertices' surface weights into the survivor; the total stays.
 void TestSurfaceWeightsMerge()
 {
@@ -445,6 +480,7 @@ int TestTriangleCollapseCostWeights(int, char*[])
     TestTriangleOrEdge(power);
   }
   TestSurfaceWeightsMerge();
+  TestHubTriangles();
   TestSettings();
   return testing::Result();
 }
