@@ -466,7 +466,7 @@ public:
    * keeping small ones where the surface bends. On the other meshes of the benchmark (a torus,
    * noisy spheres, Boy's surface, a superquadric, a faceted cylinder and the surfaces of a
    * segmented volume, with the default operator: see SetOperator) FIT_DEVIATION is at 0.84-1.53x
-   * and 0.79-1.16x (the faceted cylinder aside, where both methods are within float rounding of its
+   * and 0.82-1.16x (the faceted cylinder aside, where both methods are within float rounding of its
    * faces); on a terrain and a sphere with holes at 1.23-1.55x and 1.06-1.35x, on the wavelet and
    * noisy isosurfaces up to 3.3x and 4.3x at 1%. Where it falls short: a very rough input with
    * high-valence poles (a UV sphere with radial noise of an edge) gets long triangles across it at
@@ -511,11 +511,11 @@ public:
    * attention. Measured at 1% against vtkQuadricDecimation (Benchmarks/RESULTS.md, Beyond
    * isosurfaces; Hausdorff distance ratio, AREA_WEIGHTS -> UNIFORM_WEIGHTS, with the default
    * AreaNormalization): lower on some rough meshes and some with graded triangle sizes (very
-   * noisy sphere 1.05 -> 0.70, superquadric 1.07 -> 0.86, terrain 1.11 -> 1.05, Boy's surface
-   * 0.77 -> 0.74, one of three noisy UV spheres 1.06 -> 0.61), higher on the other two noisy
-   * spheres (0.80 -> 0.89, 0.78 -> 0.93), the parametric torus (0.73 -> 0.79) and the sphere
-   * with holes (1.06 -> 1.30); the RMS distance rises on most
-   * (superquadric 0.72 -> 1.13, noisy UV spheres 0.80-0.82 -> 0.86-0.88). On the benchmark's
+   * noisy sphere 0.97 -> 0.70, superquadric 1.07 -> 0.86, terrain 1.11 -> 1.05, Boy's surface
+   * 0.77 -> 0.74, two of three noisy UV spheres 1.06 -> 0.89 and 0.77 -> 0.61), higher on the
+   * third (0.78 -> 0.93), the parametric torus (0.73 -> 0.79) and the sphere with holes
+   * (1.06 -> 1.30); the RMS distance rises on most
+   * (superquadric 0.72 -> 1.13, noisy UV spheres 0.80-0.83 -> 0.85-0.88). On the benchmark's
    * marching-cubes isosurfaces UNIFORM_WEIGHTS has the larger Hausdorff distance at five of
    * the six targets (metaballs at 1%: 0.92 -> 1.09) and the larger RMS distance at all. Keep
    * AREA_WEIGHTS for
@@ -543,12 +543,11 @@ public:
    * planes, which lowers the largest distance on most meshes: against vtkQuadricDecimation at
    * the same count (Benchmarks/RESULTS.md, the first and the AreaNormalization 0 tables of
    * "Beyond isosurfaces"; Hausdorff distance ratio, 0 -> 0.25), on the 11 meshes there that are
-   * not at rounding level or topology-bound, the geometric mean went from 0.95 to 0.90 at 10%
-   * and from 1.01 to 0.94 at 1%, the RMS distance unchanged (0.91 and 0.87). At 1% lower on 6 of
+   * not at rounding level or topology-bound, the geometric mean went from 0.95 to 0.89 at 10%
+   * and from 1.00 to 0.93 at 1%, the RMS distance unchanged (0.91 and 0.87). At 1% lower on 6 of
    * the 11 (parametric torus 0.95 -> 0.73, Boy's surface 1.15 -> 0.77), the same on one
-   * (segmented balls, 0.98), higher on 4 (noisy UV
-   * sphere, seed 9, 0.73 -> 1.06; very noisy sphere 1.03 -> 1.05; terrain 1.08 -> 1.11;
-   * superquadric 1.03 -> 1.07). On the benchmark isosurfaces ("paper cost" rows), at 10% / 1%:
+   * (segmented balls, 0.98), higher on 4 (noisy UV spheres, seeds 7 and 9, 1.05 -> 1.06 and
+   * 0.70 -> 0.77; terrain 1.08 -> 1.11; superquadric 1.03 -> 1.07). On the benchmark isosurfaces ("paper cost" rows), at 10% / 1%:
    * metaballs 0.94 / 0.95 -> 0.88 / 0.92, gyroid (611k) 0.97 / 1.02 -> 0.81 / 1.26, gyroid
    * (2.3M) 0.97 / 0.89 -> 0.99 / 0.88. The largest distance at 1% is one spot and moves by
    * chance: with TargetReduction 0.99 instead of the benchmark's 1 - 6,109 / 610,880 (a level of

@@ -175,11 +175,11 @@ private:
   // tip, a UV sphere's pole) a collapse that moves the hub changes every triangle of its fan,
   // and the fan's triangles, re-weighed and re-checked against all of it after each such
   // move, made the work grow with the square of the valence or worse (a flat fan of 20,000
-  // triangles inside a ring of 40,000: 36 s, now 0.7 s). So a triangle with one hub corner collapses by its edge
-  // away from the hub only, which removes the triangle and lowers the hub's valence without
-  // moving it; the hub itself moves once its valence is back to FanTriangleLimit. Returns a
-  // bit per edge to skip (edge k joins corners k and k + 1), 0 for a triangle with no hub or
-  // with more than one.
+  // triangles inside a ring of 40,000: 36 s, now 0.7 s). So a triangle with one hub corner
+  // collapses by its edge away from the hub only, which removes the triangle and lowers the
+  // hub's valence without moving it; the hub itself may move once at most FanTriangleLimit
+  // triangles meet there. Returns a bit per edge to skip (edge k joins corners k and k + 1), 0
+  // for a triangle with no hub or with more than one (every edge touches a hub then).
   int HubEdgesToSkip(const Id* tri) const;
   // The cheapest edge of the triangle into c; returns its cost, and the largest of the edges'
   // quadric values in worst.
