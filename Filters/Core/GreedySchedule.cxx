@@ -163,9 +163,17 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
     // the parking lot takes note of. For the curvature method the triangles one ring further
     // out are re-weighted too: their stencils moved.
     scratch.BeginSpokes(survivor, this->State.TriangleCount(survivor));
+    const bool lazy = this->DefersAroundHub(survivor);
     this->State.ForEachTriangle(survivor, [&](Id s) {
       this->Lot.Touch(this->State.Mesh.Triangle(s), this->Clock);
-      reweigh(s);
+      if (lazy)
+      {
+        defer(s);
+      }
+      else
+      {
+        reweigh(s);
+      }
     });
     scratch.EndSpokes();
     upcoming.Prefetch(3);

@@ -497,9 +497,17 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
           heap.Remove(d);
         }
         mine.Cost.BeginSpokes(survivor, this->State.TriangleCount(survivor));
+        const bool lazy = this->DefersAroundHub(survivor);
         this->State.ForEachTriangle(survivor, [&](Id s) {
           this->Lot.Touch(this->State.Mesh.Triangle(s), now + 1);
-          reweigh(s);
+          if (lazy)
+          {
+            defer(s);
+          }
+          else
+          {
+            reweigh(s);
+          }
         });
         mine.Cost.EndSpokes();
         upcoming.Prefetch(3);

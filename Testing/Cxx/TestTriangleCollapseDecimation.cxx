@@ -1088,6 +1088,46 @@ void TestParametricSeam()
   MESHLOD_CHECK_LE(c.Ours.Hausdorff, 1.5 * c.Theirs.Hausdorff);
 }
 
+// A fan reduced to 10% and 1% in two levels: both on target, valid, still a disk, the open rim
+// kept.
+void CheckFanLevels(vtkPolyData* fan, int method, bool weight)
+{
+  vtkNew<vtkTriangleCollapseDecimation> filter;
+  filter->SetInputData(fan);
+  filter->SetMethod(method);
+  if (weight)
+  {
+    filter->SetCurvatureCostToWeight();
+  }
+  filter->SetNumberOfLevels(2);
+  filter->SetTargetReduction(0.99);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
+  if (h->GetNumberOfBlocks() != 3)
+  {
+    return;
+  }
+  const vtkIdType triangles = fan->GetNumberOfPolys();
+  for (unsigned int i = 1; i < 3; ++i)
+  {
+    const vtkIdType target = triangles / (i == 1 ? 10 : 100);
+    MESHLOD_CHECK_LE(Level(h, i)->GetNumberOfPolys(), target);
+    MESHLOD_CHECK_GE(Level(h, i)->GetNumberOfPolys(), target - 2);
+    const testing::MeshReport report = testing::InspectMesh(Level(h, i));
+    MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
+    MESHLOD_CHECK_EQ(report.DegenerateTriangles, 0);
+    MESHLOD_CHECK_EQ(report.EulerCharacteristic, 1); // still a disk
+  }
+  // (Not with paper 000's weight, which does not price the boundary: at 19 triangles a rim
+  // point of the fan of 2,000, of radius 1, lies 0.98 inside, with or without the stale
+  // marking.)
+  if (!weight)
+  {
+    MESHLOD_CHECK_LE(testing::BoundaryDeviation(fan, Level(h, 2)), 0.01);
+  }
+}
+
 // A fan of 50,000 triangles around one point (a triangulated polygon, a cylinder's cap), with
 // both methods: every level valid and on target, the open rim kept. (Input validation used to
 // scan the centre's 50,000 triangles for each of them: the run took 3.4 s here instead of
@@ -1097,34 +1137,12 @@ void TestParametricSeam()
 void TestHighValenceFan()
 {
   vtkSmartPointer<vtkPolyData> fan = testing::MakeFan(50000);
-  for (const bool curvature : { false, true })
-  {
-    vtkNew<vtkTriangleCollapseDecimation> filter;
-    filter->SetInputData(fan);
-    filter->SetMethod(curvature ? vtkTriangleCollapseDecimation::CURVATURE
-                                : vtkTriangleCollapseDecimation::QUADRIC);
-    filter->SetNumberOfLevels(2);
-    filter->SetTargetReduction(0.99);
-    filter->Update();
-    vtkMultiBlockDataSet* h = filter->GetHierarchy();
-    MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
-    if (h->GetNumberOfBlocks() != 3)
-    {
-      return;
-    }
-    MESHLOD_CHECK_LE(Level(h, 1)->GetNumberOfPolys(), 5000);
-    MESHLOD_CHECK_GE(Level(h, 1)->GetNumberOfPolys(), 4998);
-    MESHLOD_CHECK_LE(Level(h, 2)->GetNumberOfPolys(), 500);
-    MESHLOD_CHECK_GE(Level(h, 2)->GetNumberOfPolys(), 498);
-    for (unsigned int i = 1; i < 3; ++i)
-    {
-      const testing::MeshReport report = testing::InspectMesh(Level(h, i));
-      MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
-      MESHLOD_CHECK_EQ(report.DegenerateTriangles, 0);
-      MESHLOD_CHECK_EQ(report.EulerCharacteristic, 1); // still a disk
-    }
-    MESHLOD_CHECK_LE(testing::BoundaryDeviation(fan, Level(h, 2)), 0.01);
-  }
+  CheckFanLevels(fan, vtkTriangleCollapseDecimation::QUADRIC, false);
+  CheckFanLevels(fan, vtkTriangleCollapseDecimation::CURVATURE, false);
+  // Paper 000's weight: each collapse at the centre moves it, and the fan's triangles around it
+  // are marked stale rather than re-fitted at once (Collapser::DefersAroundHub; a fan of 2,000
+  // took 9 s, now 2.2 s).
+  CheckFanLevels(testing::MakeFan(2000), vtkTriangleCollapseDecimation::CURVATURE, true);
 }
 
 // A flat fan of 16,000 triangles inside a ring, so that its centre and rim are interior: a
