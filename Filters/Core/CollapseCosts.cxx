@@ -442,11 +442,9 @@ int CollapseCostModel::HubEdgesToSkip(const Id* tri) const
 }
 
 double CollapseCostModel::BestEdge(
-  const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const
+  const Id* tri, int skip, CollapseCandidate& c, double& worst, CostScratch* scratch) const
 {
-  // Solve the three edges, keep the cheapest (ties: the first); a triangle at a hub only its
-  // edge away from it (see HubEdgesToSkip).
-  const int skip = this->HubEdgesToSkip(tri);
+  // Solve the three edges, keep the cheapest (ties: the first), leaving out those in `skip`.
   EdgeSolution edge, best;
   best.Cost = Infinity;
   int bestEdge = 0;
@@ -483,7 +481,7 @@ bool CollapseCostModel::EvaluateBestEdge(const Id* tri, CollapseCandidate& c) co
     return false;
   }
   double worst;
-  this->BestEdge(tri, c, worst, nullptr);
+  this->BestEdge(tri, this->HubEdgesToSkip(tri), c, worst, nullptr);
   return true;
 }
 
@@ -496,8 +494,9 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
     return false;
   }
   double worst;
-  const double best = this->BestEdge(tri, c, worst, &scratch);
-  if (this->HubEdgesToSkip(tri) != 0)
+  const int hubEdges = this->HubEdgesToSkip(tri);
+  const double best = this->BestEdge(tri, hubEdges, c, worst, &scratch);
+  if (hubEdges != 0)
   {
     return true; // the triangle collapse would move the hub
   }

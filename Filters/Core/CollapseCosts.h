@@ -181,9 +181,10 @@ private:
   // triangles meet there. Returns a bit per edge to skip (edge k joins corners k and k + 1), 0
   // for a triangle with no hub or with more than one (every edge touches a hub then).
   int HubEdgesToSkip(const Id* tri) const;
-  // The cheapest edge of the triangle into c; returns its cost, and the largest of the edges'
-  // quadric values in worst.
-  double BestEdge(const Id* tri, CollapseCandidate& c, double& worst, CostScratch* scratch) const;
+  // The cheapest edge of the triangle, of those not in `skip` (bits as HubEdgesToSkip's), into
+  // c; returns its cost, and the largest of the solved edges' quadric values in worst.
+  double BestEdge(
+    const Id* tri, int skip, CollapseCandidate& c, double& worst, CostScratch* scratch) const;
   // What a quadric value is divided by to make the cost of merging `count` vertices: the
   // surface they stand for (their CollapseMesh::SurfaceWeights, summed) in units of the input's
   // mean triangle (see CollapseMesh::SurfaceWeightUnit), to the power AreaNormalization
