@@ -64,9 +64,13 @@ double SearchSetting(
 /// about `triangles` triangles, cleaned (exactly coincident points merged, the triangles that
 /// collapse dropped: on the uncleaned 2.3M-triangle gyroid vtkQuadricDecimation stops after
 /// about 2000 collapses). Gives the volume's resolution and the number of triangles dropped.
-/// (BenchmarkMeshes.cxx)
+/// (BenchmarkHarness.cxx)
 vtkSmartPointer<vtkPolyData> MakeBenchmarkMesh(
   meshlod::testing::Field field, double triangles, int& resolution, vtkIdType& dropped);
+
+/// The registered method of that name; a program asking for one that is not there stops with
+/// an error. (BenchmarkHarness.cxx)
+const Method& FindMethod(const std::vector<Method>& methods, const std::string& name);
 
 /// VTK's decimators (VTKMethods.cxx).
 void RegisterVTKMethods(std::vector<Method>& methods);

@@ -340,14 +340,13 @@ int main(int argc, char* argv[])
   std::vector<meshlod::benchmark::Method> methods;
   meshlod::benchmark::RegisterVTKMethods(methods);
   meshlod::benchmark::RegisterMeshLODMethods(methods);
-  auto method = [&](const std::string& name) {
-    return *std::find_if(methods.begin(), methods.end(),
-      [&](const meshlod::benchmark::Method& m) { return m.Name == name; });
-  };
-  const meshlod::benchmark::Method octree = method("vtkVertexClusterOctree");
-  const meshlod::benchmark::Method flipped = method("vtkVertexClusterOctree flipped edges");
-  const meshlod::benchmark::Method free = method("vtkVertexClusterOctree free topology");
-  const meshlod::benchmark::Method grid = method("vtkQuadricClustering");
+  using meshlod::benchmark::FindMethod;
+  const meshlod::benchmark::Method& octree = FindMethod(methods, "vtkVertexClusterOctree");
+  const meshlod::benchmark::Method& flipped =
+    FindMethod(methods, "vtkVertexClusterOctree flipped edges");
+  const meshlod::benchmark::Method& free =
+    FindMethod(methods, "vtkVertexClusterOctree free topology");
+  const meshlod::benchmark::Method& grid = FindMethod(methods, "vtkQuadricClustering");
   std::ostringstream octreeRows, curvatureRows, uniformRows, paperCostRows, freeTopologyRows;
   for (const TestMesh& test : Meshes())
   {

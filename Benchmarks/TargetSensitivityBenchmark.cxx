@@ -11,7 +11,7 @@
 //   TargetSensitivityBenchmark [samples [draws [field:triangles ...]]]
 //
 // samples: yardstick samples per surface (default 100000); draws: targets per mesh (default 9);
-// meshes: the main benchmark's isosurfaces (BenchmarkMeshes.cxx), by default all three:
+// meshes: the main benchmark's isosurfaces (BenchmarkHarness.cxx), by default all three:
 // metaballs:150000, gyroid:600000 and gyroid:2300000 (about ten minutes in all on two cores, eight
 // of them for the largest).
 #include "BenchmarkMethods.h"
@@ -28,20 +28,6 @@
 
 namespace
 {
-using meshlod::benchmark::Method;
-
-const Method* FindMethod(const std::vector<Method>& methods, const std::string& name)
-{
-  for (const Method& method : methods)
-  {
-    if (method.Name == name)
-    {
-      return &method;
-    }
-  }
-  return nullptr;
-}
-
 struct Spread
 {
   std::vector<double> Hausdorff, Rms; // ratios to vtkQuadricDecimation, one per target
@@ -90,14 +76,16 @@ int main(int argc, char* argv[])
       { meshlod::testing::Field::Gyroid, 2300000.0 } };
   }
 
-  std::vector<Method> methods;
+  std::vector<meshlod::benchmark::Method> methods;
   meshlod::benchmark::RegisterVTKMethods(methods);
   meshlod::benchmark::RegisterMeshLODMethods(methods);
-  const Method* ours = FindMethod(methods, "vtkTriangleCollapseDecimation");
-  const Method* peer = FindMethod(methods, "vtkQuadricDecimation");
-  if (ours == nullptr || peer == nullptr || !ours->Hierarchy || !peer->Prepare)
+  const meshlod::benchmark::Method& ours =
+    meshlod::benchmark::FindMethod(methods, "vtkTriangleCollapseDecimation");
+  const meshlod::benchmark::Method& peer =
+    meshlod::benchmark::FindMethod(methods, "vtkQuadricDecimation");
+  if (!ours.Hierarchy || !peer.Prepare)
   {
-    std::fprintf(stderr, "the registry lacks the default triangle collapse or the peer\n");
+    std::fprintf(stderr, "the triangle collapse must make a hierarchy, the peer one output\n");
     return 1;
   }
 
@@ -123,11 +111,11 @@ int main(int argc, char* argv[])
       {
         targets.push_back(std::max<vtkIdType>(4, std::llround(fraction * (1.0 + 0.004 * k) * n)));
       }
-      const auto levels = ours->Hierarchy(input, targets);
+      const auto levels = ours.Hierarchy(input, targets);
       for (int f = 0; f < 2; ++f)
       {
         const vtkIdType count = levels[f]->GetNumberOfPolys();
-        const vtkSmartPointer<vtkPolyData> reference = peer->Prepare(input, count)();
+        const vtkSmartPointer<vtkPolyData> reference = peer.Prepare(input, count)();
         const meshlod::SurfaceDistance mine = meter.Measure(levels[f]);
         const meshlod::SurfaceDistance theirs = meter.Measure(reference);
         spread[f].Hausdorff.push_back(mine.Hausdorff / theirs.Hausdorff);

@@ -1,9 +1,13 @@
-// The benchmark's input meshes, shared by MeshLODBenchmark and TargetSensitivityBenchmark.
+// What the benchmark programs share besides the methods themselves: the input meshes and the
+// lookup of a registered method by its name.
 #include "BenchmarkMethods.h"
 
 #include "vtkCleanPolyData.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
+
+#include <cstdio>
+#include <cstdlib>
 
 namespace meshlod
 {
@@ -28,6 +32,19 @@ vtkSmartPointer<vtkPolyData> MakeBenchmarkMesh(
   cleaned->ShallowCopy(clean->GetOutput());
   dropped = surface->GetNumberOfPolys() - cleaned->GetNumberOfPolys();
   return cleaned;
+}
+
+const Method& FindMethod(const std::vector<Method>& methods, const std::string& name)
+{
+  for (const Method& method : methods)
+  {
+    if (method.Name == name)
+    {
+      return method;
+    }
+  }
+  std::fprintf(stderr, "no method named '%s' is registered\n", name.c_str());
+  std::exit(1);
 }
 
 } // namespace benchmark
