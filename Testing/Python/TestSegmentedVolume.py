@@ -91,7 +91,10 @@ def check_octree(merged):
     their targets, a tenth and a hundredth of the input's 15,597 triangles (before, curve points
     never merged and both levels kept over 3,100 triangles). The 1% level cannot be reached
     without merging the curves further than they may; it then backs off to an error near what
-    its count warrants (without that, 726 triangles at 5.8 times level 1's error)."""
+    its count warrants (without that, 726 triangles at 5.8 times level 1's error; with it 924
+    at 2.2 times, and 854 at 2.9 times since a vertex of a cluster may stand in for a
+    representative that would flip a triangle: other clusters merge, the fewest triangles found
+    are fewer, and the back-off keeps at most a tenth more)."""
     octree = meshlod.vtkVertexClusterOctree()
     octree.SetInputConnection(merged.GetOutputPort())
     octree.SetLevelModeToTargetTriangleCounts()
@@ -113,7 +116,7 @@ def check_octree(merged):
           "octree level 1 near 10%%: %d, asked %d" % (levels[1].GetNumberOfPolys(), total // 10))
     check(levels[2].GetNumberOfPolys() <= 0.75 * levels[1].GetNumberOfPolys(),
           "octree level 2 well below level 1: %d" % levels[2].GetNumberOfPolys())
-    check(error[2] <= 2.5 * error[1], "octree level 2's error %.4g within 2.5 times level 1's %.4g"
+    check(error[2] <= 3.0 * error[1], "octree level 2's error %.4g within 3 times level 1's %.4g"
           % (error[2], error[1]))
 
 
