@@ -9,7 +9,7 @@
  * clustered into one representative when
  * - the cell is no larger than MaximumCellSize and holds at most MaximumPointsPerCell vertices,
  * - no triangle joining the cluster to the rest of the mesh flips when its vertex moves to the
- *   representative,
+ *   representative (see below for the representative taken when the quadric's would flip one),
  * - and the cluster error is at most epsilon;
  * otherwise the cell is subdivided and its children are tried (§2.4, §2.5). A cell holding
  * several unconnected parts clusters each part on its own, so separate sheets that pass through
@@ -36,7 +36,19 @@
  * solve that stays at the vertex centroid along directions the planes do not determine (a flat
  * or cylindrical cluster); a cluster holding open-boundary vertices then moves to the closest
  * point of its boundary edges, so every boundary point of a level lies on the input's
- * boundary. The cluster error is the largest of the root of the area-weighted mean squared
+ * boundary. Beyond the paper, which falls back to a vertex of the cluster where its 3x3 system
+ * is ill-conditioned: where the minimiser would flip a triangle, the best of the cluster's own
+ * vertices that flips none stands for it (every vertex of a cluster of up to 32, else 32 to 63
+ * evenly spaced), at its own error, and the cluster is refused only when none is left. Refused
+ * clusters are split down to small cells, and a search for a count made up for them with
+ * coarser clusters elsewhere: on the 154k metaballs isosurface at 1% the Hausdorff and RMS
+ * distances were 1.10 and 0.80 times vtkQuadricClustering's, now 0.73 and 0.59. Where the
+ * minimiser has no error (planes meeting at a solid's corner or along its edge), only a vertex
+ * without error may stand in, so that corners are not cut (a subdivided icosahedron asked for
+ * 1% would get its count at 7.7% of its diagonal instead of 888 triangles at no error). On a
+ * faceted cylinder (64 sides, 64,512 triangles) asked for 645 triangles the levels got worse,
+ * 1,276 triangles at 5 times vtkQuadricClustering's distances (618 at 3.2 and 2.7 times
+ * before). The cluster error is the largest of the root of the area-weighted mean squared
  * distance to all the planes, the largest distance to a boundary plane (so an open boundary,
  * corners included, stays within epsilon; not with BoundaryWeight 0), and half the distance to
  * the farthest plane (a mean alone lets elongated or bent clusters stray at their ends), in
@@ -63,8 +75,10 @@
  *   such a level a large cluster that folds gives way to the topmost clusters below
  *   it that neither fold nor flip a triangle, and those are small; PreserveTopology off
  *   lifts those repairs and reaches such counts); a self-intersecting surface
- *   (vtkParametricBoy, 178,204 triangles) stops near 9%, its clusters folding where it turns
- *   tightly; when the trials miss, the one nearest the
+ *   (vtkParametricBoy, 178,204 triangles) stops near 6%, its clusters folding where it turns
+ *   tightly (these counts, but for the last, were measured before a vertex of a cluster could
+ *   stand in for a representative that flips a triangle, which lets more clusters merge: the
+ *   self-intersecting surface stopped near 9% then); when the trials miss, the one nearest the
  *   target in ratio is kept, never a level cut at the octree's roots because it is nearer in
  *   difference, and when that one keeps a quarter or more above the target, the epsilon backs off
  *   to the smallest that keeps at most a tenth more triangles than it, or at most half more at
@@ -73,8 +87,8 @@
  *   from the one before): the search's epsilon merges all that may merge, at an error far beyond
  *   what a few more triangles need; on the surfaces of a segmented volume asked for 1%, whose
  *   curves merge only so far, 3,245 triangles at 0.79% Hausdorff distance instead of 2,423 at
- *   4.6% when this rule was made (the segmented balls of Benchmarks/RESULTS.md now: 3,059 at
- *   0.84%); on a finely subdivided icosahedron asked for 10% and 1%, 888 triangles at no error
+ *   4.6% when this rule was made (the segmented balls of Benchmarks/RESULTS.md now: 3,012 at
+ *   0.69%); on a finely subdivided icosahedron asked for 10% and 1%, 888 triangles at no error
  *   at 1% instead of 390 at 8%, whose clusters across the edges cut the corners); a count
  *   between two that consecutive epsilons give (levels cut one cluster tree, so counts move in
  *   steps of whole clusters); a count at or above the previous level's (a level never refines).
@@ -309,9 +323,10 @@ public:
    * isosurface of a noisy volume) those repairs add back so many triangles that target counts
    * are missed by far, and the search's level can then be far from the input: the isosurface
    * of a 120^3 volume with noise of one grid step (MeshLODTestMeshes' MakeNoisyIsosurface,
-   * 103,940 triangles) asked for 10% and 1% got 14.4% and 6.0%, that last level at 3.6 times
+   * 103,940 triangles) asked for 10% and 1% got 15.7% and 5.8%, that last level at 2.6 times
    * the Hausdorff distance of vtkQuadricClustering's output of the same count; with noise of
-   * 1.5 steps, 33% and 32%.
+   * 1.5 steps, 33% and 32% (measured before a vertex of a cluster could stand in for a
+   * representative that flips a triangle).
    *
    * Off: the paper's conditions alone (the connected vertices of a cell, epsilon, and the flip test
    * of the triangles joining a cluster to the rest of the mesh), as vertex clustering is meant to
@@ -320,12 +335,14 @@ public:
    * vtkQuadricClustering's output does; a thin part folded flat keeps both its sides (two triangles
    * on the same points in opposite orders). The clusters' own rules for curves where sheets meet
    * (one open piece of one curve each) and for locked vertices stay, but a curve edge may lose
-   * sheets. On that isosurface: 10,379 and 1,037 triangles, at 1.02 and 1.29 times
-   * vtkQuadricClustering's Hausdorff distance and 0.95 and 0.96 times its RMS distance, in a
-   * quarter of the time; on smooth isosurfaces, counts and distances as with it on. Noise far above
-   * the edge length is beyond it: a sphere whose radii moved by up to 2.5 edges got its 10% level,
-   * but its 1% level crumpled (about 5 times vtkQuadricClustering's Hausdorff distance and 10 times
-   * its RMS distance), where the repairs keep 92% and 87% of its triangles at the 10% and 1%
+   * sheets. On that isosurface: 10,382 and 1,037 triangles, at 1.00 and 1.01 times
+   * vtkQuadricClustering's Hausdorff distance and 0.94 and 0.92 times its RMS distance, in a
+   * quarter of the time; on smooth isosurfaces, counts and distances as with it on. With noise
+   * far above the edge length (a sphere whose radii moved by up to 2.5 edges) it reaches both
+   * counts, at 0.66 and 0.71 times vtkQuadricClustering's Hausdorff distance and 0.96 and 0.53
+   * times its RMS distance (its 1% level crumpled, at about 5 and 10 times, before a vertex of
+   * a cluster could stand in for a representative that flips a triangle), where the repairs
+   * keep 92% and 87% of its triangles at the 10% and 1%
    * targets. Levels still nest, and MorphTargetId maps every triangle onto one of the next level
    * with its orientation.
    */
@@ -340,7 +357,7 @@ public:
    * to the input (judged by the local surface distance both ways). Points, triangle counts,
    * clusters and MorphTargetId stay as they are, and the next level is clustered from the unflipped
    * triangles. On the benchmark isosurfaces it lowers the RMS distance by 8-21% and changes the
-   * Hausdorff distance by -8% to +3%, for 1.4-1.55 times the time on one thread (1.4-1.5 times on
+   * Hausdorff distance by -13% to +1%, for 1.6-1.75 times the time on one thread (1.6-1.7 times on
    * two; Benchmarks/RESULTS.md). The price: a level's triangles are then no longer exactly what the
    * finer level's triangles become through MorphTargetId, so a geomorph into a flipped level ends
    * on its unflipped triangles and the flipped quads change at the switch (a small pop). For
@@ -359,7 +376,7 @@ public:
    * along its normal by the area-weighted mean signed distance of the input around it, as far
    * as the largest deviation around the point does not grow and at most a quarter of its
    * shortest edge. On the metaballs isosurface (154k triangles) this lowers the RMS distance
-   * by 7% at 10% of the triangles and 22% at 1%, the Hausdorff distance by 10% and 4%. Not
+   * by 8% at 10% of the triangles and 26% at 1%, the Hausdorff distance by 7% and 12%. Not
    * moved: boundary and non-manifold points, creases and corners, planar facets, and clusters
    * that stay the same between two levels. Clusters, counts and MorphTargetId are those of the
    * run without it (a baked texture follows the moved points). Default on.
