@@ -359,9 +359,9 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   // had none at 192): there only a vertex without error may stand in (one in a flat part's
   // plane). (Not on an open boundary, whose representative stays on the boundary.)
   bool flips = this->HasFlip(v0, crossing, n.Depth, surface);
-  const double exact = ExactPlacement * cell * cell * weight; // a value of rounding size
   if (flips && scratch.BoundaryEdges.empty())
   {
+    const double exact = ExactPlacement * cell * cell * weight; // a value of rounding size
     const double acceptable = value > exact ? std::numeric_limits<double>::infinity() : exact;
     const Id first = this->Tree.Position(node);
     const Id stride = std::max<Id>(1, n.Count / FlipFreeCandidates);

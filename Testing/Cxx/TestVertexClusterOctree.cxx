@@ -118,6 +118,17 @@ void CheckTriangles(vtkMultiBlockDataSet* hierarchy)
   }
 }
 
+// The hierarchy of `cluster` on `mesh` at 10% and 1% of its triangles (target-count mode).
+vtkMultiBlockDataSet* AtTenthAndHundredth(vtkVertexClusterOctree* cluster, vtkPolyData* mesh)
+{
+  cluster->SetInputData(mesh);
+  cluster->SetLevelModeToTargetTriangleCounts();
+  cluster->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 10);
+  cluster->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 100);
+  cluster->Update();
+  return cluster->GetHierarchy();
+}
+
 //------------------------------------------------------------------------------
 // A flat square grid: four quadrants, each holding one corner, cluster to the corners exactly.
 void TestFlatGrid()
@@ -556,20 +567,14 @@ void TestUnreachableCount()
 // to the input fell by a quarter, since fewer clusters are split again.
 void TestFlipFreeRepresentatives()
 {
-  testing::Field field;
-  testing::FieldFromName("metaballs", field);
+  const testing::Field field = testing::Field::Metaballs;
   vtkNew<vtkCleanPolyData> clean;
   clean->SetInputData(testing::MakeIsosurface(field, testing::ResolutionForTriangles(field, 40000)));
   clean->Update();
   vtkPolyData* mesh = clean->GetOutput();
   const vtkIdType triangles = mesh->GetNumberOfPolys();
   vtkNew<vtkVertexClusterOctree> filter;
-  filter->SetInputData(mesh);
-  filter->SetLevelModeToTargetTriangleCounts();
-  filter->AddTargetTriangleCount(triangles / 10);
-  filter->AddTargetTriangleCount(triangles / 100);
-  filter->Update();
-  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  vtkMultiBlockDataSet* h = AtTenthAndHundredth(filter, mesh);
   MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
   if (h->GetNumberOfBlocks() != 3)
   {
@@ -650,12 +655,7 @@ void TestSheetsAlongCurve()
   const testing::MeshReport before = testing::InspectMesh(input);
   const vtkIdType n = input->GetNumberOfPolys();
   vtkNew<vtkVertexClusterOctree> filter;
-  filter->SetInputData(input);
-  filter->SetLevelModeToTargetTriangleCounts();
-  filter->AddTargetTriangleCount(n / 10);
-  filter->AddTargetTriangleCount(n / 100);
-  filter->Update();
-  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  vtkMultiBlockDataSet* h = AtTenthAndHundredth(filter, input);
   MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
   if (h->GetNumberOfBlocks() != 3)
   {
@@ -951,17 +951,6 @@ void TestNoisyTerrain()
     MESHLOD_CHECK_EQ(r.NonManifoldVertices, 0);
     MESHLOD_CHECK_EQ(r.DuplicateTriangles, 0);
   }
-}
-
-// The hierarchy of `cluster` on `mesh` at 10% and 1% of its triangles (target-count mode).
-vtkMultiBlockDataSet* AtTenthAndHundredth(vtkVertexClusterOctree* cluster, vtkPolyData* mesh)
-{
-  cluster->SetInputData(mesh);
-  cluster->SetLevelModeToTargetTriangleCounts();
-  cluster->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 10);
-  cluster->AddTargetTriangleCount(mesh->GetNumberOfPolys() / 100);
-  cluster->Update();
-  return cluster->GetHierarchy();
 }
 
 // Target counts on the rough terrain, where fixing folds keeps many more triangles than asked.
