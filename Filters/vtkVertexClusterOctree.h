@@ -74,11 +74,13 @@
  *   even below it, where the smallest epsilon that merges enough merges far more at once; at
  *   such a level a large cluster that folds gives way to the topmost clusters below
  *   it that neither fold nor flip a triangle, and those are small; PreserveTopology off
- *   lifts those repairs and reaches such counts); a self-intersecting surface
- *   (vtkParametricBoy, 178,204 triangles) stops near 6%, its clusters folding where it turns
- *   tightly (these counts, but for the last, were measured before a vertex of a cluster could
- *   stand in for a representative that flips a triangle, which lets more clusters merge: the
- *   self-intersecting surface stopped near 9% then); when the trials miss, the one nearest the
+ *   lifts those repairs and reaches such counts); a self-intersecting surface that cannot be
+ *   oriented (vtkParametricBoy, 178,204 triangles) asked for 10% and 1% gets 10.4% and 2.6%, its
+ *   clusters folding where it turns tightly (these counts, but for the last, were measured
+ *   before a vertex of a cluster could stand in for a representative that flips a triangle,
+ *   which lets more clusters merge: the self-intersecting surface stopped near 9% then, and
+ *   near 6% after it, before the fold test compared the triangles at its seam with their own
+ *   previous selves); when the trials miss, the one nearest the
  *   target in ratio is kept, never a level cut at the octree's roots because it is nearer in
  *   difference, and when that one keeps a quarter or more above the target, the epsilon backs off
  *   to the smallest that keeps at most a tenth more triangles than it, or at most half more at
@@ -110,7 +112,9 @@
  * Synthesis. Triangles are re-indexed to the representatives, degenerate and duplicate
  * triangles removed (of two with the same three points in the same order, the first is kept),
  * orientation kept. A kept triangle whose normal opposes the input surface around its three
- * clusters, two on the same three points in opposite order (a thin part folded onto itself),
+ * clusters (at a curve where sheets meet, or at the seam of a surface that cannot be oriented,
+ * where the input's normals around a cluster sum to nothing meaningful: its own triangle in
+ * the level before), two on the same three points in opposite order (a thin part folded onto itself),
  * an edge that three or more kept triangles share (clusters that folded the surface onto
  * itself), and a connected piece of the finer level that the kept triangles split into pieces
  * that each keep triangles (a tube or rod whose whole cross-section fell into one cluster)

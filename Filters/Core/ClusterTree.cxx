@@ -184,7 +184,7 @@ void ClusterTree::Builder::Attach(Id child, Id parent, NodeStore& store)
   Building leaf;
   const Building* from = &leaf;
   Id count = 1;
-  std::uint8_t locked = 0, curve = 0;
+  std::uint8_t locked = 0, curve = 0, seam = 0;
   if (child < tree.NV)
   {
     this->Tree.LeafParent[child] = parent;
@@ -193,6 +193,7 @@ void ClusterTree::Builder::Attach(Id child, Id parent, NodeStore& store)
     tree.RelativePoint(child, leaf.Sum);
     locked = tree.IsLocked(child) ? 1 : 0;
     curve = tree.IsCurve(child) ? 1 : 0;
+    seam = tree.IsSeam(child) ? 1 : 0;
   }
   else
   {
@@ -202,6 +203,7 @@ void ClusterTree::Builder::Attach(Id child, Id parent, NodeStore& store)
     count = record.Count;
     locked = record.Locked;
     curve = record.Curve;
+    seam = record.Seam;
   }
   ClusterNode& node = store.Record(parent);
   Building& work = store.Work[parent - store.Base];
@@ -213,6 +215,7 @@ void ClusterTree::Builder::Attach(Id child, Id parent, NodeStore& store)
   node.Count += count;
   node.Locked |= locked;
   node.Curve |= curve;
+  node.Seam |= seam;
 }
 
 //------------------------------------------------------------------------------
@@ -727,6 +730,47 @@ void ClusterTree::RelatedQuadric(
 }
 
 //------------------------------------------------------------------------------
+void ClusterTree::FindSeams()
+{
+  this->Seams.clear();
+  const TriangleTopology& topology = *this->Topology;
+  if (topology.OrientedWhenBuilt)
+  {
+    return;
+  }
+  // A seam edge (a, b) runs from a to b in both its triangles: around a, two triangles have b
+  // as the corner after a; around b, two have a as the corner before b. Each vertex looks at
+  // its own triangles only, so both ends are found without writes to another vertex's flag.
+  ResizeFresh(this->Seams, this->NV);
+  const VertexTriangleAdjacency& adj = topology.VertexTriangles;
+  const TriangleMesh& mesh = *this->Mesh;
+  vtkSMPTools::For(0,
+    this->NV,
+    [&](Id begin, Id end)
+    {
+      for (Id v = begin; v < end; ++v)
+      {
+        std::uint8_t seam = 0;
+        for (Id i = adj.Begin(v); i < adj.End(v) && !seam; ++i)
+        {
+          const Id* tri = mesh.Triangle(adj.Triangles[i]);
+          const int c = CornerOf(tri, v);
+          for (Id j = i + 1; j < adj.End(v) && !seam; ++j)
+          {
+            const Id* other = mesh.Triangle(adj.Triangles[j]);
+            const int d = CornerOf(other, v);
+            seam = (tri[(c + 1) % 3] == other[(d + 1) % 3] ||
+                     tri[(c + 2) % 3] == other[(d + 2) % 3])
+              ? 1
+              : 0;
+          }
+        }
+        this->Seams[v] = seam;
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
 void ClusterTree::FindCurves()
 {
   this->Curves.clear();
@@ -805,6 +849,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   this->ComputeFrame();
   const Id nv = this->NV;
   this->FindCurves();
+  this->FindSeams();
   Builder builder(*this);
   this->ComputeCodes();
 

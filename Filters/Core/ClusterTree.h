@@ -62,6 +62,7 @@ struct ClusterNode
   std::uint8_t Depth = 0;  // binary splits of the cell the node forms in
   std::uint8_t Locked = 0; // holds a locked vertex (non-manifold, not a regular curve point)
   std::uint8_t Curve = 0;  // holds a regular point of a curve where sheets meet
+  std::uint8_t Seam = 0;   // holds a vertex of a seam of a part that cannot be oriented
 };
 
 class VTKFILTERSMESHLOD_EXPORT ClusterTree
@@ -112,7 +113,19 @@ public:
   };
   std::vector<LockedEdge> LockedEdges;
 
+  /// Per vertex, 1 where an edge at it is traversed in the same direction by its two triangles
+  /// (the seam of a part that cannot be oriented, such as a Moebius strip or Boy's surface):
+  /// there the winding of the triangles on either side says nothing about their facing. Empty
+  /// when the mesh is consistently oriented.
+  std::vector<std::uint8_t> Seams;
+
   bool IsCurve(Id v) const { return !this->Curves.empty() && this->Curves[v].Sheets > 0; }
+  bool IsSeam(Id v) const { return !this->Seams.empty() && this->Seams[v] != 0; }
+  /// Whether a node (a vertex, or an internal node) holds a seam vertex.
+  bool HoldsSeam(Id node) const
+  {
+    return this->IsLeaf(node) ? this->IsSeam(node) : this->Internal(node).Seam != 0;
+  }
   /// Whether a node (a vertex, or an internal node) holds a regular curve point.
   bool HoldsCurve(Id node) const
   {
@@ -211,6 +224,7 @@ private:
   void ComputeCodes();
   void PlaceIslands();
   void FindCurves();
+  void FindSeams();
   void ComputeOrder();
   void ComputeChildren();
 };

@@ -304,11 +304,19 @@ Id OctreeClustering::Internals::MarkFolds(Synthesis& s)
         }
         const Id* tri = s.Triangles.data() + 3 * j;
         double surface[3] = { 0.0, 0.0, 0.0 }, after[3];
-        if (this->Tree.HoldsCurve(s.Cut[tri[0]]) || this->Tree.HoldsCurve(s.Cut[tri[1]]) ||
-          this->Tree.HoldsCurve(s.Cut[tri[2]]))
+        bool ownSheet = false;
+        for (int c = 0; c < 3; ++c)
+        {
+          ownSheet = ownSheet || this->Tree.HoldsCurve(s.Cut[tri[c]]) ||
+            this->Tree.HoldsSeam(s.Cut[tri[c]]);
+        }
+        if (ownSheet)
         {
           // The surface normal at a curve point sums the sheets meeting there, which may
-          // point anywhere: the triangle's own sheet is compared, as the previous level had it.
+          // point anywhere, and so does the normal at a seam, where the windings on either side
+          // disagree (on Boy's surface, 300 x 300, asked for 1%: 10,494 triangles, most of the
+          // seam's triangles refused as folds; 4,708 comparing the own triangle): the
+          // triangle's own sheet is compared, as the previous level had it.
           this->PreviousNormal(s.From[j], surface);
         }
         else
