@@ -66,6 +66,7 @@ set(meshlod_sources
   Filters/Core/OctreeCuts.cxx
   Filters/Core/OctreeNodes.cxx
   Filters/Core/OctreeSynthesis.cxx
+  Filters/Core/OctreeVanishing.cxx
   Filters/Core/PartitionedGreedy.cxx
   Filters/Core/Quadric.cxx
   Filters/Core/TextureAtlas.cxx

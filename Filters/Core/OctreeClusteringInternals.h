@@ -2,6 +2,7 @@
 // - OctreeNodes.cxx: evaluating a node (representative, error, admissibility; paper 001 §2-3);
 // - OctreeCuts.cxx: the cut of the cluster tree at an epsilon and the search for an epsilon;
 // - OctreeSynthesis.cxx: a level from a cut (re-indexed triangles, folds and pinches fixed);
+// - OctreeVanishing.cxx: small closed pieces that a level would drop far from its surface;
 // - OctreeClustering.cxx: the public class.
 #ifndef meshlod_OctreeClusteringInternals_h
 #define meshlod_OctreeClusteringInternals_h
@@ -103,6 +104,8 @@ struct OctreeClustering::Internals
   // keeps, which a later trial may have marked).
   std::vector<unsigned char> Refused;
   std::vector<Id> RefusedNodes;
+  // Refusals that hold for one trial level only (MarkFarVanishing: they depend on its epsilon).
+  std::vector<Id> TrialRefusals;
   std::vector<float> Thr; // the smallest epsilon at which the node may be a cluster
   std::vector<Id> RepSlot;
   // Per evaluated node (RepSlot): representative, surface normal and error, in blocks that
@@ -215,6 +218,7 @@ struct OctreeClustering::Internals
   Id MarkFins(octree::Synthesis& s);
   Id MarkPinches(octree::Synthesis& s);
   Id MarkBreaks(octree::Synthesis& s);
+  Id MarkFarVanishing(octree::Synthesis& s, double epsilon);
   Id MarkPinchedVertices(octree::Synthesis& s);
   void LabelPreviousPieces();
   std::vector<octree::CurveEdge> CurveEdgesOf(std::vector<Id>& shrunk) const;

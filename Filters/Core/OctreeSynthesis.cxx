@@ -358,8 +358,8 @@ Id OctreeClustering::Internals::MarkFins(Synthesis& s)
 // two, each piece capped, and the input around the gap is as far from the level as the gap is
 // long (a tube of 0.7% of the diagonal in radius lost whole turns: 13.6% Hausdorff distance at
 // an estimated error under 1%). The changed clusters of the previous triangles that straddle
-// the kept pieces are marked, as for a fold. A piece that keeps no triangle at all (a spike
-// swallowed by the cluster around it, a small closed surface merged whole) is let go.
+// the kept pieces are marked, as for a fold. A piece that keeps no triangle at all (a small
+// closed surface merged whole) is MarkFarVanishing's.
 Id OctreeClustering::Internals::MarkBreaks(Synthesis& s)
 {
   const Id kept = static_cast<Id>(s.From.size());
@@ -972,6 +972,7 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
       // Breaks and pinched vertices last, once the level is otherwise clean (passes over the
       // triangles: once or twice per trial instead of on every pass).
       marked = this->MarkBreaks(s);
+      marked = marked > 0 ? marked : this->MarkFarVanishing(s, epsilon);
       marked = marked > 0 ? marked : this->MarkPinchedVertices(s);
     }
     if (marked == 0)
@@ -981,6 +982,12 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
     level.FlippedTrianglesFixed += marked;
   }
   this->SplitFully = false;
+  for (const Id i : this->TrialRefusals)
+  {
+    this->Refused[i] = 0;
+    this->UpdateThreshold(i);
+  }
+  this->TrialRefusals.clear();
   this->Finalize(s, level);
   return level.Mesh.GetNumberOfTriangles();
 }

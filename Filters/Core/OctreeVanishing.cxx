@@ -1,0 +1,224 @@
+// Octree clustering: small pieces that vanish from a level (see OctreeClusteringInternals.h).
+#include "FreshMemory.h"
+#include "GroupByKey.h"
+#include "OctreeClusteringInternals.h"
+#include "TriangulationFlips.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+namespace meshlod
+{
+using namespace octree;
+
+namespace
+{
+// A connected piece that keeps no triangle may vanish when the level's surface comes within
+// this many times the epsilon of all of it (MarkFarVanishing).
+constexpr double VanishingReach = 2.0;
+} // namespace
+
+//------------------------------------------------------------------------------
+// Vanishing pieces: a connected piece of the previous level of which no cluster keeps a
+// triangle (a small closed surface merged whole) leaves its input as far from the level as the
+// nearest surface that stays, which no cluster's error bounds: merged into a cluster of the
+// error of its own size, a blob of the wavelet isosurface (vtkRTAnalyticSource) vanished 5.3%
+// of the diagonal away from the rest, where the level's clusters erred by 1.4% at most. Such a
+// piece is let go only when the level's kept triangles come within VanishingReach times the
+// epsilon of all of it (its centre's distance to the nearest of them plus its radius: a speck
+// of a noisy volume next to the surface); otherwise its changed clusters are marked, as for a
+// fold, for this trial only (TryLevel lifts the marks after it: a larger epsilon, whose level
+// lies farther from the input everywhere, may let the piece go).
+Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
+{
+  const std::uint32_t pieces = this->PreviousPieces;
+  if (pieces <= 1)
+  {
+    return 0;
+  }
+  const Id kept = static_cast<Id>(s.From.size());
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  std::vector<unsigned char> alive = FreshVector<unsigned char>(clusters, 0);
+  for (Id j = 0; j < kept; ++j)
+  {
+    if (!s.Duplicate[j])
+    {
+      const Id* tri = s.Triangles.data() + 3 * j;
+      alive[tri[0]] = alive[tri[1]] = alive[tri[2]] = 1;
+    }
+  }
+  // 1: had triangles in the previous level; 2: keeps some.
+  std::vector<unsigned char> state(pieces, 0);
+  const Id previousTriangles = this->PreviousTriangles();
+  const Id* prev = this->PreviousTriangleData();
+  for (Id t = 0; t < previousTriangles; ++t)
+  {
+    state[this->PieceOf(prev[3 * t])] = 1;
+  }
+  const Id previousPoints = this->PreviousPoints();
+  for (Id p = 0; p < previousPoints; ++p)
+  {
+    if (alive[s.PointCluster[p]])
+    {
+      state[this->PieceOf(p)] = 2;
+    }
+  }
+  // The bounding box of each vanishing piece's previous points.
+  constexpr double Huge = std::numeric_limits<double>::max();
+  std::vector<std::uint32_t> vanishing;
+  std::vector<Id> slot(pieces, InvalidId);
+  for (std::uint32_t piece = 0; piece < pieces; ++piece)
+  {
+    if (state[piece] == 1)
+    {
+      slot[piece] = static_cast<Id>(vanishing.size());
+      vanishing.push_back(piece);
+    }
+  }
+  if (vanishing.empty())
+  {
+    return 0;
+  }
+  std::vector<double> box(6 * vanishing.size());
+  for (std::size_t i = 0; i < vanishing.size(); ++i)
+  {
+    std::fill_n(box.begin() + 6 * i, 3, Huge);
+    std::fill_n(box.begin() + 6 * i + 3, 3, -Huge);
+  }
+  for (Id p = 0; p < previousPoints; ++p)
+  {
+    const Id i = slot[this->PieceOf(p)];
+    if (i == InvalidId)
+    {
+      continue;
+    }
+    double x[3];
+    this->RepresentativeOf(this->NodeOfPoint(p), x);
+    for (int c = 0; c < 3; ++c)
+    {
+      box[6 * i + c] = std::min(box[6 * i + c], x[c]);
+      box[6 * i + 3 + c] = std::max(box[6 * i + 3 + c], x[c]);
+    }
+  }
+  // The previous level's points in clusters that keep triangles, in a grid of cells
+  // VanishingReach * epsilon wide, sorted by cell: the kept triangles around such points within
+  // reach of a piece's centre (found in the 27 cells around it) are the surface that may take
+  // the piece's place. (The kept points alone are too sparse to judge by: a speck a fifth of its
+  // radius above a sphere lay farther than twice the epsilon from every one.)
+  const double reach = VanishingReach * epsilon;
+  using Cell = std::array<std::int64_t, 3>;
+  auto cellOf = [&](const double* x)
+  {
+    Cell cell;
+    for (int c = 0; c < 3; ++c)
+    {
+      cell[c] = static_cast<std::int64_t>(std::floor((x[c] - this->Tree.Centre[c]) / reach));
+    }
+    return cell;
+  };
+  std::vector<std::pair<Cell, Id>> grid;
+  std::vector<Id> offsets, around; // the kept triangles of each cluster
+  if (reach > 0.0)
+  {
+    for (Id p = 0; p < previousPoints; ++p)
+    {
+      if (alive[s.PointCluster[p]])
+      {
+        double x[3];
+        this->RepresentativeOf(this->NodeOfPoint(p), x);
+        grid.emplace_back(cellOf(x), p);
+      }
+    }
+    std::sort(grid.begin(), grid.end());
+    GroupByKey(
+      static_cast<std::size_t>(clusters),
+      [&](auto&& emit)
+      {
+        for (Id j = 0; j < kept; ++j)
+        {
+          for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
+          {
+            emit(s.Triangles[3 * j + c], j);
+          }
+        }
+      },
+      offsets, around);
+  }
+  // Whether a kept triangle of the cluster of previous point p lies within `within` of x.
+  auto keptTriangleNear = [&](Id p, const double x[3], double within)
+  {
+    const Id k = s.PointCluster[p];
+    for (Id i = offsets[k]; i < offsets[k + 1]; ++i)
+    {
+      const Id* tri = s.Triangles.data() + 3 * around[i];
+      double closest[3];
+      const double d2 = ClosestPointOnTriangle(x, s.Reps.data() + 3 * tri[0],
+        s.Reps.data() + 3 * tri[1], s.Reps.data() + 3 * tri[2], closest);
+      if (d2 <= within * within)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  std::vector<unsigned char> refused(vanishing.size(), 0);
+  bool any = false;
+  for (std::size_t i = 0; i < vanishing.size(); ++i)
+  {
+    const double* b = box.data() + 6 * i;
+    const double centre[3] = { 0.5 * (b[0] + b[3]), 0.5 * (b[1] + b[4]), 0.5 * (b[2] + b[5]) };
+    const double radius = 0.5 * std::sqrt(Distance2(b, b + 3));
+    if (!(radius > 0.0))
+    {
+      continue; // all its points at one place: nothing is lost
+    }
+    bool near = false;
+    if (radius < reach)
+    {
+      const Cell home = cellOf(centre);
+      for (int n = 0; n < 27 && !near; ++n)
+      {
+        const Cell cell = { home[0] + n % 3 - 1, home[1] + (n / 3) % 3 - 1, home[2] + n / 9 - 1 };
+        auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(cell, Id(0)));
+        for (; it != grid.end() && it->first == cell && !near; ++it)
+        {
+          double x[3];
+          this->RepresentativeOf(this->NodeOfPoint(it->second), x);
+          near = Distance2(centre, x) <= reach * reach &&
+            keptTriangleNear(it->second, centre, reach - radius);
+        }
+      }
+    }
+    refused[i] = near ? 0 : 1;
+    any = any || !near;
+  }
+  if (!any)
+  {
+    return 0;
+  }
+  std::vector<Id> far;
+  for (Id t = 0; t < previousTriangles; ++t)
+  {
+    const Id* tri = prev + 3 * t;
+    const Id i = slot[this->PieceOf(tri[0])];
+    if (i != InvalidId && refused[i])
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        far.push_back(s.PointCluster[tri[c]]);
+      }
+    }
+  }
+  const std::size_t before = this->RefusedNodes.size();
+  const Id marked = this->MarkChanged(s, far, false);
+  // Lifted after the trial (TryLevel): a larger epsilon may let the piece go.
+  this->TrialRefusals.insert(
+    this->TrialRefusals.end(), this->RefusedNodes.begin() + before, this->RefusedNodes.end());
+  return marked;
+}
+
+} // namespace meshlod
