@@ -74,6 +74,7 @@ void OctreeClustering::BuildTree()
   AssignFresh(impl.ClusterOfVertex, impl.NV, InvalidId);
   impl.CurrentEpsilon = 0.0;
   impl.LabelPreviousPieces();
+  impl.LabelHoles();
 }
 
 bool OctreeClustering::MakeLevel(double epsilon, ClusterLevel& level)

@@ -2,7 +2,8 @@
 // - OctreeNodes.cxx: evaluating a node (representative, error, admissibility; paper 001 §2-3);
 // - OctreeCuts.cxx: the cut of the cluster tree at an epsilon and the search for an epsilon;
 // - OctreeSynthesis.cxx: a level from a cut (re-indexed triangles, folds and pinches fixed);
-// - OctreeVanishing.cxx: small closed pieces that a level would drop far from its surface;
+// - OctreeVanishing.cxx: what a level would make vanish: small closed pieces far from its
+//   surface, holes closed up;
 // - OctreeClustering.cxx: the public class.
 #ifndef meshlod_OctreeClusteringInternals_h
 #define meshlod_OctreeClusteringInternals_h
@@ -106,6 +107,11 @@ struct OctreeClustering::Internals
   std::vector<Id> RefusedNodes;
   // Refusals that hold for one trial level only (MarkFarVanishing: they depend on its epsilon).
   std::vector<Id> TrialRefusals;
+  // The input's boundary loops (holes) with PreserveTopology: the vertices of loop i are
+  // HoleVertices[HoleOffsets[i] .. HoleOffsets[i + 1]); empty without boundary (LabelHoles).
+  std::vector<Id> HoleOffsets;
+  std::vector<Id> HoleVertices;
+  std::vector<double> HoleRadius; // half the diagonal of each loop's bounding box
   std::vector<float> Thr; // the smallest epsilon at which the node may be a cluster
   std::vector<Id> RepSlot;
   // Per evaluated node (RepSlot): representative, surface normal and error, in blocks that
@@ -219,6 +225,10 @@ struct OctreeClustering::Internals
   Id MarkPinches(octree::Synthesis& s);
   Id MarkBreaks(octree::Synthesis& s);
   Id MarkFarVanishing(octree::Synthesis& s, double epsilon);
+  Id MarkClosedHoles(octree::Synthesis& s, double epsilon);
+  void LabelHoles();
+  /// MarkChanged for refusals that hold for the current trial level only (TrialRefusals).
+  Id MarkForTrial(octree::Synthesis& s, const std::vector<Id>& clusters);
   Id MarkPinchedVertices(octree::Synthesis& s);
   void LabelPreviousPieces();
   std::vector<octree::CurveEdge> CurveEdgesOf(std::vector<Id>& shrunk) const;

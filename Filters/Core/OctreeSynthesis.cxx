@@ -972,6 +972,7 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
       // Breaks and pinched vertices last, once the level is otherwise clean (passes over the
       // triangles: once or twice per trial instead of on every pass).
       marked = this->MarkBreaks(s);
+      marked = marked > 0 ? marked : this->MarkClosedHoles(s, epsilon);
       marked = marked > 0 ? marked : this->MarkFarVanishing(s, epsilon);
       marked = marked > 0 ? marked : this->MarkPinchedVertices(s);
     }

@@ -1,4 +1,5 @@
-// Octree clustering: small pieces that vanish from a level (see OctreeClusteringInternals.h).
+// Octree clustering: what a level would make vanish, small closed pieces far from its surface and
+// holes closed up (see OctreeClusteringInternals.h).
 #include "FreshMemory.h"
 #include "GroupByKey.h"
 #include "OctreeClusteringInternals.h"
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <utility>
 
 namespace meshlod
@@ -20,6 +22,43 @@ namespace
 // A connected piece that keeps no triangle may vanish when the level's surface comes within
 // this many times the epsilon of all of it (MarkFarVanishing).
 constexpr double VanishingReach = 2.0;
+
+// The kept triangles of each cluster: those of cluster k are around[offsets[k] .. offsets[k + 1]).
+void GroupKeptTriangles(const Synthesis& s, std::vector<Id>& offsets, std::vector<Id>& around)
+{
+  const Id kept = static_cast<Id>(s.From.size());
+  GroupByKey(
+    s.Cut.size(),
+    [&](auto&& emit)
+    {
+      for (Id j = 0; j < kept; ++j)
+      {
+        for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
+        {
+          emit(s.Triangles[3 * j + c], j);
+        }
+      }
+    },
+    offsets, around);
+}
+
+// Whether a kept triangle of cluster k (GroupKeptTriangles) lies within `within` of x.
+bool NearKeptTriangle(const Synthesis& s, const std::vector<Id>& offsets,
+  const std::vector<Id>& around, Id k, const double x[3], double within)
+{
+  for (Id i = offsets[k]; i < offsets[k + 1]; ++i)
+  {
+    const Id* tri = s.Triangles.data() + 3 * around[i];
+    double closest[3];
+    const double d2 = ClosestPointOnTriangle(x, s.Reps.data() + 3 * tri[0],
+      s.Reps.data() + 3 * tri[1], s.Reps.data() + 3 * tri[2], closest);
+    if (d2 <= within * within)
+    {
+      return true;
+    }
+  }
+  return false;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -134,37 +173,8 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
       }
     }
     std::sort(grid.begin(), grid.end());
-    GroupByKey(
-      static_cast<std::size_t>(clusters),
-      [&](auto&& emit)
-      {
-        for (Id j = 0; j < kept; ++j)
-        {
-          for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
-          {
-            emit(s.Triangles[3 * j + c], j);
-          }
-        }
-      },
-      offsets, around);
+    GroupKeptTriangles(s, offsets, around);
   }
-  // Whether a kept triangle of the cluster of previous point p lies within `within` of x.
-  auto keptTriangleNear = [&](Id p, const double x[3], double within)
-  {
-    const Id k = s.PointCluster[p];
-    for (Id i = offsets[k]; i < offsets[k + 1]; ++i)
-    {
-      const Id* tri = s.Triangles.data() + 3 * around[i];
-      double closest[3];
-      const double d2 = ClosestPointOnTriangle(x, s.Reps.data() + 3 * tri[0],
-        s.Reps.data() + 3 * tri[1], s.Reps.data() + 3 * tri[2], closest);
-      if (d2 <= within * within)
-      {
-        return true;
-      }
-    }
-    return false;
-  };
   std::vector<unsigned char> refused(vanishing.size(), 0);
   bool any = false;
   for (std::size_t i = 0; i < vanishing.size(); ++i)
@@ -189,7 +199,7 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
           double x[3];
           this->RepresentativeOf(this->NodeOfPoint(it->second), x);
           near = Distance2(centre, x) <= reach * reach &&
-            keptTriangleNear(it->second, centre, reach - radius);
+            NearKeptTriangle(s, offsets, around, s.PointCluster[it->second], centre, reach - radius);
         }
       }
     }
@@ -213,12 +223,163 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
       }
     }
   }
+  return this->MarkForTrial(s, far);
+}
+
+//------------------------------------------------------------------------------
+Id OctreeClustering::Internals::MarkForTrial(Synthesis& s, const std::vector<Id>& clusters)
+{
   const std::size_t before = this->RefusedNodes.size();
-  const Id marked = this->MarkChanged(s, far, false);
-  // Lifted after the trial (TryLevel): a larger epsilon may let the piece go.
+  const Id marked = this->MarkChanged(s, clusters, false);
+  // Lifted after the trial (TryLevel): a larger epsilon may let the piece go or the hole close.
   this->TrialRefusals.insert(
     this->TrialRefusals.end(), this->RefusedNodes.begin() + before, this->RefusedNodes.end());
   return marked;
+}
+
+//------------------------------------------------------------------------------
+// The input's boundary loops, once: the boundary edges joined at their ends (a vertex where two
+// loops touch joins them, which only makes the check below more lenient).
+void OctreeClustering::Internals::LabelHoles()
+{
+  this->HoleOffsets.clear();
+  this->HoleVertices.clear();
+  if (!this->Options.PreserveTopology)
+  {
+    return;
+  }
+  std::vector<Id> up;
+  for (Id t = 0; t < this->NT; ++t)
+  {
+    const Id* tri = this->Mesh.Triangle(t);
+    for (int k = 0; k < 3; ++k)
+    {
+      if (!this->Topology.IsBoundaryEdge(t, k))
+      {
+        continue;
+      }
+      if (up.empty())
+      {
+        up.resize(this->NV);
+        std::iota(up.begin(), up.end(), Id(0));
+      }
+      const Id a = FindRoot(up, tri[k]), b = FindRoot(up, tri[(k + 1) % 3]);
+      up[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  if (up.empty())
+  {
+    return;
+  }
+  // Boundary vertices are those joined to another or joining one; grouped by their loop's root.
+  std::vector<unsigned char> onBoundary(this->NV, 0);
+  for (Id v = 0; v < this->NV; ++v)
+  {
+    const Id root = FindRoot(up, v);
+    if (root != v)
+    {
+      onBoundary[v] = onBoundary[root] = 1;
+    }
+  }
+  GroupByKey(
+    static_cast<std::size_t>(this->NV),
+    [&](auto&& emit)
+    {
+      for (Id v = 0; v < this->NV; ++v)
+      {
+        if (onBoundary[v])
+        {
+          emit(up[v], v); // FindRoot above left every vertex pointing at its root
+        }
+      }
+    },
+    this->HoleOffsets, this->HoleVertices);
+  // Keep the offsets of non-empty groups only.
+  std::vector<Id> offsets{ 0 };
+  for (std::size_t i = 0; i + 1 < this->HoleOffsets.size(); ++i)
+  {
+    if (this->HoleOffsets[i + 1] > this->HoleOffsets[i])
+    {
+      offsets.push_back(this->HoleOffsets[i + 1]);
+    }
+  }
+  this->HoleOffsets.swap(offsets);
+  const Id holes = static_cast<Id>(this->HoleOffsets.size()) - 1;
+  this->HoleRadius.assign(holes, 0.0);
+  for (Id h = 0; h < holes; ++h)
+  {
+    double box[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+    for (Id i = this->HoleOffsets[h]; i < this->HoleOffsets[h + 1]; ++i)
+    {
+      const double* x = this->Mesh.Point(this->HoleVertices[i]);
+      for (int c = 0; c < 3; ++c)
+      {
+        const bool first = i == this->HoleOffsets[h];
+        box[c] = first ? x[c] : std::min(box[c], x[c]);
+        box[3 + c] = first ? x[c] : std::max(box[3 + c], x[c]);
+      }
+    }
+    this->HoleRadius[h] = 0.5 * std::sqrt(Distance2(box, box + 3));
+  }
+}
+
+//------------------------------------------------------------------------------
+// Holes closed up: a boundary loop of the input whose vertices fall into fewer than three
+// clusters has no edge left; the hole is gone (a cluster caps it) and the input's boundary there
+// is as far from the level as the surface that caps it. On the wavelet isosurface
+// (vtkRTAnalyticSource, open at the volume's faces) asked for 1%, 11 of its 39 loops closed,
+// the input 3.7% of the diagonal from the level at one, whose clusters erred by 1.4% at most.
+// A loop may close only when each of its vertices lies within VanishingReach times the epsilon
+// of a kept triangle of its cluster (as a vanishing piece may go); otherwise the changed
+// clusters of its vertices are marked, as for a fold, for this trial only. (Kept open at any
+// epsilon, the 32 loops of a smaller wavelet isosurface held its level asked for 1% at 10%;
+// let close when small next to the epsilon, the large wavelet's tube ends still closed far from
+// the level.)
+Id OctreeClustering::Internals::MarkClosedHoles(Synthesis& s, double epsilon)
+{
+  const Id holes = static_cast<Id>(this->HoleOffsets.size()) - 1;
+  const double reach = VanishingReach * epsilon;
+  std::vector<Id> closed, offsets, around;
+  for (Id h = 0; h < holes; ++h)
+  {
+    const Id first = this->HoleOffsets[h], last = this->HoleOffsets[h + 1];
+    Id seen[2] = { InvalidId, InvalidId };
+    int distinct = 0;
+    for (Id i = first; i < last && distinct < 3; ++i)
+    {
+      const Id k = this->ClusterOfVertex[this->HoleVertices[i]];
+      if (distinct == 0 || (k != seen[0] && (distinct == 1 || k != seen[1])))
+      {
+        if (distinct < 2)
+        {
+          seen[distinct] = k;
+        }
+        ++distinct;
+      }
+    }
+    if (distinct >= 3 || last - first < 3)
+    {
+      continue;
+    }
+    bool near = this->HoleRadius[h] <= reach;
+    if (near && offsets.empty())
+    {
+      GroupKeptTriangles(s, offsets, around);
+    }
+    for (Id i = first; i < last && near; ++i)
+    {
+      const Id v = this->HoleVertices[i];
+      near = NearKeptTriangle(s, offsets, around, this->ClusterOfVertex[v], this->Mesh.Point(v), reach);
+    }
+    if (!near)
+    {
+      for (Id i = first; i < last; ++i)
+      {
+        closed.push_back(this->ClusterOfVertex[this->HoleVertices[i]]);
+      }
+    }
+  }
+  return closed.empty() ? 0 : this->MarkForTrial(s, closed);
 }
 
 } // namespace meshlod
