@@ -271,7 +271,8 @@ void OctreeClustering::Internals::LabelHoles()
   {
     return;
   }
-  // Boundary vertices are those joined to another or joining one; grouped by their loop's root.
+  // Boundary vertices are those joined to another or joining one; grouped by their loop's root
+  // (each vertex's root written down: halving the paths does not flatten every link).
   std::vector<unsigned char> onBoundary(this->NV, 0);
   for (Id v = 0; v < this->NV; ++v)
   {
@@ -280,6 +281,7 @@ void OctreeClustering::Internals::LabelHoles()
     {
       onBoundary[v] = onBoundary[root] = 1;
     }
+    up[v] = root;
   }
   GroupByKey(
     static_cast<std::size_t>(this->NV),
@@ -289,7 +291,7 @@ void OctreeClustering::Internals::LabelHoles()
       {
         if (onBoundary[v])
         {
-          emit(up[v], v); // FindRoot above left every vertex pointing at its root
+          emit(up[v], v);
         }
       }
     },
