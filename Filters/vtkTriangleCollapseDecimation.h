@@ -121,12 +121,12 @@
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its whole
  *   hierarchy the curvature method takes 1.4-3.9x the time vtkQuadricDecimation needs for one 10%
- *   target on one thread, and 1.7-2.1x less on two (the quadric method: 0.29-0.54x over four runs
- *   on AMD EPYC processors, and 1.6-1.9x less on two; the ratios move with the processor, the
- *   machine's load and what ran before in the same process: on an Intel Xeon the quadric method
- *   took 0.42-0.68x (Benchmarks/RESULTS.md; 0.43-0.69x in an earlier run there), its own times
- *   about as on the EPYC, vtkQuadricDecimation's 1.3-2.0x shorter; on one EPYC the 154k mesh's 0.54
- *   was 0.41 in the next run of the same build).
+ *   target on one thread, and 1.7-2.1x less on two (the quadric method: 0.29-0.54x over five runs
+ *   on AMD EPYC processors, 0.32-0.42x in Benchmarks/RESULTS.md's, and 1.6-1.9x less on two; the
+ *   ratios move with the processor, the machine's load and what ran before in the same process:
+ *   on an Intel Xeon the quadric method took 0.42-0.69x over three runs, its own times about as
+ *   on the EPYC, vtkQuadricDecimation's 1.3-2.0x shorter; on one EPYC the 154k mesh's 0.54 was
+ *   0.41 in the next run of the same build).
  * - IndependentSets (paper 000, section 6): each pass takes, cheapest first, triangles whose
  *   neighbourhoods share no vertex, until it removes 4 * LevelFraction of the live triangles,
  *   checks and collapses them all at once (in parallel), and re-weights only the triangles
