@@ -19,7 +19,6 @@
 
 #include "vtkCylinderSource.h"
 #include "vtkDiscreteFlyingEdges3D.h"
-#include "vtkFlyingEdges3D.h"
 #include "vtkImageData.h"
 #include "vtkLinearSubdivisionFilter.h"
 #include "vtkMultiBlockDataSet.h"
@@ -31,7 +30,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkQuadricDecimation.h"
-#include "vtkRTAnalyticSource.h"
 #include "vtkRemoveDuplicatePolys.h"
 #include "vtkShortArray.h"
 #include "vtkSmartPointer.h"
@@ -221,17 +219,7 @@ std::vector<TestMesh> Meshes()
   meshes.push_back({ "wavelet isosurface",
     "vtkRTAnalyticSource on [-60, 60]^3, flying edges at 160, cleaned: 7 pieces, open at the "
     "volume's faces, Euler characteristic -53",
-    [] {
-      vtkNew<vtkRTAnalyticSource> wavelet;
-      wavelet->SetWholeExtent(-60, 60, -60, 60, -60, 60);
-      vtkNew<vtkFlyingEdges3D> contour;
-      contour->SetInputConnection(wavelet->GetOutputPort());
-      contour->SetValue(0, 160.0);
-      contour->ComputeNormalsOff();
-      contour->ComputeGradientsOff();
-      contour->ComputeScalarsOff();
-      return meshlod::testing::TriangulateAndClean(contour);
-    } });
+    [] { return meshlod::testing::MakeWaveletIsosurface(60); } });
   // A survey or a scan in georeferenced coordinates: far from the origin, in double precision.
   meshes.push_back({ "metaballs, georeferenced",
     "the main benchmark's metaballs isosurface (154,184 triangles) with double coordinates, "

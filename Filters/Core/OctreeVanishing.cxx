@@ -181,7 +181,7 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
   {
     const double* b = box.data() + 6 * i;
     const double centre[3] = { 0.5 * (b[0] + b[3]), 0.5 * (b[1] + b[4]), 0.5 * (b[2] + b[5]) };
-    const double radius = 0.5 * std::sqrt(Distance2(b, b + 3));
+    const double radius = 0.5 * BoxDiagonal(b, b + 3);
     if (!(radius > 0.0))
     {
       continue; // all its points at one place: nothing is lost
@@ -321,7 +321,7 @@ void OctreeClustering::Internals::LabelHoles()
         box[3 + c] = first ? x[c] : std::max(box[3 + c], x[c]);
       }
     }
-    this->HoleRadius[h] = 0.5 * std::sqrt(Distance2(box, box + 3));
+    this->HoleRadius[h] = 0.5 * BoxDiagonal(box, box + 3);
   }
 }
 

@@ -14,14 +14,12 @@
 #include "vtkAppendPolyData.h"
 #include "vtkCell.h"
 #include "vtkFeatureEdges.h"
-#include "vtkFlyingEdges3D.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkParametricBoy.h"
 #include "vtkParametricFunctionSource.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataConnectivityFilter.h"
-#include "vtkRTAnalyticSource.h"
 #include "vtkSphereSource.h"
 #include "vtkTestErrorObserver.h"
 
@@ -232,7 +230,7 @@ void TestNonOrientableSurface()
 // twice the epsilon of it (it vanishes at the coarsest level).
 void TestFarPiecesStay()
 {
-  auto sphere = [](double radius, double y, double x, int resolution)
+  auto sphere = [](double radius, double x, double y, int resolution)
   {
     vtkNew<vtkSphereSource> source;
     source->SetRadius(radius);
@@ -244,8 +242,8 @@ void TestFarPiecesStay()
   };
   vtkNew<vtkAppendPolyData> append;
   append->AddInputData(sphere(1.0, 0.0, 0.0, 120));
-  append->AddInputData(sphere(0.02, 0.0, 1.5, 12));
-  append->AddInputData(sphere(0.01, 1.012, 0.0, 8));
+  append->AddInputData(sphere(0.02, 1.5, 0.0, 12));
+  append->AddInputData(sphere(0.01, 0.0, 1.012, 8));
   vtkSmartPointer<vtkPolyData> mesh = testing::TriangulateAndClean(append);
   vtkNew<vtkVertexClusterOctree> cluster;
   cluster->SetInputData(mesh);
@@ -321,15 +319,7 @@ int CountBoundaryLoops(vtkPolyData* surface)
 // triangles around them: 30 loops kept, 2.0% (its clusters err by up to 1.4%).
 void TestHolesStayOpen()
 {
-  vtkNew<vtkRTAnalyticSource> wavelet;
-  wavelet->SetWholeExtent(-60, 60, -60, 60, -60, 60);
-  vtkNew<vtkFlyingEdges3D> contour;
-  contour->SetInputConnection(wavelet->GetOutputPort());
-  contour->SetValue(0, 160.0);
-  contour->ComputeNormalsOff();
-  contour->ComputeGradientsOff();
-  contour->ComputeScalarsOff();
-  vtkSmartPointer<vtkPolyData> mesh = testing::TriangulateAndClean(contour);
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeWaveletIsosurface(60);
   const int loops = CountBoundaryLoops(mesh);
   MESHLOD_CHECK_EQ(loops, 39);
   vtkSmartPointer<vtkMultiBlockDataSet> h = TenthAndHundredth(mesh, true);

@@ -357,6 +357,19 @@ vtkSmartPointer<vtkPolyData> TriangulateAndClean(vtkAlgorithm* source)
   return mesh;
 }
 
+vtkSmartPointer<vtkPolyData> MakeWaveletIsosurface(int halfExtent)
+{
+  vtkNew<vtkRTAnalyticSource> wavelet;
+  wavelet->SetWholeExtent(-halfExtent, halfExtent, -halfExtent, halfExtent, -halfExtent, halfExtent);
+  vtkNew<vtkFlyingEdges3D> contour;
+  contour->SetInputConnection(wavelet->GetOutputPort());
+  contour->SetValue(0, 160.0);
+  contour->ComputeNormalsOff();
+  contour->ComputeGradientsOff();
+  contour->ComputeScalarsOff();
+  return TriangulateAndClean(contour);
+}
+
 // Points: 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z. Outward-facing triangles.
 vtkSmartPointer<vtkPolyData> MakeOctahedron()
 {

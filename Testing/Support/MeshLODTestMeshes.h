@@ -98,6 +98,10 @@ vtkSmartPointer<vtkPolyData> MakeSphereWithEquatorialDisk(int around, int rings,
 /// The output of `source` triangulated (vtkTriangleFilter) and cleaned (vtkCleanPolyData:
 /// exactly coincident points merged), as a new data set.
 vtkSmartPointer<vtkPolyData> TriangulateAndClean(vtkAlgorithm* source);
+/// VTK's wavelet test volume (vtkRTAnalyticSource on [-halfExtent, halfExtent]^3, its own
+/// units) contoured at 160 by vtkFlyingEdges3D, triangulated and cleaned: pieces cut open by the
+/// volume's faces (small loops where a bulge pokes through a face) and full of handles.
+vtkSmartPointer<vtkPolyData> MakeWaveletIsosurface(int halfExtent);
 /// A closed surface from a flat list of points and triangles.
 vtkSmartPointer<vtkPolyData> MakePolyData(
   const std::vector<double>& points, const std::vector<long long>& triangles);
