@@ -232,8 +232,11 @@ Id OctreeClustering::Internals::MarkForTrial(Synthesis& s, const std::vector<Id>
   const std::size_t before = this->RefusedNodes.size();
   const Id marked = this->MarkChanged(s, clusters, false);
   // Lifted after the trial (TryLevel): a larger epsilon may let the piece go or the hole close.
+  // They move out of RefusedNodes, which lists the refusals that last (ClearRefusals reports
+  // whether there are any, and a search is run again without them).
   this->TrialRefusals.insert(
     this->TrialRefusals.end(), this->RefusedNodes.begin() + before, this->RefusedNodes.end());
+  this->RefusedNodes.resize(before);
   return marked;
 }
 
