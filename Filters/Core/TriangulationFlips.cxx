@@ -1,6 +1,7 @@
 #include "TriangulationFlips.h"
 #include "Vector3.h"
 
+#include "vtkMath.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -257,6 +258,16 @@ struct FlipJudge
       Dot(m1, m2) >= bend * l1 * l2;
   }
 };
+
+// The angle at corner o of triangle (o, x, y), in radians.
+double CornerAngle(const double* o, const double* x, const double* y)
+{
+  double u[3], v[3], n[3];
+  Subtract(x, o, u);
+  Subtract(y, o, v);
+  Cross(u, v, n);
+  return std::atan2(std::sqrt(Dot(n, n)), Dot(u, v));
+}
 
 // The corner of `tri` that is neither a nor b, when tri holds the edge as (b, a); else InvalidId.
 Id OppositeOfReversed(const Id* tri, Id a, Id b)
@@ -546,6 +557,7 @@ Id ImproveTriangulation(const TriangleMesh& input,
     std::pow(MinimumSeparation * errorBound, 2) };
   const Id nt = level.GetNumberOfTriangles();
   const Id np = level.GetNumberOfPoints();
+  const double minimumOpposite = options.MinimumOppositeAngles * (vtkMath::Pi() / 180.0);
   std::vector<float> gain(3 * static_cast<size_t>(nt), -1.0f);
   std::vector<Id> candidates;
   std::vector<std::uint8_t> used;
@@ -582,8 +594,13 @@ Id ImproveTriangulation(const TriangleMesh& input,
             g = -1.0f;
             const Id a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
             const Id d = OppositeOfReversed(level.Triangle(u), a, b);
+            // (A quad whose corners off the edge are sharp needs no judging, see the header.)
             double before, after;
-            if (d != InvalidId && d != c && judge.Judge(level, a, b, c, d, before, after) &&
+            if (d != InvalidId && d != c &&
+              CornerAngle(level.Point(c), level.Point(a), level.Point(b)) +
+                  CornerAngle(level.Point(d), level.Point(b), level.Point(a)) >=
+                minimumOpposite &&
+              judge.Judge(level, a, b, c, d, before, after) &&
               after <= options.RequiredGain * before)
             {
               g = static_cast<float>(after / before);

@@ -21,6 +21,15 @@
 // extruded text it found points of a neighbouring letter's wall), or when the two
 // configurations lie within a tenth of that error of each other (too close to matter).
 //
+// Only edges whose two facing angles (at c and d) add up to MinimumOppositeAngles or more are
+// judged: below that the flip would make an obtuse triangle (in a flat quad the angles at a and
+// b, which the flip leaves whole, add up to over 240 degrees). Judging every edge found few such
+// flips worth making (8% of the flips on the 154k metaballs isosurface at 10% and 1%, whose RMS
+// distances stayed the same to 3 digits; within 0.5% on the 611k gyroid) for over half the
+// judging:
+// the flips took 0.12 s there instead of 0.21 s and 0.54 s instead of 0.80 s on the 611k
+// gyroid (one thread; the octree's own time 0.27 s and 1.34 s).
+//
 // Each sweep evaluates every interior edge in parallel against the sweep's triangles, then makes
 // the flips in the order of their gain, at most one per vertex (so that every flip made was
 // judged on the triangles it replaces); the result does not depend on the thread count.
@@ -40,6 +49,8 @@ struct VTKFILTERSMESHLOD_EXPORT TriangulationFlipOptions
   int MaximumSweeps = 4;
   /// A flip must bring the local error to at most this fraction of the old one.
   double RequiredGain = 0.8;
+  /// An edge is judged only when the two angles facing it add up to this many degrees or more.
+  double MinimumOppositeAngles = 120.0;
 };
 
 /// Flip edges of `level` towards `input` (see above). `startVertex[p]` is an input vertex near

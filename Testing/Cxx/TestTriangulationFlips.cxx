@@ -1,5 +1,6 @@
 // Edge flips towards the input (Core/TriangulationFlips, vtkVertexClusterOctree::FlipEdges):
-// closest points on a triangle, exact flips on a hand-made tent, refusals, and on an octree
+// closest points on a triangle, exact flips on a hand-made tent, refusals (a quad sharp at the
+// corners facing its edge is not judged), and on an octree
 // hierarchy the same points and counts with a smaller distance to the input.
 #include "Core/TriangleMesh.h"
 #include "Core/TriangulationFlips.h"
@@ -352,6 +353,40 @@ void TestTentFlips()
   MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, single.Start, 0.5, single.Level), 0);
 }
 
+// A kite across a low ridge: diagonal AB short (A (-0.2, 0), B (0.2, 0)), 0.04 under the ridge at
+// its middle, C (0, -1) and D (0, 1) on the ridge, so that the other diagonal lies on the input
+// exactly. The angles facing AB add up to 45 degrees: with the default MinimumOppositeAngles the
+// edge is not judged; with 0 the flip is made.
+void TestSharpQuadNotJudged()
+{
+  constexpr int n = 10;
+  const TriangleMesh input = Tent(n, 0.2);
+  VertexTriangleAdjacency adjacency;
+  adjacency.Build(input);
+  constexpr Id A = 0, B = 1, C = 2, D = 3;
+  auto kite = [&]
+  {
+    TentQuad quad;
+    const Id corners[4] = { 5 * (n + 1) + 4, 5 * (n + 1) + 6, 5, n * (n + 1) + 5 };
+    for (const Id v : corners)
+    {
+      quad.Level.Points.insert(quad.Level.Points.end(), input.Point(v), input.Point(v) + 3);
+      quad.Start.push_back(v);
+    }
+    quad.Level.Triangles = { B, A, C, A, B, D };
+    return quad;
+  };
+  TentQuad sharp = kite();
+  MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, sharp.Start, 0.2, sharp.Level), 0);
+  TentQuad judged = kite();
+  TriangulationFlipOptions everyEdge;
+  everyEdge.MinimumOppositeAngles = 0.0;
+  MESHLOD_CHECK_EQ(
+    ImproveTriangulation(input, adjacency, judged.Start, 0.2, judged.Level, everyEdge), 1);
+  const std::vector<Id> flipped = { C, B, D, D, A, C };
+  MESHLOD_CHECK(judged.Level.Triangles == flipped);
+}
+
 //------------------------------------------------------------------------------
 vtkSmartPointer<vtkMultiBlockDataSet> Octree(vtkPolyData* mesh, bool flip)
 {
@@ -444,6 +479,7 @@ int TestTriangulationFlips(int, char*[])
   TestClosestPointNearCoincidentCorners();
   TestClosestPointFromCorner();
   TestTentFlips();
+  TestSharpQuadNotJudged();
   TestOctreeFlips();
   return meshlod::testing::Result();
 }
