@@ -5,8 +5,9 @@
 // surface with a seam, scan-like noisy spheres, open surfaces (a scan-like sphere with holes, a
 // terrain), a non-orientable surface, a superquadric with rounded edges, VTK's wavelet test
 // volume's isosurface (open, with many handles), a mesh in georeferenced coordinates (far from
-// the origin) and the smoothed surfaces between the regions of a segmented volume, where three
-// sheets meet along curves. Prints five markdown tables
+// the origin), the smoothed surfaces between the regions of a segmented volume, where three
+// sheets meet along curves, a binary mask's terraced isosurface and thin tubes. Prints five
+// markdown tables
 // (quality and Euler characteristics, or the counts reached; no timing) that run-benchmarks.sh
 // appends to RESULTS.md.
 //
@@ -17,8 +18,11 @@
 #include "MeshLODTestMeshes.h"
 #include "vtkTriangleCollapseDecimation.h"
 
+#include "vtkAppendPolyData.h"
+#include "vtkCellArray.h"
 #include "vtkCylinderSource.h"
 #include "vtkDiscreteFlyingEdges3D.h"
+#include "vtkFlyingEdges3D.h"
 #include "vtkImageData.h"
 #include "vtkLinearSubdivisionFilter.h"
 #include "vtkMultiBlockDataSet.h"
@@ -35,9 +39,11 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkSuperquadricSource.h"
+#include "vtkTubeFilter.h"
 #include "vtkWindowedSincPolyDataFilter.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -128,6 +134,73 @@ vtkSmartPointer<vtkPolyData> SegmentedBalls(int size)
   surface->SetPoints(smooth->GetOutput()->GetPoints());
   surface->SetPolys(smooth->GetOutput()->GetPolys());
   return surface;
+}
+
+// An ellipsoid segmented as a binary mask (1 inside, 0 outside) on a `size`^3 grid over
+// [-1, 1]^3 and contoured at 0.5 by flying edges: the terraced surface a segmentation gives
+// when its mask is contoured without smoothing (every point halfway along a grid edge).
+vtkSmartPointer<vtkPolyData> MaskIsosurface(int size)
+{
+  vtkNew<vtkImageData> mask;
+  mask->SetDimensions(size, size, size);
+  const double spacing = 2.0 / (size - 1);
+  mask->SetSpacing(spacing, spacing, spacing);
+  mask->SetOrigin(-1.0, -1.0, -1.0);
+  vtkNew<vtkShortArray> values;
+  values->SetName("mask");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(size) * size * size);
+  vtkIdType id = 0;
+  for (int k = 0; k < size; ++k)
+  {
+    for (int j = 0; j < size; ++j)
+    {
+      for (int i = 0; i < size; ++i, ++id)
+      {
+        const double x = -1.0 + i * spacing, y = -1.0 + j * spacing, z = -1.0 + k * spacing;
+        values->SetValue(id, x * x / 0.8 + y * y / 0.4 + z * z / 0.25 < 0.8 ? 1 : 0);
+      }
+    }
+  }
+  mask->GetPointData()->SetScalars(values);
+  vtkNew<vtkFlyingEdges3D> contour;
+  contour->SetInputData(mask);
+  contour->SetValue(0, 0.5);
+  contour->ComputeNormalsOff();
+  contour->ComputeGradientsOff();
+  contour->ComputeScalarsOff();
+  return meshlod::testing::TriangulateAndClean(contour);
+}
+
+// Three capped tubes (vtkTubeFilter, 24 sides, radius 0.02) around helices of radius 0.3
+// through [-1, 1] in z, 400 points each: thin parts, as vessels or fibres, a hundredth of the
+// diagonal across.
+vtkSmartPointer<vtkPolyData> ThinTubes()
+{
+  vtkNew<vtkAppendPolyData> tubes;
+  for (int t = 0; t < 3; ++t)
+  {
+    constexpr int n = 400;
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> line;
+    line->InsertNextCell(n);
+    for (int i = 0; i < n; ++i)
+    {
+      const double angle = 0.05 * i + 2.0 * t;
+      line->InsertCellPoint(points->InsertNextPoint(
+        0.3 * std::cos(angle), 0.3 * std::sin(angle), -1.0 + 2.0 * i / n));
+    }
+    vtkNew<vtkPolyData> helix;
+    helix->SetPoints(points);
+    helix->SetLines(line);
+    vtkNew<vtkTubeFilter> tube;
+    tube->SetInputData(helix);
+    tube->SetRadius(0.02);
+    tube->SetNumberOfSides(24);
+    tube->CappingOn();
+    tube->Update();
+    tubes->AddInputData(tube->GetOutput());
+  }
+  return meshlod::testing::TriangulateAndClean(tubes);
 }
 
 // V - E + F over the points the triangles use.
@@ -247,6 +320,12 @@ std::vector<TestMesh> Meshes()
     "between labels once (vtkRemoveDuplicatePolys), vtkWindowedSincPolyDataFilter (20 "
     "iterations, pass band 0.05); three sheets meet along each curve where balls touch",
     [] { return SegmentedBalls(128); } });
+  meshes.push_back({ "segmentation mask",
+    "an ellipsoid's binary mask on a 160^3 grid, flying edges at 0.5 (terraced), cleaned",
+    [] { return MaskIsosurface(160); } });
+  meshes.push_back({ "thin tubes",
+    "three capped tubes (vtkTubeFilter, 24 sides) of radius 1% of the diagonal around helices",
+    [] { return ThinTubes(); } });
   return meshes;
 }
 

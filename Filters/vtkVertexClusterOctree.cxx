@@ -271,8 +271,10 @@ void vtkVertexClusterOctree::WarnIfCountMissed(
                              << (this->PreserveTopology
                                     ? "clusters that would flip triangles, pinch edges or break "
                                       "a thin part are split again, which on a rough or noisy "
-                                      "surface adds many triangles back: PreserveTopology off "
-                                      "lifts that; "
+                                      "surface or along thin tubes adds many triangles back: "
+                                      "vtkTriangleCollapseDecimation reaches such counts and "
+                                      "keeps the topology, PreserveTopology off lifts the "
+                                      "repairs but lets levels fold where the surface is rough; "
                                     : "")
                              << "curves of "
                                 "non-manifold edges shorten only so far, and the vertices where "
