@@ -121,8 +121,8 @@
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its whole
  *   hierarchy the curvature method takes 1.4-3.9x the time vtkQuadricDecimation needs for one 10%
- *   target on one thread, and 1.7-2.1x less on two (the quadric method: 0.29-0.54x over five runs
- *   on AMD EPYC processors, 0.32-0.42x in Benchmarks/RESULTS.md's, and 1.6-1.9x less on two; the
+ *   target on one thread, and 1.7-2.1x less on two (the quadric method: 0.29-0.54x over six runs
+ *   on AMD EPYC processors, 0.32-0.52x in Benchmarks/RESULTS.md's, and 1.6-1.9x less on two; the
  *   ratios move with the processor, the machine's load and what ran before in the same process:
  *   on an Intel Xeon the quadric method took 0.42-0.69x over three runs, its own times about as
  *   on the EPYC, vtkQuadricDecimation's 1.3-2.0x shorter; on one EPYC the 154k mesh's 0.54 was

@@ -338,7 +338,7 @@ public:
    * isosurface of a noisy volume) those repairs add back so many triangles that target counts
    * are missed by far, and the search's level can then be far from the input: the isosurface
    * of a 120^3 volume with noise of one grid step (MeshLODTestMeshes' MakeNoisyIsosurface,
-   * 103,940 triangles) asked for 10% and 1% got 15.7% and 5.8%, that last level at 2.6 times
+   * 103,940 triangles) asked for 10% and 1% got 15.8% and 6.0%, that last level at 2.6 times
    * the Hausdorff distance of vtkQuadricClustering's output of the same count; with noise of
    * 1.5 steps, 33% and 32% (measured before a vertex of a cluster could stand in for a
    * representative that flips a triangle). Thin parts keep many triangles too: a cluster that
@@ -379,8 +379,12 @@ public:
    * to the input (judged by the local surface distance both ways). Points, triangle counts,
    * clusters and MorphTargetId stay as they are, and the next level is clustered from the unflipped
    * triangles. On the benchmark isosurfaces it lowers the RMS distance by 8-21% and changes the
-   * Hausdorff distance by -13% to +1%, for 1.6-1.75 times the time on one thread (1.6-1.7 times on
-   * two; Benchmarks/RESULTS.md). The price: a level's triangles are then no longer exactly what the
+   * Hausdorff distance by -12% to +1%, for 1.4-1.5 times the time on one thread (1.3-1.4 times on
+   * two; Benchmarks/RESULTS.md; 1.6-1.75 and 1.6-1.7 before edges whose far corners are sharp
+   * were left unjudged, Core/TriangulationFlips.h). On a binary mask's terraced isosurface
+   * (84,380 triangles) at 1%, where the input's connectivity joins many quads of clusters the
+   * wrong way, the Hausdorff and RMS distances fall from 1.51 and 1.13 to 0.97 and 0.98 times
+   * vtkQuadricClustering's. The price: a level's triangles are then no longer exactly what the
    * finer level's triangles become through MorphTargetId, so a geomorph into a flipped level ends
    * on its unflipped triangles and the flipped quads change at the switch (a small pop). For
    * discrete levels (no geomorph) turn it on. Default off.
