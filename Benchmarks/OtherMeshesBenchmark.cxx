@@ -172,8 +172,8 @@ vtkSmartPointer<vtkPolyData> MaskIsosurface(int size)
 }
 
 // Three capped tubes (vtkTubeFilter, 24 sides, radius 0.02) around helices of radius 0.3
-// through [-1, 1] in z, 400 points each: thin parts, as vessels or fibres, a hundredth of the
-// diagonal across.
+// rising from z = -1 to about 1, 400 points each: thin parts, as vessels or fibres, whose
+// radius is about a hundredth of the mesh's diagonal.
 vtkSmartPointer<vtkPolyData> ThinTubes()
 {
   vtkNew<vtkAppendPolyData> tubes;

@@ -362,8 +362,8 @@ public:
    * times its RMS distance (its 1% level crumpled, at about 5 and 10 times, before a vertex of
    * a cluster could stand in for a representative that flips a triangle), where the repairs
    * keep 92% and 87% of its triangles at the 10% and 1%
-   * targets; but those levels fold: on a sphere like it, 14% of the triangles of both levels
-   * faced inwards (none of the input's, 0.03% and none of vtkTriangleCollapseDecimation's levels
+   * targets; but the levels made with it off fold: on a sphere like it, 14% of the triangles
+   * of both levels faced inwards (none of the input's, 0.03% and none of vtkTriangleCollapseDecimation's levels
    * of the same counts), so for a rough surface whose levels must not fold over,
    * vtkTriangleCollapseDecimation is the filter. Levels still nest, and MorphTargetId maps every
    * triangle onto one of the next level with its orientation.

@@ -26,9 +26,8 @@
 // b, which the flip leaves whole, add up to over 240 degrees). Judging every edge found few such
 // flips worth making (8% of the flips on the 154k metaballs isosurface at 10% and 1%, whose RMS
 // distances stayed the same to 3 digits; within 0.5% on the 611k gyroid) for over half the
-// judging:
-// the flips took 0.12 s there instead of 0.21 s and 0.54 s instead of 0.80 s on the 611k
-// gyroid (one thread; the octree's own time 0.27 s and 1.34 s).
+// judging: the flips took 0.12 s there instead of 0.21 s and 0.54 s instead of 0.80 s on the
+// 611k gyroid (one thread; the octree's own time 0.27 s and 1.34 s).
 //
 // Each sweep evaluates every interior edge in parallel against the sweep's triangles, then makes
 // the flips in the order of their gain, at most one per vertex (so that every flip made was
