@@ -75,23 +75,19 @@ vtkSmartPointer<vtkPolyData> Prepare(vtkAlgorithm* source, int subdivisions)
   return mesh;
 }
 
-// Three overlapping balls labelled 1, 2 and 3 in a volume of `size`^3 samples (first label
-// wins where they overlap): vtkDiscreteFlyingEdges3D's surfaces of the labels, each face
-// between two labels kept once (vtkRemoveDuplicatePolys), smoothed as segmentations are before
-// decimation (vtkWindowedSincPolyDataFilter, 20 iterations, pass band 0.05, non-manifold
-// smoothing on). Sheets meet three at a time along the curves where balls touch.
-vtkSmartPointer<vtkPolyData> SegmentedBalls(int size)
+// A volume of `size`^3 samples over [-1, 1]^3 whose point scalars (a vtkShortArray named
+// `name`) are `label` of each sample's position.
+vtkSmartPointer<vtkImageData> LabelVolume(
+  int size, const char* name, const std::function<short(const double x[3])>& label)
 {
-  vtkNew<vtkImageData> labels;
-  labels->SetDimensions(size, size, size);
+  auto volume = vtkSmartPointer<vtkImageData>::New();
+  volume->SetDimensions(size, size, size);
   const double spacing = 2.0 / (size - 1);
-  labels->SetSpacing(spacing, spacing, spacing);
-  labels->SetOrigin(-1.0, -1.0, -1.0);
+  volume->SetSpacing(spacing, spacing, spacing);
+  volume->SetOrigin(-1.0, -1.0, -1.0);
   vtkNew<vtkShortArray> values;
-  values->SetName("label");
+  values->SetName(name);
   values->SetNumberOfTuples(static_cast<vtkIdType>(size) * size * size);
-  const double balls[3][4] = { { -0.3, 0.0, 0.0, 0.55 }, { 0.3, 0.0, 0.0, 0.55 },
-    { 0.0, 0.35, 0.1, 0.45 } };
   vtkIdType id = 0;
   for (int k = 0; k < size; ++k)
   {
@@ -100,17 +96,32 @@ vtkSmartPointer<vtkPolyData> SegmentedBalls(int size)
       for (int i = 0; i < size; ++i, ++id)
       {
         const double x[3] = { -1.0 + i * spacing, -1.0 + j * spacing, -1.0 + k * spacing };
-        short label = 0;
-        for (int b = 2; b >= 0; --b)
-        {
-          const double dx = x[0] - balls[b][0], dy = x[1] - balls[b][1], dz = x[2] - balls[b][2];
-          label = dx * dx + dy * dy + dz * dz < balls[b][3] * balls[b][3] ? static_cast<short>(b + 1) : label;
-        }
-        values->SetValue(id, label);
+        values->SetValue(id, label(x));
       }
     }
   }
-  labels->GetPointData()->SetScalars(values);
+  volume->GetPointData()->SetScalars(values);
+  return volume;
+}
+
+// Three overlapping balls labelled 1, 2 and 3 in a volume of `size`^3 samples (first label
+// wins where they overlap): vtkDiscreteFlyingEdges3D's surfaces of the labels, each face
+// between two labels kept once (vtkRemoveDuplicatePolys), smoothed as segmentations are before
+// decimation (vtkWindowedSincPolyDataFilter, 20 iterations, pass band 0.05, non-manifold
+// smoothing on). Sheets meet three at a time along the curves where balls touch.
+vtkSmartPointer<vtkPolyData> SegmentedBalls(int size)
+{
+  const double balls[3][4] = { { -0.3, 0.0, 0.0, 0.55 }, { 0.3, 0.0, 0.0, 0.55 },
+    { 0.0, 0.35, 0.1, 0.45 } };
+  vtkSmartPointer<vtkImageData> labels = LabelVolume(size, "label", [&](const double x[3]) {
+    short label = 0;
+    for (int b = 2; b >= 0; --b)
+    {
+      const double dx = x[0] - balls[b][0], dy = x[1] - balls[b][1], dz = x[2] - balls[b][2];
+      label = dx * dx + dy * dy + dz * dz < balls[b][3] * balls[b][3] ? static_cast<short>(b + 1) : label;
+    }
+    return label;
+  });
   vtkNew<vtkDiscreteFlyingEdges3D> contour;
   contour->SetInputData(labels);
   contour->GenerateValues(3, 1, 3);
@@ -141,27 +152,10 @@ vtkSmartPointer<vtkPolyData> SegmentedBalls(int size)
 // when its mask is contoured without smoothing (every point halfway along a grid edge).
 vtkSmartPointer<vtkPolyData> MaskIsosurface(int size)
 {
-  vtkNew<vtkImageData> mask;
-  mask->SetDimensions(size, size, size);
-  const double spacing = 2.0 / (size - 1);
-  mask->SetSpacing(spacing, spacing, spacing);
-  mask->SetOrigin(-1.0, -1.0, -1.0);
-  vtkNew<vtkShortArray> values;
-  values->SetName("mask");
-  values->SetNumberOfTuples(static_cast<vtkIdType>(size) * size * size);
-  vtkIdType id = 0;
-  for (int k = 0; k < size; ++k)
-  {
-    for (int j = 0; j < size; ++j)
-    {
-      for (int i = 0; i < size; ++i, ++id)
-      {
-        const double x = -1.0 + i * spacing, y = -1.0 + j * spacing, z = -1.0 + k * spacing;
-        values->SetValue(id, x * x / 0.8 + y * y / 0.4 + z * z / 0.25 < 0.8 ? 1 : 0);
-      }
-    }
-  }
-  mask->GetPointData()->SetScalars(values);
+  vtkSmartPointer<vtkImageData> mask = LabelVolume(size, "mask", [](const double x[3]) {
+    return static_cast<short>(
+      x[0] * x[0] / 0.8 + x[1] * x[1] / 0.4 + x[2] * x[2] / 0.25 < 0.8 ? 1 : 0);
+  });
   vtkNew<vtkFlyingEdges3D> contour;
   contour->SetInputData(mask);
   contour->SetValue(0, 0.5);

@@ -296,11 +296,11 @@ struct TentQuad
   std::vector<Id> Start;
 };
 
-TentQuad MakeQuad(const TriangleMesh& input, int n, const std::array<Id, 6>& triangles)
+// Level points A, B, C, D at the input vertices `corners`, joined by `triangles`.
+TentQuad QuadAt(const TriangleMesh& input, const std::array<Id, 4>& corners,
+  const std::array<Id, 6>& triangles)
 {
   TentQuad quad;
-  const Id half = n / 2;
-  const Id corners[4] = { half * (n + 1), half * (n + 1) + n, half, n * (n + 1) + half };
   for (const Id v : corners)
   {
     quad.Level.Points.insert(quad.Level.Points.end(), input.Point(v), input.Point(v) + 3);
@@ -308,6 +308,13 @@ TentQuad MakeQuad(const TriangleMesh& input, int n, const std::array<Id, 6>& tri
   }
   quad.Level.Triangles.assign(triangles.begin(), triangles.end());
   return quad;
+}
+
+TentQuad MakeQuad(const TriangleMesh& input, int n, const std::array<Id, 6>& triangles)
+{
+  const Id half = n / 2;
+  return QuadAt(
+    input, { half * (n + 1), half * (n + 1) + n, half, n * (n + 1) + half }, triangles);
 }
 
 void TestTentFlips()
@@ -364,18 +371,8 @@ void TestSharpQuadNotJudged()
   VertexTriangleAdjacency adjacency;
   adjacency.Build(input);
   constexpr Id A = 0, B = 1, C = 2, D = 3;
-  auto kite = [&]
-  {
-    TentQuad quad;
-    const Id corners[4] = { 5 * (n + 1) + 4, 5 * (n + 1) + 6, 5, n * (n + 1) + 5 };
-    for (const Id v : corners)
-    {
-      quad.Level.Points.insert(quad.Level.Points.end(), input.Point(v), input.Point(v) + 3);
-      quad.Start.push_back(v);
-    }
-    quad.Level.Triangles = { B, A, C, A, B, D };
-    return quad;
-  };
+  const std::array<Id, 4> corners = { 5 * (n + 1) + 4, 5 * (n + 1) + 6, 5, n * (n + 1) + 5 };
+  auto kite = [&] { return QuadAt(input, corners, { B, A, C, A, B, D }); };
   TentQuad sharp = kite();
   MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, sharp.Start, 0.2, sharp.Level), 0);
   TentQuad judged = kite();
