@@ -238,6 +238,8 @@ struct OctreeClustering::Internals
   Id MarkChanged(octree::Synthesis& s, const std::vector<Id>& clusters, bool lasting);
   // Lift the fold refusals; false when there were none.
   bool ClearRefusals();
+  // Lift the refusals of `nodes` (RefusedNodes or TrialRefusals) and empty the list.
+  void LiftRefusals(std::vector<Id>& nodes);
   bool SplitFully = false;
   Id TryLevel(double epsilon, ClusterLevel& level);
   // The best of a few trial levels for a target count (see MakeLevelForTriangleCount); returns

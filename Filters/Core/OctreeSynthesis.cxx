@@ -983,12 +983,7 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
     level.FlippedTrianglesFixed += marked;
   }
   this->SplitFully = false;
-  for (const Id i : this->TrialRefusals)
-  {
-    this->Refused[i] = 0;
-    this->UpdateThreshold(i);
-  }
-  this->TrialRefusals.clear();
+  this->LiftRefusals(this->TrialRefusals);
   this->Finalize(s, level);
   return level.Mesh.GetNumberOfTriangles();
 }
@@ -996,14 +991,20 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
 //------------------------------------------------------------------------------
 bool OctreeClustering::Internals::ClearRefusals()
 {
-  for (const Id i : this->RefusedNodes)
+  const bool any = !this->RefusedNodes.empty();
+  this->LiftRefusals(this->RefusedNodes);
+  return any;
+}
+
+//------------------------------------------------------------------------------
+void OctreeClustering::Internals::LiftRefusals(std::vector<Id>& nodes)
+{
+  for (const Id i : nodes)
   {
     this->Refused[i] = 0;
     this->UpdateThreshold(i);
   }
-  const bool any = !this->RefusedNodes.empty();
-  this->RefusedNodes.clear();
-  return any;
+  nodes.clear();
 }
 
 //------------------------------------------------------------------------------

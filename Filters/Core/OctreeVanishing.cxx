@@ -23,6 +23,23 @@ namespace
 // this many times the epsilon of all of it (MarkFarVanishing).
 constexpr double VanishingReach = 2.0;
 
+// An axis-aligned box as { lo[3], hi[3] }: empty, then grown point by point.
+void ClearBox(double* box)
+{
+  constexpr double Huge = std::numeric_limits<double>::max();
+  std::fill_n(box, 3, Huge);
+  std::fill_n(box + 3, 3, -Huge);
+}
+
+void GrowBox(double* box, const double x[3])
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    box[c] = std::min(box[c], x[c]);
+    box[3 + c] = std::max(box[3 + c], x[c]);
+  }
+}
+
 // The kept triangles of each cluster: those of cluster k are around[offsets[k] .. offsets[k + 1]).
 void GroupKeptTriangles(const Synthesis& s, std::vector<Id>& offsets, std::vector<Id>& around)
 {
@@ -107,7 +124,6 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
     }
   }
   // The bounding box of each vanishing piece's previous points.
-  constexpr double Huge = std::numeric_limits<double>::max();
   std::vector<std::uint32_t> vanishing;
   std::vector<Id> slot(pieces, InvalidId);
   for (std::uint32_t piece = 0; piece < pieces; ++piece)
@@ -125,8 +141,7 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
   std::vector<double> box(6 * vanishing.size());
   for (std::size_t i = 0; i < vanishing.size(); ++i)
   {
-    std::fill_n(box.begin() + 6 * i, 3, Huge);
-    std::fill_n(box.begin() + 6 * i + 3, 3, -Huge);
+    ClearBox(box.data() + 6 * i);
   }
   for (Id p = 0; p < previousPoints; ++p)
   {
@@ -137,11 +152,7 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
     }
     double x[3];
     this->RepresentativeOf(this->NodeOfPoint(p), x);
-    for (int c = 0; c < 3; ++c)
-    {
-      box[6 * i + c] = std::min(box[6 * i + c], x[c]);
-      box[6 * i + 3 + c] = std::max(box[6 * i + 3 + c], x[c]);
-    }
+    GrowBox(box.data() + 6 * i, x);
   }
   // The previous level's points in clusters that keep triangles, in a grid of cells
   // VanishingReach * epsilon wide, sorted by cell: the kept triangles around such points within
@@ -313,16 +324,11 @@ void OctreeClustering::Internals::LabelHoles()
   this->HoleRadius.assign(holes, 0.0);
   for (Id h = 0; h < holes; ++h)
   {
-    double box[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+    double box[6];
+    ClearBox(box);
     for (Id i = this->HoleOffsets[h]; i < this->HoleOffsets[h + 1]; ++i)
     {
-      const double* x = this->Mesh.Point(this->HoleVertices[i]);
-      for (int c = 0; c < 3; ++c)
-      {
-        const bool first = i == this->HoleOffsets[h];
-        box[c] = first ? x[c] : std::min(box[c], x[c]);
-        box[3 + c] = first ? x[c] : std::max(box[3 + c], x[c]);
-      }
+      GrowBox(box, this->Mesh.Point(this->HoleVertices[i]));
     }
     this->HoleRadius[h] = 0.5 * BoxDiagonal(box, box + 3);
   }
