@@ -19,6 +19,7 @@ set(meshlod_private_headers
   Filters/Core/CollapseCosts.h
   Filters/Core/CollapseMesh.h
   Filters/Core/CollapseSchedule.h
+  Filters/Core/CollapseScheduleBuilder.h
   Filters/Core/Collapser.h
   Filters/Core/EdgeMerge.h
   Filters/Core/FreshMemory.h
@@ -27,6 +28,7 @@ set(meshlod_private_headers
   Filters/Core/LevelCentering.h
   Filters/Core/LevelData.h
   Filters/Core/LevelTracker.h
+  Filters/Core/LinkFan.h
   Filters/Core/LocalSurfaceFit.h
   Filters/Core/MergedLink.h
   Filters/Core/OctreeClustering.h
@@ -54,6 +56,7 @@ set(meshlod_sources
   Filters/Core/CollapseCosts.cxx
   Filters/Core/CollapseMesh.cxx
   Filters/Core/CollapseSchedule.cxx
+  Filters/Core/CollapseScheduleFans.cxx
   Filters/Core/Collapser.cxx
   Filters/Core/EdgeMerge.cxx
   Filters/Core/FreshMemory.cxx
@@ -61,6 +64,7 @@ set(meshlod_sources
   Filters/Core/IndependentSetSchedule.cxx
   Filters/Core/LevelCentering.cxx
   Filters/Core/LevelTracker.cxx
+  Filters/Core/LinkFan.cxx
   Filters/Core/LocalSurfaceFit.cxx
   Filters/Core/OctreeClustering.cxx
   Filters/Core/OctreeCuts.cxx
