@@ -59,115 +59,17 @@ bool IsClosedDisc(const TriangleMesh& mesh, const VertexTriangleAdjacency& aroun
     std::adjacent_find(starts, starts + count) == starts + count;
 }
 
-// A triangle set up for projections: for w = x - Corner, the barycentric weights of corners 1
-// and 2 of x's projection are w . B and w . C, and its signed distance is w . Unit.
-struct ProjectionFrame
-{
-  double Corner[3], B[3], C[3], Unit[3];
-  double Size; // sqrt of twice the area
-  bool Valid;
-
-  void Set(const double* a, const double* b, const double* c)
-  {
-    double e1[3], e2[3], n[3];
-    Subtract(b, a, e1);
-    Subtract(c, a, e2);
-    Cross(e1, e2, n);
-    const double nn = Dot(n, n);
-    this->Valid = nn > 0.0;
-    if (!this->Valid)
-    {
-      return;
-    }
-    std::copy_n(a, 3, this->Corner);
-    Cross(e2, n, this->B);
-    Cross(n, e1, this->C);
-    const double length = std::sqrt(nn);
-    for (int k = 0; k < 3; ++k)
-    {
-      this->B[k] /= nn;
-      this->C[k] /= nn;
-      this->Unit[k] = n[k] / length;
-    }
-    this->Size = std::sqrt(length);
-  }
-};
-
-// One sample's projection: the triangle it projects into, its signed distance (0 on the
-// triangle) and the barycentric weights of the triangle's corners 1 and 2.
-struct Projection
-{
-  Id Triangle;
-  float Area, Distance, B, C;
-};
-
-// Per point: sums over the projections with a weight on it (weight = area times its
-// barycentric weight) of weight times distance, of weight, of weight where the distance is 0,
-// and of the barycentric weights alone (a count of samples); and the lowest and highest
-// distance of the projections nearest to it (barycentric weight at least NearWeight).
-struct PointSums
-{
-  double Weighted, Weight;
-  float OnSurface, Samples, Lowest, Highest;
-};
-} // namespace
-
-//------------------------------------------------------------------------------
-// The samples are the input triangles' centroids, weighted by area: the mean of a linear
-// function over a triangle is its value there. (The input's vertices, where the input surface
-// passes through, stand for the surface around them only where it is flat: on a curved input the
-// triangles between them lie below them by the input's own chordal error, and levels nearly as
-// fine as the input were pushed out by it, 20% further from the input than uncentred at half
-// the input's triangles.)
-void LevelCentering::SetLevelZero(const LevelZeroView& view)
-{
-  this->Input = view;
-  this->LevelPoint.resize(view.Points);
-  vtkSMPTools::For(0, view.Points, [&](Id begin, Id end) {
-    for (Id v = begin; v < end; ++v)
-    {
-      this->LevelPoint[v] = v;
-    }
-  });
-  this->Shifts.clear();
-}
-
-//------------------------------------------------------------------------------
-void LevelCentering::Apply(TriangleMesh& level,
-  const std::vector<Id>& target,
-  const std::vector<Id>& sourceOffsets,
-  const std::vector<Id>& sourceParents,
-  const std::vector<float>& sourceWeights)
+// Points that did not change (their own single parent with weight 1) keep their shift of the
+// previous level, added in the same rounding as there (so they land exactly where the previous
+// level has them); the others start from none and are marked in `changed`.
+void KeepUnchangedShifts(TriangleMesh& level, const std::vector<Id>& sourceOffsets,
+  const std::vector<Id>& sourceParents, const std::vector<float>& sourceWeights,
+  const std::vector<float>& previousShifts, std::vector<float>& shifts,
+  std::vector<unsigned char>& changed)
 {
   const Id points = level.GetNumberOfPoints();
-  const Id triangles = level.GetNumberOfTriangles();
-  const Id samplePoints = this->Input.Triangles;
-
-  // The correspondence from level 0, one level further.
-  vtkSMPTools::For(0, this->Input.Points, [&](Id begin, Id end) {
-    for (Id i = begin; i < end; ++i)
-    {
-      this->LevelPoint[i] = target[this->LevelPoint[i]];
-    }
-  });
-
-  // Levels with more than LargestFraction of the input's triangles stay as they are.
-  if (triangles > LargestFraction * samplePoints)
-  {
-    this->Shifts.clear();
-    return;
-  }
-
-  // Sample areas are kept in single precision in units of the diagonal squared: in world units
-  // the centred levels strayed from the input for a mesh 1e21 across or 1e-21 across.
-  const double areaUnit = SquaredLengthUnit(level.BoundingDiagonal());
-
-  // Points that did not change keep their shift of the previous level, added in the same
-  // rounding as there (so they land exactly where the previous level has them); the others
-  // start from none.
-  const std::vector<float> previousShifts = std::move(this->Shifts);
-  std::vector<float> shifts = FreshVector<float>(3 * static_cast<size_t>(points), 0.0f);
-  std::vector<unsigned char> changed = FreshVector<unsigned char>(points, 1);
+  shifts = FreshVector<float>(3 * static_cast<size_t>(points), 0.0f);
+  changed = FreshVector<unsigned char>(points, 1);
   vtkSMPTools::For(0, points, [&](Id begin, Id end) {
     for (Id p = begin; p < end; ++p)
     {
@@ -187,203 +89,13 @@ void LevelCentering::Apply(TriangleMesh& level,
       }
     }
   });
-  VertexTriangleAdjacency around;
-  around.Build(level);
+}
 
-  // The samples of each point (every stride-th input triangle, grouped by the point its first
-  // corner became, in input order).
-  const Id stride = std::max<Id>(MinimumStride, samplePoints / std::max<Id>(1, SamplesPerPoint * points));
-  std::vector<Id> sampleOffsets, samples;
-  GroupByKey(
-    static_cast<size_t>(points),
-    [&](auto&& emit) {
-      for (Id i = 0; i < samplePoints; i += stride)
-      {
-        emit(this->SamplePoint(i), i);
-      }
-    },
-    sampleOffsets, samples);
-
-  // Each sample projected into a triangle around its point (the first such; on a smooth fan
-  // projections fall into one triangle, or two that share the edge they lie on), its distance
-  // spread over that triangle's corners with the barycentric weights. Blocks of points in
-  // parallel, the sums in a fixed order.
-  std::vector<PointSums> sums = FreshVector<PointSums>(points, PointSums{ 0.0, 0.0, 0.0f, 0.0f, 0.0f, 0.0f });
-  std::vector<Projection> projections; // grown as needed, each block writes all it reads
-  // Each point's own distance to the input (in the samples' convention: positive when the input
-  // lies beyond the point along its normal).
-  std::vector<float> pointDistance = FreshVector<float>(points, 0.0f);
-  for (Id first = 0, last = 0; first < points; first = last)
-  {
-    // The points whose samples fit in a block (at least one point).
-    const Id base = sampleOffsets[first];
-    last = static_cast<Id>(std::upper_bound(sampleOffsets.begin() + first + 1,
-                             sampleOffsets.end(), base + BlockSamples) -
-      sampleOffsets.begin() - 1);
-    last = std::max(last, first + 1);
-    if (projections.size() < static_cast<size_t>(sampleOffsets[last] - base))
-    {
-      projections.resize(static_cast<size_t>(sampleOffsets[last] - base));
-    }
-    vtkSMPTools::For(first, last, [&](Id begin, Id end) {
-      ProjectionFrame frames[MaximumValence];
-      for (Id p = begin; p < end; ++p)
-      {
-        const Id count = around.Count(p);
-        if (count > MaximumValence)
-        {
-          for (Id s = sampleOffsets[p]; s < sampleOffsets[p + 1]; ++s)
-          {
-            projections[s - base].Triangle = InvalidId;
-          }
-          continue;
-        }
-        for (Id k = 0; k < count; ++k)
-        {
-          const Id* tri = level.Triangle(around.Of(p)[k]);
-          frames[k].Set(level.Point(tri[0]), level.Point(tri[1]), level.Point(tri[2]));
-        }
-        double nearestSample = std::numeric_limits<double>::infinity();
-        for (Id s = sampleOffsets[p]; s < sampleOffsets[p + 1]; ++s)
-        {
-          projections[s - base].Triangle = InvalidId;
-          double x[3], unit[3], w[3];
-          const double area = this->InputCentroid(samples[s], x, unit);
-          // The point's own distance to the input: to the plane of its nearest sample (in the
-          // plane's direction), along the plane's normal.
-          Subtract(level.Point(p), x, w);
-          const double across = Dot(w, unit);
-          const double along = Dot(w, w) - across * across;
-          if (along < nearestSample)
-          {
-            nearestSample = along;
-            pointDistance[p] = static_cast<float>(-across);
-          }
-          for (Id k = 0; k < count; ++k)
-          {
-            const ProjectionFrame& f = frames[k];
-            if (!f.Valid)
-            {
-              continue;
-            }
-            Subtract(x, f.Corner, w);
-            const double lb = Dot(w, f.B);
-            const double lc = Dot(w, f.C);
-            if (lb < -InsideTolerance || lc < -InsideTolerance || lb + lc > 1.0 + InsideTolerance)
-            {
-              continue;
-            }
-            const double d = Dot(w, f.Unit);
-            projections[s - base] = Projection{ around.Of(p)[k],
-              static_cast<float>(area * areaUnit),
-              static_cast<float>(std::abs(d) <= OnSurface * f.Size ? 0.0 : d),
-              static_cast<float>(std::max(0.0, lb)), static_cast<float>(std::max(0.0, lc)) };
-            break;
-          }
-        }
-      }
-    });
-    for (Id s = sampleOffsets[first]; s < sampleOffsets[last]; ++s)
-    {
-      const Projection& projection = projections[s - base];
-      if (projection.Triangle == InvalidId)
-      {
-        continue;
-      }
-      const double area = projection.Area;
-      const double b = projection.B, c = projection.C;
-      const double weights[3] = { std::max(0.0, 1.0 - b - c), b, c };
-      const Id* tri = level.Triangle(projection.Triangle);
-      for (int k = 0; k < 3; ++k)
-      {
-        PointSums& sum = sums[tri[k]];
-        sum.Weighted += weights[k] * area * projection.Distance;
-        sum.Weight += weights[k] * area;
-        sum.OnSurface += projection.Distance == 0.0f ? static_cast<float>(weights[k] * area) : 0.0f;
-        sum.Samples += static_cast<float>(weights[k]);
-        if (weights[k] >= NearWeight)
-        {
-          sum.Lowest = std::min(sum.Lowest, projection.Distance);
-          sum.Highest = std::max(sum.Highest, projection.Distance);
-        }
-      }
-    }
-  }
-  Release(projections);
-  Release(samples);
-  Release(sampleOffsets);
-
-  // Each changed interior point's shift: along its normal by its weighted mean distance, at
-  // most LargestShift of its shortest edge.
-  std::vector<float> own = FreshVector<float>(3 * static_cast<size_t>(points), 0.0f);
-  vtkSMPTools::For(0, points, [&](Id begin, Id end) {
-    for (Id p = begin; p < end; ++p)
-    {
-      const PointSums& sum = sums[p];
-      // Mostly on the triangles already (a planar facet): a few samples that project from
-      // beyond the point's triangles onto a neighbouring facet must not move it.
-      if (!changed[p] || sum.Samples < MinimumSamples || !(sum.Weight > 0.0) ||
-        sum.OnSurface >= 0.5 * sum.Weight || !IsClosedDisc(level, around, p))
-      {
-        continue;
-      }
-      // (A closed disc has at most MaximumValence triangles.)
-      const Id count = around.Count(p);
-      double areas[MaximumValence][3];
-      double normal[3] = { 0.0, 0.0, 0.0 };
-      double shortest = std::numeric_limits<double>::infinity();
-      for (Id k = 0; k < count; ++k)
-      {
-        const Id t = around.Of(p)[k];
-        level.AreaVector(t, areas[k]);
-        for (int c = 0; c < 3; ++c)
-        {
-          normal[c] += areas[k][c];
-        }
-        const Id* tri = level.Triangle(t);
-        for (int c = 0; c < 3; ++c)
-        {
-          if (tri[c] != p)
-          {
-            shortest = std::min(shortest, Distance2(level.Point(p), level.Point(tri[c])));
-          }
-        }
-      }
-      const double length = std::sqrt(Dot(normal, normal));
-      bool smooth = length > 0.0;
-      for (Id k = 0; k < count && smooth; ++k)
-      {
-        smooth =
-          Dot(areas[k], normal) >= SmoothCosine * std::sqrt(Dot(areas[k], areas[k])) * length;
-      }
-      shortest = std::sqrt(shortest);
-      // The mean minimises the squared distances; the largest distance near the point (where
-      // the surface moves with it) may not grow: on a surface whose curvature changes fast (a
-      // rounded edge between flat faces) the mean alone moved the largest deviation up by a
-      // sixth.
-      // The same for the point's own distance to the input (at a convex corner the mean can ask
-      // a point that stands out already to move further out).
-      const double itself = pointDistance[p];
-      const double largest = std::max(std::abs(itself),
-        std::max(-static_cast<double>(sum.Lowest), static_cast<double>(sum.Highest)));
-      double delta = sum.Weighted / sum.Weight;
-      delta = std::max(delta, std::max(static_cast<double>(sum.Highest), itself) - largest);
-      delta = std::min(delta, std::min(static_cast<double>(sum.Lowest), itself) + largest);
-      delta = std::max(-LargestShift * shortest, std::min(LargestShift * shortest, delta));
-      if (!smooth || !(std::abs(delta) > OnSurface * shortest))
-      {
-        continue;
-      }
-      for (int c = 0; c < 3; ++c)
-      {
-        own[3 * p + c] = static_cast<float>(delta * normal[c] / length);
-      }
-    }
-  });
-  Release(sums);
-  Release(pointDistance);
-
-  // Undo the shifts around triangles they would turn too far, until none does.
+// Undo the shifts `own` (x, y, z per point) around triangles they would turn by more than 60
+// degrees, until none does.
+void UndoTurningShifts(const TriangleMesh& level, std::vector<float>& own)
+{
+  const Id triangles = level.GetNumberOfTriangles();
   std::vector<unsigned char> turned = FreshVector<unsigned char>(triangles, 0);
   for (bool again = true; again;)
   {
@@ -422,6 +134,139 @@ void LevelCentering::Apply(TriangleMesh& level,
       }
     }
   }
+}
+} // namespace
+
+// Per point: sums over the projections with a weight on it (weight = area times its
+// barycentric weight) of weight times distance, of weight, of weight where the distance is 0,
+// and of the barycentric weights alone (a count of samples); and the lowest and highest
+// distance of the projections nearest to it (barycentric weight at least NearWeight).
+struct LevelCentering::PointSums
+{
+  double Weighted, Weight;
+  float OnSurface, Samples, Lowest, Highest;
+};
+
+// A triangle set up for projections: for w = x - Corner, the barycentric weights of corners 1
+// and 2 of x's projection are w . B and w . C, and its signed distance is w . Unit.
+struct LevelCentering::ProjectionFrame
+{
+  double Corner[3], B[3], C[3], Unit[3];
+  double Size; // sqrt of twice the area
+  bool Valid;
+
+  void Set(const double* a, const double* b, const double* c)
+  {
+    double e1[3], e2[3], n[3];
+    Subtract(b, a, e1);
+    Subtract(c, a, e2);
+    Cross(e1, e2, n);
+    const double nn = Dot(n, n);
+    this->Valid = nn > 0.0;
+    if (!this->Valid)
+    {
+      return;
+    }
+    std::copy_n(a, 3, this->Corner);
+    Cross(e2, n, this->B);
+    Cross(n, e1, this->C);
+    const double length = std::sqrt(nn);
+    for (int k = 0; k < 3; ++k)
+    {
+      this->B[k] /= nn;
+      this->C[k] /= nn;
+      this->Unit[k] = n[k] / length;
+    }
+    this->Size = std::sqrt(length);
+  }
+};
+
+// One sample's projection: the triangle it projects into, its signed distance (0 on the
+// triangle) and the barycentric weights of the triangle's corners 1 and 2.
+struct LevelCentering::Projection
+{
+  Id Triangle;
+  float Area, Distance, B, C;
+};
+
+//------------------------------------------------------------------------------
+// The samples are the input triangles' centroids, weighted by area: the mean of a linear
+// function over a triangle is its value there. (The input's vertices, where the input surface
+// passes through, stand for the surface around them only where it is flat: on a curved input the
+// triangles between them lie below them by the input's own chordal error, and levels nearly as
+// fine as the input were pushed out by it, 20% further from the input than uncentred at half
+// the input's triangles.)
+void LevelCentering::SetLevelZero(const LevelZeroView& view)
+{
+  this->Input = view;
+  this->LevelPoint.resize(view.Points);
+  vtkSMPTools::For(0, view.Points, [&](Id begin, Id end) {
+    for (Id v = begin; v < end; ++v)
+    {
+      this->LevelPoint[v] = v;
+    }
+  });
+  this->Shifts.clear();
+}
+
+//------------------------------------------------------------------------------
+void LevelCentering::Apply(TriangleMesh& level,
+  const std::vector<Id>& target,
+  const std::vector<Id>& sourceOffsets,
+  const std::vector<Id>& sourceParents,
+  const std::vector<float>& sourceWeights)
+{
+  const Id points = level.GetNumberOfPoints();
+
+  // The correspondence from level 0, one level further.
+  vtkSMPTools::For(0, this->Input.Points, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
+    {
+      this->LevelPoint[i] = target[this->LevelPoint[i]];
+    }
+  });
+
+  // Levels with more than LargestFraction of the input's triangles stay as they are.
+  if (level.GetNumberOfTriangles() > LargestFraction * this->Input.Triangles)
+  {
+    this->Shifts.clear();
+    return;
+  }
+
+  const std::vector<float> previousShifts = std::move(this->Shifts);
+  std::vector<float> shifts;
+  std::vector<unsigned char> changed;
+  KeepUnchangedShifts(
+    level, sourceOffsets, sourceParents, sourceWeights, previousShifts, shifts, changed);
+  VertexTriangleAdjacency around;
+  around.Build(level);
+
+  std::vector<PointSums> sums;
+  // Each point's own distance to the input (in the samples' convention: positive when the input
+  // lies beyond the point along its normal).
+  std::vector<float> pointDistance;
+  this->SumProjections(level, around, sums, pointDistance);
+
+  // Each changed interior point's shift: along its normal by its weighted mean distance, at
+  // most LargestShift of its shortest edge.
+  std::vector<float> own = FreshVector<float>(3 * static_cast<size_t>(points), 0.0f);
+  vtkSMPTools::For(0, points, [&](Id begin, Id end) {
+    for (Id p = begin; p < end; ++p)
+    {
+      const PointSums& sum = sums[p];
+      // Mostly on the triangles already (a planar facet): a few samples that project from
+      // beyond the point's triangles onto a neighbouring facet must not move it.
+      if (!changed[p] || sum.Samples < MinimumSamples || !(sum.Weight > 0.0) ||
+        sum.OnSurface >= 0.5 * sum.Weight || !IsClosedDisc(level, around, p))
+      {
+        continue;
+      }
+      PointShift(level, around, p, sum, pointDistance[p], own.data() + 3 * p);
+    }
+  });
+  Release(sums);
+  Release(pointDistance);
+  UndoTurningShifts(level, own);
 
   // The changed points' shifts, kept in single precision and added in one rounding, as the
   // points that keep them will be at the next level.
@@ -437,6 +282,203 @@ void LevelCentering::Apply(TriangleMesh& level,
     }
   }
   this->Shifts = std::move(shifts);
+}
+
+//------------------------------------------------------------------------------
+// The samples of each point (every stride-th input triangle, grouped by the point its first
+// corner became, in input order), each projected into a triangle around its point (the first
+// such; on a smooth fan projections fall into one triangle, or two that share the edge they lie
+// on), its distance spread over that triangle's corners with the barycentric weights. Blocks of
+// points in parallel, the sums in a fixed order.
+void LevelCentering::SumProjections(const TriangleMesh& level,
+  const VertexTriangleAdjacency& around, std::vector<PointSums>& sums,
+  std::vector<float>& pointDistance) const
+{
+  const Id points = level.GetNumberOfPoints();
+  const Id samplePoints = this->Input.Triangles;
+  const Id stride =
+    std::max<Id>(MinimumStride, samplePoints / std::max<Id>(1, SamplesPerPoint * points));
+  std::vector<Id> sampleOffsets, samples;
+  GroupByKey(
+    static_cast<size_t>(points),
+    [&](auto&& emit) {
+      for (Id i = 0; i < samplePoints; i += stride)
+      {
+        emit(this->SamplePoint(i), i);
+      }
+    },
+    sampleOffsets, samples);
+
+  // Sample areas are kept in single precision in units of the diagonal squared: in world units
+  // the centred levels strayed from the input for a mesh 1e21 across or 1e-21 across.
+  const double areaUnit = SquaredLengthUnit(level.BoundingDiagonal());
+  sums = FreshVector<PointSums>(points, PointSums{ 0.0, 0.0, 0.0f, 0.0f, 0.0f, 0.0f });
+  pointDistance = FreshVector<float>(points, 0.0f);
+  std::vector<Projection> projections; // grown as needed, each block writes all it reads
+  for (Id first = 0, last = 0; first < points; first = last)
+  {
+    // The points whose samples fit in a block (at least one point).
+    const Id base = sampleOffsets[first];
+    last = static_cast<Id>(std::upper_bound(sampleOffsets.begin() + first + 1,
+                             sampleOffsets.end(), base + BlockSamples) -
+      sampleOffsets.begin() - 1);
+    last = std::max(last, first + 1);
+    if (projections.size() < static_cast<size_t>(sampleOffsets[last] - base))
+    {
+      projections.resize(static_cast<size_t>(sampleOffsets[last] - base));
+    }
+    vtkSMPTools::For(first, last, [&](Id begin, Id end) {
+      ProjectionFrame frames[MaximumValence];
+      for (Id p = begin; p < end; ++p)
+      {
+        this->ProjectSamples(level, around, p, samples.data() + sampleOffsets[p],
+          sampleOffsets[p + 1] - sampleOffsets[p], areaUnit, frames,
+          projections.data() + (sampleOffsets[p] - base), pointDistance[p]);
+      }
+    });
+    for (Id s = sampleOffsets[first]; s < sampleOffsets[last]; ++s)
+    {
+      const Projection& projection = projections[s - base];
+      if (projection.Triangle == InvalidId)
+      {
+        continue;
+      }
+      const double area = projection.Area;
+      const double b = projection.B, c = projection.C;
+      const double weights[3] = { std::max(0.0, 1.0 - b - c), b, c };
+      const Id* tri = level.Triangle(projection.Triangle);
+      for (int k = 0; k < 3; ++k)
+      {
+        PointSums& sum = sums[tri[k]];
+        sum.Weighted += weights[k] * area * projection.Distance;
+        sum.Weight += weights[k] * area;
+        sum.OnSurface +=
+          projection.Distance == 0.0f ? static_cast<float>(weights[k] * area) : 0.0f;
+        sum.Samples += static_cast<float>(weights[k]);
+        if (weights[k] >= NearWeight)
+        {
+          sum.Lowest = std::min(sum.Lowest, projection.Distance);
+          sum.Highest = std::max(sum.Highest, projection.Distance);
+        }
+      }
+    }
+  }
+}
+
+// Point p's `count` samples projected into its triangles (`frames`: room for MaximumValence),
+// into `projections` (Triangle InvalidId where a sample projects into none), and the point's
+// own distance to the input: to the plane of its nearest sample (in the plane's direction),
+// along the plane's normal.
+void LevelCentering::ProjectSamples(const TriangleMesh& level,
+  const VertexTriangleAdjacency& around, Id p, const Id* samples, Id count, double areaUnit,
+  ProjectionFrame* frames, Projection* projections, float& distance) const
+{
+  const Id triangles = around.Count(p);
+  if (triangles > MaximumValence)
+  {
+    for (Id s = 0; s < count; ++s)
+    {
+      projections[s].Triangle = InvalidId;
+    }
+    return;
+  }
+  for (Id k = 0; k < triangles; ++k)
+  {
+    const Id* tri = level.Triangle(around.Of(p)[k]);
+    frames[k].Set(level.Point(tri[0]), level.Point(tri[1]), level.Point(tri[2]));
+  }
+  double nearestSample = std::numeric_limits<double>::infinity();
+  for (Id s = 0; s < count; ++s)
+  {
+    projections[s].Triangle = InvalidId;
+    double x[3], unit[3], w[3];
+    const double area = this->InputCentroid(samples[s], x, unit);
+    Subtract(level.Point(p), x, w);
+    const double across = Dot(w, unit);
+    const double along = Dot(w, w) - across * across;
+    if (along < nearestSample)
+    {
+      nearestSample = along;
+      distance = static_cast<float>(-across);
+    }
+    for (Id k = 0; k < triangles; ++k)
+    {
+      const ProjectionFrame& f = frames[k];
+      if (!f.Valid)
+      {
+        continue;
+      }
+      Subtract(x, f.Corner, w);
+      const double lb = Dot(w, f.B);
+      const double lc = Dot(w, f.C);
+      if (lb < -InsideTolerance || lc < -InsideTolerance || lb + lc > 1.0 + InsideTolerance)
+      {
+        continue;
+      }
+      const double d = Dot(w, f.Unit);
+      projections[s] = Projection{ around.Of(p)[k], static_cast<float>(area * areaUnit),
+        static_cast<float>(std::abs(d) <= OnSurface * f.Size ? 0.0 : d),
+        static_cast<float>(std::max(0.0, lb)), static_cast<float>(std::max(0.0, lc)) };
+      break;
+    }
+  }
+}
+
+// Point p's shift (x, y, z into `shift`, left as it is when none): along its normal by the
+// weighted mean distance of `sum`, at most LargestShift of its shortest edge; `itself`: its own
+// distance to the input. p is an interior point whose triangles close into one disc.
+void LevelCentering::PointShift(const TriangleMesh& level, const VertexTriangleAdjacency& around,
+  Id p, const PointSums& sum, double itself, float* shift)
+{
+  // (A closed disc has at most MaximumValence triangles.)
+  const Id count = around.Count(p);
+  double areas[MaximumValence][3];
+  double normal[3] = { 0.0, 0.0, 0.0 };
+  double shortest = std::numeric_limits<double>::infinity();
+  for (Id k = 0; k < count; ++k)
+  {
+    const Id t = around.Of(p)[k];
+    level.AreaVector(t, areas[k]);
+    for (int c = 0; c < 3; ++c)
+    {
+      normal[c] += areas[k][c];
+    }
+    const Id* tri = level.Triangle(t);
+    for (int c = 0; c < 3; ++c)
+    {
+      if (tri[c] != p)
+      {
+        shortest = std::min(shortest, Distance2(level.Point(p), level.Point(tri[c])));
+      }
+    }
+  }
+  const double length = std::sqrt(Dot(normal, normal));
+  bool smooth = length > 0.0;
+  for (Id k = 0; k < count && smooth; ++k)
+  {
+    smooth = Dot(areas[k], normal) >= SmoothCosine * std::sqrt(Dot(areas[k], areas[k])) * length;
+  }
+  shortest = std::sqrt(shortest);
+  // The mean minimises the squared distances; the largest distance near the point (where
+  // the surface moves with it) may not grow: on a surface whose curvature changes fast (a
+  // rounded edge between flat faces) the mean alone moved the largest deviation up by a
+  // sixth.
+  // The same for the point's own distance to the input (at a convex corner the mean can ask
+  // a point that stands out already to move further out).
+  const double largest = std::max(std::abs(itself),
+    std::max(-static_cast<double>(sum.Lowest), static_cast<double>(sum.Highest)));
+  double delta = sum.Weighted / sum.Weight;
+  delta = std::max(delta, std::max(static_cast<double>(sum.Highest), itself) - largest);
+  delta = std::min(delta, std::min(static_cast<double>(sum.Lowest), itself) + largest);
+  delta = std::max(-LargestShift * shortest, std::min(LargestShift * shortest, delta));
+  if (!smooth || !(std::abs(delta) > OnSurface * shortest))
+  {
+    return;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    shift[c] = static_cast<float>(delta * normal[c] / length);
+  }
 }
 
 } // namespace meshlod

@@ -9,9 +9,9 @@
 // squared distance to it.
 //
 // For a level, the input triangles' centroids (every stride-th: every second, or fewer so that
-// there are SamplesPerPoint per point of the level on average) are projected onto the triangles around the point the triangle's first
-// corner became (the chained MorphTargetId correspondence), into the first one whose interior
-// they project into. Each signed distance, weighted by the input triangle's area, is spread over
+// there are SamplesPerPoint per point of the level on average) are projected onto the
+// triangles around the point the triangle's first corner became (the chained MorphTargetId
+// correspondence), into the first one whose interior they project into. Each signed distance, weighted by the input triangle's area, is spread over
 // that triangle's corners with the barycentric weights of the projection; each point's weighted
 // mean is the shift along its normal that zeroes it (the first step of a least-squares fit of
 // per-point offsets: a uniform offset is removed exactly, a varying one smoothed over each
@@ -91,6 +91,23 @@ public:
     const std::vector<float>& sourceWeights);
 
 private:
+  // Per point, what its samples' projections say; a triangle set up for projections; one
+  // sample's projection (LevelCentering.cxx).
+  struct PointSums;
+  struct ProjectionFrame;
+  struct Projection;
+
+  // The samples' projections summed per point, and each point's own distance to the input.
+  void SumProjections(const TriangleMesh& level, const VertexTriangleAdjacency& around,
+    std::vector<PointSums>& sums, std::vector<float>& pointDistance) const;
+  // Point p's samples projected into its triangles.
+  void ProjectSamples(const TriangleMesh& level, const VertexTriangleAdjacency& around, Id p,
+    const Id* samples, Id count, double areaUnit, ProjectionFrame* frames,
+    Projection* projections, float& distance) const;
+  // Point p's shift from its sums.
+  static void PointShift(const TriangleMesh& level, const VertexTriangleAdjacency& around, Id p,
+    const PointSums& sum, double itself, float* shift);
+
   Id InputId(Id t, int k) const
   {
     const size_t i = 3 * static_cast<size_t>(t) + k;
