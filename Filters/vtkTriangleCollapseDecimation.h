@@ -2,31 +2,30 @@
  * @class   vtkTriangleCollapseDecimation
  * @brief   a hierarchy of levels of detail of a triangle mesh by triangle collapses
  *
- * vtkTriangleCollapseDecimation reduces a triangle mesh step by step by collapsing triangles:
- * a triangle and its (up to three) edge neighbours disappear and its three vertices merge into
- * one new vertex. With the default operator (SetOperator) a triangle whose cheapest edge
- * collapse is much cheaper collapses that edge instead (half a triangle collapse). The result is not one mesh but a hierarchy: output port 0 is a
- * vtkMultiBlockDataSet whose block i is level i as a vtkPolyData named "Level i". Block 0 is
- * the validated input; every next level has strictly fewer triangles. Use GetHierarchy() to
- * get it (the inherited GetOutput() is null for a composite output).
+ * vtkTriangleCollapseDecimation reduces a triangle mesh step by step by collapsing triangles: a
+ * triangle and its (up to three) edge neighbours disappear and its three vertices merge into one
+ * new vertex. With the default operator (SetOperator) a triangle whose cheapest edge collapse is
+ * much cheaper collapses that edge instead (half a triangle collapse). The result is not one mesh
+ * but a hierarchy: output port 0 is a vtkMultiBlockDataSet whose block i is level i as a
+ * vtkPolyData named "Level i". Block 0 is the validated input; every next level has strictly fewer
+ * triangles. Use GetHierarchy() to get it (the inherited GetOutput() is null for a composite
+ * output).
  *
  * Two methods weight the triangles and place the collapse point (SetMethod):
- * - Quadric (the default; Pan, Zhou, Shi, "A New Mesh Simplification Algorithm Based on
- *   Triangle Collapses", J. Comput. Sci. Technol. 2002): each vertex carries the quadric of the
- *   planes of the original triangles around it (area weighted, or alike: PlaneWeights; plus
- *   planes through boundary
- *   edges perpendicular to their triangle, weighted by BoundaryWeight times the edge length
- *   times the bounding-box diagonal, so open boundaries stay in place). Collapsing a triangle
- *   costs the sum of its three quadrics at the point minimising it (divided by the surface its
- *   vertices stand for to the power AreaNormalization, by default); quadrics add up when
- *   vertices merge, so the cost of later collapses carries every original plane merged into
- *   them (error propagation). The minimiser is solved in the well-determined directions only
- *   (a Tikhonov-regularised solve around the centroid, close to a truncated pseudo-inverse),
- *   so that a nearly singular system
- *   (a flat or cylindrical patch) keeps the point near the centroid along its free directions
- *   and needs none of the paper's fixed fallback candidates. The paper's own rule (the
- *   minimiser where the system is solvable, else the best of the centroid, the vertices and the
- *   edge midpoints) is SetPlacementToPaperCandidates().
+ * - Quadric (the default; Pan, Zhou, Shi, "A New Mesh Simplification Algorithm Based on Triangle
+ *   Collapses", J. Comput. Sci. Technol. 2002): each vertex carries the quadric of the planes of
+ *   the original triangles around it (area weighted, or alike: PlaneWeights; plus planes through
+ *   boundary edges perpendicular to their triangle, weighted by BoundaryWeight times the edge
+ *   length times the bounding-box diagonal, so open boundaries stay in place). Collapsing a
+ *   triangle costs the sum of its three quadrics at the point minimising it (divided by the surface
+ *   its vertices stand for to the power AreaNormalization, by default); quadrics add up when
+ *   vertices merge, so the cost of later collapses carries every original plane merged into them
+ *   (error propagation). The minimiser is solved in the well-determined directions only (a
+ *   Tikhonov-regularised solve around the centroid, close to a truncated pseudo-inverse), so that a
+ *   nearly singular system (a flat or cylindrical patch) keeps the point near the centroid along
+ *   its free directions and needs none of the paper's fixed fallback candidates. The paper's own
+ *   rule (the minimiser where the system is solvable, else the best of the centroid, the vertices
+ *   and the edge midpoints) is SetPlacementToPaperCandidates().
  * - Curvature (Gieng, Hamann, Joy, Schussman, Trotts, "Smooth Hierarchical Surface
  *   Triangulations", IEEE Visualization 1997): a least-squares quadratic height field
  *   f(u, v) is fitted over the triangle's stencil and its ancestral points (the original
@@ -532,33 +531,32 @@ public:
 
   ///@{
   /**
-   * Quadric method: how much the surface a collapse stands for lowers its cost, in [0, 1].
-   * Default 0.25. A collapse's quadric value (the weighted sum of squared distances from the
-   * collapse point to the original planes merged into its vertices) is divided by the weight
-   * of the original triangles' planes merged into them (their area, or their count with
-   * UNIFORM_WEIGHTS; boundary planes left out), in units of the input's mean triangle, to
-   * this power. 0: the quadric value itself, paper 002's cost, under which a collapse
-   * standing for much surface costs more than one as far from its planes standing for little;
-   * 1: the mean squared distance alone, whatever the area. Between, levels spend fewer
-   * vertices on large smooth regions and more where few original triangles are far from their
-   * planes, which lowers the largest distance on most meshes: against vtkQuadricDecimation at
-   * the same count (Benchmarks/RESULTS.md, the first and the AreaNormalization 0 tables of
-   * "Beyond isosurfaces"; Hausdorff distance ratio, 0 -> 0.25), on the 11 meshes there that are
-   * not at rounding level or topology-bound, the geometric mean went from 0.95 to 0.89 at 10%
-   * and from 1.00 to 0.93 at 1%, the RMS distance unchanged (0.91 and 0.87). At 1% lower on 6 of
-   * the 11 (parametric torus 0.95 -> 0.73, Boy's surface 1.15 -> 0.77), the same on one
-   * (segmented balls, 0.98), higher on 4 (noisy UV spheres, seeds 7 and 9, 1.05 -> 1.06 and
-   * 0.70 -> 0.77; terrain 1.08 -> 1.11; superquadric 1.03 -> 1.07). On the benchmark isosurfaces ("paper cost" rows), at 10% / 1%:
-   * metaballs 0.94 / 0.95 -> 0.88 / 0.92, gyroid (611k) 0.97 / 1.02 -> 0.81 / 1.26, gyroid
-   * (2.3M) 0.97 / 0.89 -> 0.99 / 0.88. The largest distance at 1% is one spot and moves by
-   * chance: with TargetReduction 0.99 instead of the benchmark's 1 - 6,109 / 610,880 (a level of
-   * 6,108 triangles instead of 6,107) the same gyroid gives 0.98; over nine targets from 6,060
-   * to 6,200 triangles the ratio was 0.86-1.26, median 1.00, the benchmark's target the
-   * highest, with the RMS distance 0.98-0.99x at each. Not in Benchmarks/RESULTS.md,
-   * from trial runs: powers of 0.5 and 0.75 gave 1.11 and 1.12 there; 0.5 lowered the 10%
-   * ratios a little more than 0.25 and raised RMS by about 1%; 1 raised RMS by 7-12%. The
-   * power also shifts TRIANGLES_AND_EDGES towards whole triangles, whose three vertices stand
-   * for more surface than an edge's two (see TriangleCostFactor). (The accuracy figures given
+   * Quadric method: how much the surface a collapse stands for lowers its cost, in [0, 1]. Default
+   * 0.25. A collapse's quadric value (the weighted sum of squared distances from the collapse point
+   * to the original planes merged into its vertices) is divided by the weight of the original
+   * triangles' planes merged into them (their area, or their count with UNIFORM_WEIGHTS; boundary
+   * planes left out), in units of the input's mean triangle, to this power. 0: the quadric value
+   * itself, paper 002's cost, under which a collapse standing for much surface costs more than one
+   * as far from its planes standing for little; 1: the mean squared distance alone, whatever the
+   * area. Between, levels spend fewer vertices on large smooth regions and more where few original
+   * triangles are far from their planes, which lowers the largest distance on most meshes: against
+   * vtkQuadricDecimation at the same count (Benchmarks/RESULTS.md, the first and the
+   * AreaNormalization 0 tables of "Beyond isosurfaces"; Hausdorff distance ratio, 0 -> 0.25), on
+   * the 11 meshes there that are not at rounding level or topology-bound, the geometric mean went
+   * from 0.95 to 0.89 at 10% and from 1.00 to 0.93 at 1%, the RMS distance unchanged (0.91 and
+   * 0.87). At 1% lower on 6 of the 11 (parametric torus 0.95 -> 0.73, Boy's surface 1.15 -> 0.77),
+   * the same on one (segmented balls, 0.98), higher on 4 (noisy UV spheres, seeds 7 and 9, 1.05 ->
+   * 1.06 and 0.70 -> 0.77; terrain 1.08 -> 1.11; superquadric 1.03 -> 1.07). On the benchmark
+   * isosurfaces ("paper cost" rows), at 10% / 1%: metaballs 0.94 / 0.95 -> 0.88 / 0.92, gyroid
+   * (611k) 0.97 / 1.02 -> 0.81 / 1.26, gyroid (2.3M) 0.97 / 0.89 -> 0.99 / 0.88. The largest
+   * distance at 1% is one spot and moves by chance: with TargetReduction 0.99 instead of the
+   * benchmark's 1 - 6,109 / 610,880 (a level of 6,108 triangles instead of 6,107) the same gyroid
+   * gives 0.98; over nine targets from 6,060 to 6,200 triangles the ratio was 0.86-1.26, median
+   * 1.00, the benchmark's target the highest, with the RMS distance 0.98-0.99x at each. Not in
+   * Benchmarks/RESULTS.md, from trial runs: powers of 0.5 and 0.75 gave 1.11 and 1.12 there; 0.5
+   * lowered the 10% ratios a little more than 0.25 and raised RMS by about 1%; 1 raised RMS by
+   * 7-12%. The power also shifts TRIANGLES_AND_EDGES towards whole triangles, whose three vertices
+   * stand for more surface than an edge's two (see TriangleCostFactor). (The accuracy figures given
    * for TriangleCostFactor and MaximumNormalDeviation were measured with 0.) Ignored by the
    * curvature method. Costs 8 bytes per input point (allocated for either method).
    */

@@ -356,17 +356,16 @@ public:
    * (one open piece of one curve each) and for locked vertices stay, but a curve edge may lose
    * sheets. On that isosurface: 10,382 and 1,037 triangles, at 1.00 and 1.01 times
    * vtkQuadricClustering's Hausdorff distance and 0.94 and 0.92 times its RMS distance, in a
-   * quarter of the time; on smooth isosurfaces, counts and distances as with it on. With noise
-   * far above the edge length (a sphere whose radii moved by up to 2.5 edges) it reaches both
-   * counts, at 0.66 and 0.71 times vtkQuadricClustering's Hausdorff distance and 0.96 and 0.53
-   * times its RMS distance (its 1% level crumpled, at about 5 and 10 times, before a vertex of
-   * a cluster could stand in for a representative that flips a triangle), where the repairs
-   * keep 92% and 87% of its triangles at the 10% and 1%
-   * targets; but the levels made with it off fold: on a sphere like it, 14% of the triangles
-   * of both levels faced inwards (none of the input's, 0.03% and none of vtkTriangleCollapseDecimation's levels
-   * of the same counts), so for a rough surface whose levels must not fold over,
-   * vtkTriangleCollapseDecimation is the filter. Levels still nest, and MorphTargetId maps every
-   * triangle onto one of the next level with its orientation.
+   * quarter of the time; on smooth isosurfaces, counts and distances as with it on. With noise far
+   * above the edge length (a sphere whose radii moved by up to 2.5 edges) it reaches both counts,
+   * at 0.66 and 0.71 times vtkQuadricClustering's Hausdorff distance and 0.96 and 0.53 times its
+   * RMS distance (its 1% level crumpled, at about 5 and 10 times, before a vertex of a cluster
+   * could stand in for a representative that flips a triangle), where the repairs keep 92% and 87%
+   * of its triangles at the 10% and 1% targets; but the levels made with it off fold: on a sphere
+   * like it, 14% of the triangles of both levels faced inwards (none of the input's, 0.03% and none
+   * of vtkTriangleCollapseDecimation's levels of the same counts), so for a rough surface whose
+   * levels must not fold over, vtkTriangleCollapseDecimation is the filter. Levels still nest, and
+   * MorphTargetId maps every triangle onto one of the next level with its orientation.
    */
   vtkSetMacro(PreserveTopology, bool);
   vtkGetMacro(PreserveTopology, bool);

@@ -8,18 +8,18 @@
 //
 // A flip of the edge (a, b) between triangles (a, b, c) and (b, a, d) to (c, a, d), (d, b, c) is
 // judged on the input surface itself, locally: points on the four triangles (their centroids and
-// the two diagonals' quarter points and midpoints) are projected onto the input by a walk over
-// its triangles from a vertex of a's cluster; a configuration's
-// error is the largest of its own points' distances to the input and of the projected points'
-// distances to it (both directions of a Hausdorff distance). The flip is made when it lowers
-// that error to RequiredGain of the old one or less and the sum of the points' errors does not
-// grow (on a sphere with noise of over an edge the largest alone traded the mean for it: 1.16
-// times vtkQuadricClustering's RMS distance instead of 0.97 unflipped; with the sum, 1.03). It is refused when it would fold (a new
-// triangle turned more than 60 degrees from the pair's summed normal), create an edge that
-// exists, or touch a boundary or non-manifold edge; and when the old error is at rounding level
-// (nothing to gain) or beyond twice the level's largest cluster error (the walk is lost: on an
-// extruded text it found points of a neighbouring letter's wall), or when the two
-// configurations lie within a tenth of that error of each other (too close to matter).
+// the two diagonals' quarter points and midpoints) are projected onto the input by a walk over its
+// triangles from a vertex of a's cluster; a configuration's error is the largest of its own points'
+// distances to the input and of the projected points' distances to it (both directions of a
+// Hausdorff distance). The flip is made when it lowers that error to RequiredGain of the old one or
+// less and the sum of the points' errors does not grow (on a sphere with noise of over an edge the
+// largest alone traded the mean for it: 1.16 times vtkQuadricClustering's RMS distance instead of
+// 0.97 unflipped; with the sum, 1.03). It is refused when it would fold (a new triangle turned more
+// than 60 degrees from the pair's summed normal), create an edge that exists, or touch a boundary
+// or non-manifold edge; and when the old error is at rounding level (nothing to gain) or beyond
+// twice the level's largest cluster error (the walk is lost: on an extruded text it found points of
+// a neighbouring letter's wall), or when the two configurations lie within a tenth of that error of
+// each other (too close to matter).
 //
 // Only edges whose two facing angles (at c and d) add up to MinimumOppositeAngles or more are
 // judged: below that the flip would make an obtuse triangle (in a flat quad the angles at a and

@@ -43,7 +43,8 @@ struct Fixture
     const Id* m = members.data();
     TriangleNormal(this->State.Mesh.Point(m[0]), this->State.Mesh.Point(m[1]),
       this->State.Mesh.Point(m[2 % members.size()]), normal);
-    return this->State.IsLegal(this->Stars, x, withPlane && members.size() == 3 ? normal : nullptr, this->Rules);
+    const double* plane = withPlane && members.size() == 3 ? normal : nullptr;
+    return this->State.IsLegal(this->Stars, x, plane, this->Rules);
   }
 
   std::array<double, 3> Centroid(const std::vector<Id>& members) const
