@@ -549,23 +549,12 @@ bool SurfaceInput(vtkInformationVector* port, vtkAlgorithm* caller, vtkPolyData*
 }
 
 //------------------------------------------------------------------------------
-InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& result)
+namespace
 {
-  result = InputMesh();
-  if (input == nullptr || input->GetNumberOfPoints() == 0 ||
-    input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
-  {
-    if (input != nullptr && input->GetNumberOfCells() > 0)
-    {
-      vtkWarningWithObjectMacro(caller,
-        "The input has " << input->GetNumberOfVerts() << " vertices and "
-                         << input->GetNumberOfLines()
-                         << " lines but no polygons: there is nothing to simplify.");
-    }
-    return InputStatus::Empty;
-  }
-
-  // Every point id in range (a bad id would read and write past the end of every array).
+// Whether every point id of the polygons and strips is in range (a bad id would read and write
+// past the end of every array); an error names the first cell with one.
+bool PointIdsInRange(vtkPolyData* input, vtkAlgorithm* caller)
+{
   const vtkIdType numberOfInputPoints = input->GetNumberOfPoints();
   for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
   {
@@ -576,71 +565,43 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
       vtkErrorWithObjectMacro(caller,
         << kind << badCell << " refers to a point id outside [0, " << numberOfInputPoints
           << "); no output is produced.");
-      return InputStatus::Invalid;
+      return false;
     }
   }
-  // Arrays with the wrong number of tuples are left out (see DropMismatchedArrays); from here
-  // on `input` is the checked dataset, `original` the one given.
-  vtkPolyData* original = input;
-  const vtkSmartPointer<vtkPolyData> checked = DropMismatchedArrays(input, caller);
-  input = checked;
+  return true;
+}
 
-  result.IgnoredVerts = input->GetNumberOfVerts();
-  result.IgnoredLines = input->GetNumberOfLines();
-  if (result.IgnoredVerts > 0 || result.IgnoredLines > 0)
+// The input's polygons and strips as triangles, with their point data and the cell data of
+// polygons and strips (the cells from `firstPolyCellId` on: the verts and lines in front of
+// them are skipped).
+vtkSmartPointer<vtkPolyData> Triangulate(vtkPolyData* input, vtkIdType firstPolyCellId)
+{
+  vtkNew<vtkPolyData> surface;
+  surface->SetPoints(input->GetPoints());
+  surface->SetPolys(input->GetPolys());
+  surface->SetStrips(input->GetStrips());
+  surface->GetPointData()->ShallowCopy(input->GetPointData());
+  const vtkIdType numberOfSurfaceCells = input->GetNumberOfPolys() + input->GetNumberOfStrips();
+  surface->GetCellData()->CopyAllocate(input->GetCellData(), numberOfSurfaceCells);
+  for (vtkIdType c = 0; c < numberOfSurfaceCells; ++c)
   {
-    vtkWarningWithObjectMacro(caller,
-      "Ignoring " << result.IgnoredVerts << " vertex cells and " << result.IgnoredLines
-                  << " line cells: only polygons and triangle strips are simplified.");
+    surface->GetCellData()->CopyData(input->GetCellData(), firstPolyCellId + c, c);
   }
-  if (input->GetNumberOfPoints() > MaximumCount)
-  {
-    vtkErrorWithObjectMacro(caller,
-      "The input has " << input->GetNumberOfPoints() << " points; at most " << MaximumCount
-                       << " are supported.");
-    return InputStatus::Invalid;
-  }
+  vtkNew<vtkTriangleFilter> triangulate;
+  triangulate->SetInputData(surface);
+  triangulate->PassVertsOff();
+  triangulate->PassLinesOff();
+  triangulate->Update();
+  return triangulate->GetOutput();
+}
 
-  // Triangulate polygons and strips when they are not all triangles already.
-  vtkIdType firstPolyCellId = result.IgnoredVerts + result.IgnoredLines;
-  result.Source = input;
-  if (input->GetNumberOfStrips() > 0 || input->GetPolys()->IsHomogeneous() != 3)
-  {
-    vtkNew<vtkPolyData> surface;
-    surface->SetPoints(input->GetPoints());
-    surface->SetPolys(input->GetPolys());
-    surface->SetStrips(input->GetStrips());
-    surface->GetPointData()->ShallowCopy(input->GetPointData());
-    // Cell data of polys and strips: skip the verts and lines in front of them.
-    const vtkIdType numberOfSurfaceCells = input->GetNumberOfPolys() + input->GetNumberOfStrips();
-    surface->GetCellData()->CopyAllocate(input->GetCellData(), numberOfSurfaceCells);
-    for (vtkIdType c = 0; c < numberOfSurfaceCells; ++c)
-    {
-      surface->GetCellData()->CopyData(input->GetCellData(), firstPolyCellId + c, c);
-    }
-    vtkNew<vtkTriangleFilter> triangulate;
-    triangulate->SetInputData(surface);
-    triangulate->PassVertsOff();
-    triangulate->PassLinesOff();
-    triangulate->Update();
-    result.Source = triangulate->GetOutput();
-    firstPolyCellId = 0;
-  }
-
+// result.Mesh from result.Source's points (as doubles) and triangles; false, with an error and
+// `result` cleared, when a point that triangles use is not finite (unused ones are settled).
+bool CopySourceMesh(InputMesh& result, vtkAlgorithm* caller)
+{
   vtkCellArray* polys = result.Source->GetPolys();
-  const vtkIdType numberOfTriangles = polys->GetNumberOfCells();
-  if (numberOfTriangles > MaximumCount)
-  {
-    vtkErrorWithObjectMacro(caller,
-      "The input has " << numberOfTriangles << " triangles; at most " << MaximumCount
-                       << " are supported.");
-    return InputStatus::Invalid;
-  }
-
-  // Points as doubles, then the finiteness check.
-  const vtkIdType numberOfPoints = result.Source->GetNumberOfPoints();
   TriangleMesh& mesh = result.Mesh;
-  ResizeFresh(mesh.Points, 3 * static_cast<size_t>(numberOfPoints));
+  ResizeFresh(mesh.Points, 3 * static_cast<size_t>(result.Source->GetNumberOfPoints()));
   CopyPoints(result.Source->GetPoints()->GetData(), mesh.Points);
   if (polys->IsStorage64Bit())
   {
@@ -660,13 +621,18 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
                  << mesh.Points[3 * bad + 1] << ", " << mesh.Points[3 * bad + 2]
                  << "); no output is produced. Remove or fix such points first.");
       result = InputMesh();
-      return InputStatus::Invalid;
+      return false;
     }
   }
-  ResizeFresh(result.SourceCellIds, numberOfTriangles);
-  std::iota(result.SourceCellIds.begin(), result.SourceCellIds.end(), firstPolyCellId);
+  return true;
+}
 
-  bool changed = result.Source != original;
+// Degenerate triangles dropped, seams stitched, duplicate triangles dropped and each part
+// oriented consistently, with a warning for each kind of change (result.Topology built for the
+// mesh as it ends). Returns whether triangles were flipped.
+bool RepairMesh(InputMesh& result, vtkAlgorithm* caller)
+{
+  TriangleMesh& mesh = result.Mesh;
   result.DegenerateTriangles = DropDegenerateTriangles(mesh.Triangles, result.SourceCellIds);
   result.Topology.Build(mesh);
 
@@ -705,12 +671,18 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
       "Flipped " << result.FlippedTriangles
                  << " triangles so that each connected part is consistently oriented (each part "
                     "keeps the orientation most of its triangles had).");
-    changed = true;
     result.Topology.Build(mesh);
+    return true;
   }
+  return false;
+}
 
-  // Compact away dropped triangles and unused points, keeping the maps to the source. Most
-  // inputs have neither: then no copy is made (it would be the largest allocation here).
+// Compact away dropped triangles and unused points, keeping the maps to the source
+// (`numberOfPoints`: result.Source's; `changed`: the mesh differs from the input so far). Most
+// inputs have neither: then no copy is made (it would be the largest allocation here).
+InputStatus CompactInput(InputMesh& result, vtkIdType numberOfPoints, bool changed)
+{
+  TriangleMesh& mesh = result.Mesh;
   if (result.MergedPoints == 0 && result.DuplicateTriangles == 0 &&
     result.Topology.CountVertices(VertexKind::Unused) == 0)
   {
@@ -741,6 +713,78 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   result.SourcePointIds.assign(maps.KeptPoints.begin(), maps.KeptPoints.end());
   result.SameAsInput = !changed;
   return mesh.GetNumberOfTriangles() > 0 ? InputStatus::Valid : InputStatus::Empty;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& result)
+{
+  result = InputMesh();
+  if (input == nullptr || input->GetNumberOfPoints() == 0 ||
+    input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
+  {
+    if (input != nullptr && input->GetNumberOfCells() > 0)
+    {
+      vtkWarningWithObjectMacro(caller,
+        "The input has " << input->GetNumberOfVerts() << " vertices and "
+                         << input->GetNumberOfLines()
+                         << " lines but no polygons: there is nothing to simplify.");
+    }
+    return InputStatus::Empty;
+  }
+  if (!PointIdsInRange(input, caller))
+  {
+    return InputStatus::Invalid;
+  }
+  // Arrays with the wrong number of tuples are left out (see DropMismatchedArrays); from here
+  // on `input` is the checked dataset, `original` the one given.
+  vtkPolyData* original = input;
+  const vtkSmartPointer<vtkPolyData> checked = DropMismatchedArrays(input, caller);
+  input = checked;
+
+  result.IgnoredVerts = input->GetNumberOfVerts();
+  result.IgnoredLines = input->GetNumberOfLines();
+  if (result.IgnoredVerts > 0 || result.IgnoredLines > 0)
+  {
+    vtkWarningWithObjectMacro(caller,
+      "Ignoring " << result.IgnoredVerts << " vertex cells and " << result.IgnoredLines
+                  << " line cells: only polygons and triangle strips are simplified.");
+  }
+  if (input->GetNumberOfPoints() > MaximumCount)
+  {
+    vtkErrorWithObjectMacro(caller,
+      "The input has " << input->GetNumberOfPoints() << " points; at most " << MaximumCount
+                       << " are supported.");
+    return InputStatus::Invalid;
+  }
+
+  // Triangulate polygons and strips when they are not all triangles already.
+  vtkIdType firstPolyCellId = result.IgnoredVerts + result.IgnoredLines;
+  result.Source = input;
+  if (input->GetNumberOfStrips() > 0 || input->GetPolys()->IsHomogeneous() != 3)
+  {
+    result.Source = Triangulate(input, firstPolyCellId);
+    firstPolyCellId = 0;
+  }
+  const vtkIdType numberOfTriangles = result.Source->GetPolys()->GetNumberOfCells();
+  if (numberOfTriangles > MaximumCount)
+  {
+    vtkErrorWithObjectMacro(caller,
+      "The input has " << numberOfTriangles << " triangles; at most " << MaximumCount
+                       << " are supported.");
+    return InputStatus::Invalid;
+  }
+  if (!CopySourceMesh(result, caller))
+  {
+    return InputStatus::Invalid;
+  }
+  ResizeFresh(result.SourceCellIds, numberOfTriangles);
+  std::iota(result.SourceCellIds.begin(), result.SourceCellIds.end(), firstPolyCellId);
+
+  const bool flipped = RepairMesh(result, caller);
+  const bool changed = result.Source != original || flipped;
+  return CompactInput(result, result.Source->GetNumberOfPoints(), changed);
 }
 
 } // namespace meshlod
