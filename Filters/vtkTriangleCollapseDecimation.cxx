@@ -35,6 +35,126 @@ constexpr double ErrorJumpFloor = 1e-4;
 constexpr double CollapseStart = 0.05;
 constexpr double CollapseEnd = 0.85;
 constexpr double MeasureStart = 0.9;
+
+// The curvature method's fits read the original points from the input itself (alive until
+// the run ends) instead of a copy of them; the engine copies them when they are stored
+// otherwise, or when point ids are not 64-bit (the engine reads the map as long long).
+void LetFitsReadInputPoints(
+  const meshlod::InputMesh& mesh, meshlod::TriangleCollapseOptions& options)
+{
+  vtkPoints* inputPoints = mesh.Source->GetPoints();
+  vtkDataArray* coordinates = inputPoints ? inputPoints->GetData() : nullptr;
+  if constexpr (std::is_same<vtkIdType, long long>::value)
+  {
+    if (options.Method == meshlod::CollapseMethod::Curvature && coordinates &&
+      coordinates->GetNumberOfComponents() == 3)
+    {
+      if (auto* floats = vtkFloatArray::FastDownCast(coordinates))
+      {
+        options.InputPointsFloat = floats->GetPointer(0);
+      }
+      else if (auto* doubles = vtkDoubleArray::FastDownCast(coordinates))
+      {
+        options.InputPointsDouble = doubles->GetPointer(0);
+      }
+      // Through the map to the input's points, unless it is the identity (as it mostly is).
+      // (The same type here: the cast only lets the discarded branch compile.)
+      bool identity = true;
+      for (std::size_t i = 0; i < mesh.SourcePointIds.size() && identity; ++i)
+      {
+        identity = mesh.SourcePointIds[i] == static_cast<vtkIdType>(i);
+      }
+      options.InputPointIds =
+        identity ? nullptr : reinterpret_cast<const long long*>(mesh.SourcePointIds.data());
+    }
+  }
+}
+
+// The triangle count of each level of a mesh of inputTriangles triangles.
+std::vector<std::int64_t> LevelTargets(
+  const std::vector<double>& reductions, std::int64_t inputTriangles)
+{
+  std::vector<std::int64_t> targets;
+  for (const double r : reductions)
+  {
+    // Reductions that round to the same count on a small mesh give one level.
+    const auto target = static_cast<std::int64_t>(std::floor((1.0 - r) * inputTriangles));
+    if (targets.empty() ? target < inputTriangles : target < targets.back())
+    {
+      targets.push_back(target);
+    }
+  }
+  return targets;
+}
+
+// A level whose estimated error jumps far beyond what its triangle count explains (on a
+// smooth surface the error grows about as the count falls) was made of collapses that had
+// only costly choices left: a broken input (a locked seam, non-manifold parts) forced by the
+// count. Reported, not prevented: nothing tells such a level from a healthy coarse one before
+// it is made.
+class ErrorJumpWatch
+{
+public:
+  ErrorJumpWatch(double diagonal, std::int64_t inputTriangles)
+    : Diagonal(diagonal)
+    , PreviousTriangles(inputTriangles)
+  {
+  }
+
+  // The levels in order, from level 1.
+  void AddLevel(double error, std::int64_t triangles)
+  {
+    ++this->LevelIndex;
+    const double reference = std::max(this->PreviousError, ErrorJumpFloor * this->Diagonal);
+    const double explained = static_cast<double>(this->PreviousTriangles) /
+      static_cast<double>(std::max<std::int64_t>(1, triangles));
+    // (Not level 1: a noisy input's first collapses already move vertices by its noise.)
+    if (this->JumpLevel < 0 && this->LevelIndex > 1 &&
+      error > ErrorJumpFactor * explained * reference)
+    {
+      this->JumpLevel = this->LevelIndex;
+      this->JumpError = error;
+      this->JumpPrevious = this->PreviousError;
+    }
+    this->PreviousError = error;
+    this->PreviousTriangles = triangles;
+  }
+
+  // A warning on `caller` about the first level whose error jumped, if one did.
+  void WarnIfJumped(vtkObject* caller) const
+  {
+    if (this->JumpLevel > 0)
+    {
+      std::ostringstream jump;
+      jump << "Level " << this->JumpLevel << "'s estimated error, " << this->JumpError << " ("
+           << (this->Diagonal > 0.0 ? 100.0 * this->JumpError / this->Diagonal : 0.0)
+           << "% of the bounding diagonal), is ";
+      if (this->JumpPrevious > 0.0)
+      {
+        jump << this->JumpError / this->JumpPrevious << " times the level before's";
+      }
+      else
+      {
+        jump << "where the level before's was 0";
+      }
+      vtkWarningWithObjectMacro(caller,
+        << jump.str()
+        << ", far more than its triangle count explains: its last collapses had only "
+           "costly choices left, and it may be badly distorted. Inputs with locked "
+           "seams or non-manifold parts do this when pushed to a low count; ask for "
+           "a smaller TargetReduction.");
+    }
+  }
+
+private:
+  double Diagonal;
+  double PreviousError = 0.0;
+  std::int64_t PreviousTriangles;
+  int LevelIndex = 0;
+  int JumpLevel = -1;
+  double JumpError = 0.0;
+  double JumpPrevious = 0.0;
+};
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -122,42 +242,9 @@ int vtkTriangleCollapseDecimation::RequestData(
   }
 
   // Settings first.
-  if (!meshlod::SettingsAreNumbers(this,
-        { { "TriangleCostFactor", this->TriangleCostFactor },
-          { "TargetReduction", this->TargetReduction }, { "LevelFraction", this->LevelFraction },
-          { "MaximumError", this->MaximumError }, { "CurvatureWeight", this->CurvatureWeight },
-          { "AngleWeight", this->AngleWeight }, { "ValenceWeight", this->ValenceWeight },
-          { "BoundaryWeight", this->BoundaryWeight },
-          { "AreaNormalization", this->AreaNormalization },
-          { "MaximumNormalDeviation", this->MaximumNormalDeviation } }))
+  if (!this->CheckSettings())
   {
     return 0;
-  }
-  if (this->Method == CURVATURE &&
-    std::abs(this->CurvatureWeight + this->AngleWeight + this->ValenceWeight - 1.0) > 1e-6)
-  {
-    vtkErrorMacro("CurvatureWeight + AngleWeight + ValenceWeight must be 1, not "
-      << this->CurvatureWeight + this->AngleWeight + this->ValenceWeight << ".");
-    return 0;
-  }
-  std::vector<double> reductions = this->LevelReductions;
-  for (size_t i = 0; i < reductions.size(); ++i)
-  {
-    if (!(reductions[i] > 0.0 && reductions[i] < 1.0) || (i > 0 && reductions[i] <= reductions[i - 1]))
-    {
-      vtkErrorMacro("Level reductions must lie in (0, 1) and increase strictly; reduction "
-        << i << " is " << reductions[i] << ".");
-      return 0;
-    }
-  }
-  if (reductions.empty())
-  {
-    // Geometric spacing of the kept fraction: keep_k = (1 - TargetReduction)^(k / N).
-    const double coarsest = 1.0 - this->TargetReduction;
-    for (int k = 1; k <= this->NumberOfLevels; ++k)
-    {
-      reductions.push_back(1.0 - std::pow(coarsest, static_cast<double>(k) / this->NumberOfLevels));
-    }
   }
 
   meshlod::InputMesh mesh;
@@ -183,6 +270,121 @@ int vtkTriangleCollapseDecimation::RequestData(
   meshlod::WarnAboutReservedNames(input, this);
   this->UpdateProgress(CollapseStart);
 
+  meshlod::TriangleCollapseOptions options = this->CollapseOptions();
+  LetFitsReadInputPoints(mesh, options);
+  const std::int64_t inputTriangles = mesh.Mesh.GetNumberOfTriangles();
+  this->NumberOfSwaps = 0;
+  options.LevelTargets = LevelTargets(this->LevelReductionsToMake(), inputTriangles);
+
+  meshlod::HierarchyBuilder builder;
+  builder.SetLevelZero(mesh);
+  meshlod::LevelCentering centering;
+  std::vector<double> levelZeroPoints; // only if its points are neither float nor double
+  if (this->CenterOnInput)
+  {
+    centering.SetLevelZero(builder.GetLevelZeroView(levelZeroPoints));
+  }
+  // The maps to the source were for level 0, but for the point map when the curvature method's
+  // fits read the input's points through it (12 bytes per input triangle alive to the end of
+  // the run otherwise).
+  meshlod::Release(mesh.SourceCellIds);
+  if (options.InputPointIds == nullptr)
+  {
+    meshlod::Release(mesh.SourcePointIds);
+  }
+  ErrorJumpWatch jumps(diagonal, mesh.Mesh.GetNumberOfTriangles());
+  meshlod::TriangleCollapseCallbacks callbacks;
+  callbacks.EmitLevel = [&](meshlod::LevelData& level) {
+    jumps.AddLevel(level.EstimatedError, level.Mesh.GetNumberOfTriangles());
+    if (this->CenterOnInput)
+    {
+      centering.Apply(level.Mesh, level.Target, level.Sources.Offsets, level.Sources.Parents,
+        level.Sources.Weights);
+    }
+    builder.AppendLevel(std::move(level));
+  };
+  callbacks.Progress = [this](double fraction) {
+    this->UpdateProgress(CollapseStart + (CollapseEnd - CollapseStart) * fraction);
+    return !this->GetAbortExecute();
+  };
+  // Level 0 is built: the engine takes over the mesh and its topology instead of copying them.
+  const meshlod::TriangleCollapseResult result = meshlod::RunTriangleCollapse(
+    std::move(mesh.Mesh), std::move(mesh.Topology), options, callbacks);
+  if (result.Aborted)
+  {
+    return 1; // aborted: the output stays empty
+  }
+  this->WarnIfTargetMissed(options, result);
+  jumps.WarnIfJumped(this);
+  if (this->ComputeLevelError)
+  {
+    this->UpdateProgress(MeasureStart);
+    builder.MeasureLevelErrors();
+  }
+  this->NumberOfLevelsProduced = builder.GetNumberOfLevels();
+  this->NumberOfSwaps = result.Swaps;
+  this->ActualReduction = inputTriangles > 0
+    ? 1.0 - static_cast<double>(result.FinalTriangles) / static_cast<double>(inputTriangles)
+    : 0.0;
+  builder.Finish(output);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkTriangleCollapseDecimation::CheckSettings()
+{
+  if (!meshlod::SettingsAreNumbers(this,
+        { { "TriangleCostFactor", this->TriangleCostFactor },
+          { "TargetReduction", this->TargetReduction }, { "LevelFraction", this->LevelFraction },
+          { "MaximumError", this->MaximumError }, { "CurvatureWeight", this->CurvatureWeight },
+          { "AngleWeight", this->AngleWeight }, { "ValenceWeight", this->ValenceWeight },
+          { "BoundaryWeight", this->BoundaryWeight },
+          { "AreaNormalization", this->AreaNormalization },
+          { "MaximumNormalDeviation", this->MaximumNormalDeviation } }))
+  {
+    return false;
+  }
+  if (this->Method == CURVATURE &&
+    std::abs(this->CurvatureWeight + this->AngleWeight + this->ValenceWeight - 1.0) > 1e-6)
+  {
+    vtkErrorMacro("CurvatureWeight + AngleWeight + ValenceWeight must be 1, not "
+      << this->CurvatureWeight + this->AngleWeight + this->ValenceWeight << ".");
+    return false;
+  }
+  const std::vector<double>& reductions = this->LevelReductions;
+  for (size_t i = 0; i < reductions.size(); ++i)
+  {
+    if (!(reductions[i] > 0.0 && reductions[i] < 1.0) ||
+      (i > 0 && reductions[i] <= reductions[i - 1]))
+    {
+      vtkErrorMacro("Level reductions must lie in (0, 1) and increase strictly; reduction "
+        << i << " is " << reductions[i] << ".");
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+std::vector<double> vtkTriangleCollapseDecimation::LevelReductionsToMake() const
+{
+  std::vector<double> reductions = this->LevelReductions;
+  if (reductions.empty())
+  {
+    // Geometric spacing of the kept fraction: keep_k = (1 - TargetReduction)^(k / N).
+    const double coarsest = 1.0 - this->TargetReduction;
+    for (int k = 1; k <= this->NumberOfLevels; ++k)
+    {
+      reductions.push_back(1.0 - std::pow(coarsest, static_cast<double>(k) / this->NumberOfLevels));
+    }
+  }
+  return reductions;
+}
+
+//------------------------------------------------------------------------------
+meshlod::TriangleCollapseOptions vtkTriangleCollapseDecimation::CollapseOptions() const
+{
   meshlod::TriangleCollapseOptions options;
   options.Method = this->Method == QUADRIC ? meshlod::CollapseMethod::Quadric
                                            : meshlod::CollapseMethod::Curvature;
@@ -209,111 +411,17 @@ int vtkTriangleCollapseDecimation::RequestData(
   options.MaximumNormalDeviation = this->MaximumNormalDeviation;
   options.PreserveTopology = this->PreserveTopology;
   options.MaximumFitPoints = this->MaximumFitPoints;
-  // The curvature method's fits read the original points from the input itself (alive until
-  // the run ends) instead of a copy of them; the engine copies them when they are stored
-  // otherwise, or when point ids are not 64-bit (the engine reads the map as long long).
-  vtkPoints* inputPoints = mesh.Source->GetPoints();
-  vtkDataArray* coordinates = inputPoints ? inputPoints->GetData() : nullptr;
-  if constexpr (std::is_same<vtkIdType, long long>::value)
-  {
-    if (options.Method == meshlod::CollapseMethod::Curvature && coordinates &&
-      coordinates->GetNumberOfComponents() == 3)
-    {
-      if (auto* floats = vtkFloatArray::FastDownCast(coordinates))
-      {
-        options.InputPointsFloat = floats->GetPointer(0);
-      }
-      else if (auto* doubles = vtkDoubleArray::FastDownCast(coordinates))
-      {
-        options.InputPointsDouble = doubles->GetPointer(0);
-      }
-      // Through the map to the input's points, unless it is the identity (as it mostly is).
-      // (The same type here: the cast only lets the discarded branch compile.)
-      bool identity = true;
-      for (std::size_t i = 0; i < mesh.SourcePointIds.size() && identity; ++i)
-      {
-        identity = mesh.SourcePointIds[i] == static_cast<vtkIdType>(i);
-      }
-      options.InputPointIds =
-        identity ? nullptr : reinterpret_cast<const long long*>(mesh.SourcePointIds.data());
-    }
-  }
-  const std::int64_t inputTriangles = mesh.Mesh.GetNumberOfTriangles();
-  this->NumberOfSwaps = 0;
-  for (const double r : reductions)
-  {
-    // Reductions that round to the same count on a small mesh give one level.
-    const auto target = static_cast<std::int64_t>(std::floor((1.0 - r) * inputTriangles));
-    if (options.LevelTargets.empty() ? target < inputTriangles : target < options.LevelTargets.back())
-    {
-      options.LevelTargets.push_back(target);
-    }
-  }
+  return options;
+}
 
-  meshlod::HierarchyBuilder builder;
-  builder.SetLevelZero(mesh);
-  meshlod::LevelCentering centering;
-  std::vector<double> levelZeroPoints; // only if its points are neither float nor double
-  if (this->CenterOnInput)
-  {
-    centering.SetLevelZero(builder.GetLevelZeroView(levelZeroPoints));
-  }
-  // The maps to the source were for level 0, but for the point map when the curvature method's
-  // fits read the input's points through it (12 bytes per input triangle alive to the end of
-  // the run otherwise).
-  meshlod::Release(mesh.SourceCellIds);
-  if (options.InputPointIds == nullptr)
-  {
-    meshlod::Release(mesh.SourcePointIds);
-  }
-  // A level whose estimated error jumps far beyond what its triangle count explains (on a
-  // smooth surface the error grows about as the count falls) was made of collapses that had
-  // only costly choices left: a broken input (a locked seam, non-manifold parts) forced by the
-  // count. Reported, not prevented: nothing tells such a level from a healthy coarse one before
-  // it is made.
-  double previousError = 0.0;
-  std::int64_t previousTriangles = mesh.Mesh.GetNumberOfTriangles();
-  int levelIndex = 0, jumpLevel = -1;
-  double jumpError = 0.0, jumpPrevious = 0.0;
-  meshlod::TriangleCollapseCallbacks callbacks;
-  callbacks.EmitLevel = [&](meshlod::LevelData& level) {
-    ++levelIndex;
-    const double error = level.EstimatedError;
-    const std::int64_t triangles = level.Mesh.GetNumberOfTriangles();
-    const double reference = std::max(previousError, ErrorJumpFloor * diagonal);
-    const double explained = static_cast<double>(previousTriangles) /
-      static_cast<double>(std::max<std::int64_t>(1, triangles));
-    // (Not level 1: a noisy input's first collapses already move vertices by its noise.)
-    if (jumpLevel < 0 && levelIndex > 1 && error > ErrorJumpFactor * explained * reference)
-    {
-      jumpLevel = levelIndex;
-      jumpError = error;
-      jumpPrevious = previousError;
-    }
-    previousError = error;
-    previousTriangles = triangles;
-    if (this->CenterOnInput)
-    {
-      centering.Apply(level.Mesh, level.Target, level.Sources.Offsets, level.Sources.Parents,
-        level.Sources.Weights);
-    }
-    builder.AppendLevel(std::move(level));
-  };
-  callbacks.Progress = [this](double fraction) {
-    this->UpdateProgress(CollapseStart + (CollapseEnd - CollapseStart) * fraction);
-    return !this->GetAbortExecute();
-  };
-  // Level 0 is built: the engine takes over the mesh and its topology instead of copying them.
-  const meshlod::TriangleCollapseResult result = meshlod::RunTriangleCollapse(
-    std::move(mesh.Mesh), std::move(mesh.Topology), options, callbacks);
-  if (result.Aborted)
-  {
-    return 1; // aborted: the output stays empty
-  }
-  // A run that stops early emits the coarsest mesh it reached as a level of its own (see
-  // Collapser::FinishRun), so the level count alone does not tell a missed target: the last
-  // level must also be within one collapse (3 triangles) of the coarsest target.
-  // (No targets at all, as with TargetReduction 0: only level 0, nothing missed.)
+//------------------------------------------------------------------------------
+// A run that stops early emits the coarsest mesh it reached as a level of its own (see
+// Collapser::FinishRun), so the level count alone does not tell a missed target: the last
+// level must also be within one collapse (3 triangles) of the coarsest target.
+// (No targets at all, as with TargetReduction 0: only level 0, nothing missed.)
+void vtkTriangleCollapseDecimation::WarnIfTargetMissed(
+  const meshlod::TriangleCollapseOptions& options, const meshlod::TriangleCollapseResult& result)
+{
   const std::int64_t coarsestTarget =
     options.LevelTargets.empty() ? result.FinalTriangles : options.LevelTargets.back();
   if (result.TargetsReached < static_cast<int>(options.LevelTargets.size()) ||
@@ -348,39 +456,6 @@ int vtkTriangleCollapseDecimation::RequestData(
                     << " triangles, short of its target of " << coarsestTarget << " ("
                     << why.str() << ").");
   }
-  if (jumpLevel > 0)
-  {
-    std::ostringstream jump;
-    jump << "Level " << jumpLevel << "'s estimated error, " << jumpError << " ("
-         << (diagonal > 0.0 ? 100.0 * jumpError / diagonal : 0.0)
-         << "% of the bounding diagonal), is ";
-    if (jumpPrevious > 0.0)
-    {
-      jump << jumpError / jumpPrevious << " times the level before's";
-    }
-    else
-    {
-      jump << "where the level before's was 0";
-    }
-    vtkWarningMacro(<< jump.str()
-                    << ", far more than its triangle count explains: its last collapses had only "
-                       "costly choices left, and it may be badly distorted. Inputs with locked "
-                       "seams or non-manifold parts do this when pushed to a low count; ask for "
-                       "a smaller TargetReduction.");
-  }
-  if (this->ComputeLevelError)
-  {
-    this->UpdateProgress(MeasureStart);
-    builder.MeasureLevelErrors();
-  }
-  this->NumberOfLevelsProduced = builder.GetNumberOfLevels();
-  this->NumberOfSwaps = result.Swaps;
-  this->ActualReduction = inputTriangles > 0
-    ? 1.0 - static_cast<double>(result.FinalTriangles) / static_cast<double>(inputTriangles)
-    : 0.0;
-  builder.Finish(output);
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 //------------------------------------------------------------------------------

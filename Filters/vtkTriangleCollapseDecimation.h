@@ -214,6 +214,11 @@
 #include <vector> // For the level reductions
 
 class vtkMultiBlockDataSet;
+namespace meshlod
+{
+struct TriangleCollapseOptions;
+struct TriangleCollapseResult;
+} // namespace meshlod
 
 class VTKFILTERSMESHLOD_EXPORT vtkTriangleCollapseDecimation : public vtkPolyDataAlgorithm
 {
@@ -699,6 +704,14 @@ protected:
 private:
   vtkTriangleCollapseDecimation(const vtkTriangleCollapseDecimation&) = delete;
   void operator=(const vtkTriangleCollapseDecimation&) = delete;
+
+  bool CheckSettings();
+  // LevelReductions, or else NumberOfLevels reductions up to TargetReduction.
+  std::vector<double> LevelReductionsToMake() const;
+  // The engine's options from the settings (without the level targets).
+  meshlod::TriangleCollapseOptions CollapseOptions() const;
+  void WarnIfTargetMissed(
+    const meshlod::TriangleCollapseOptions& options, const meshlod::TriangleCollapseResult& result);
 };
 
 #endif

@@ -21,7 +21,8 @@
 
 namespace meshlod
 {
-struct CellGrid; // PartitionedGreedy.cxx
+struct CellGrid;           // PartitionedGreedy.cxx
+struct IndependentSetPass; // IndependentSetSchedule.cxx
 
 constexpr double InfiniteCost = std::numeric_limits<double>::infinity();
 
@@ -218,6 +219,39 @@ private:
   void PrepareGrid();
   // List the live triangles and vertices again (the first time: all of them).
   void ListLive();
+
+  // Independent sets (IndependentSetSchedule.cxx), the steps of a pass (see RunIndependentSets).
+  // List triangle s for re-weighting (once); it leaves the parking lot.
+  void MarkDirty(IndependentSetPass& pass, Id s);
+  // New costs for the triangles listed for re-weighting.
+  void ReweighDirty(IndependentSetPass& pass);
+  // How many triangles a pass may remove.
+  std::int64_t PassBudget() const;
+  // The live, unparked triangles with a finite cost, in pass.Pool (pass.Live drops the dead).
+  void ListPool(IndependentSetPass& pass);
+  // Choose from the pool, cheapest first, triangles whose neighbourhoods share no vertex
+  // (pass.Chosen) until they would remove a little more than `budget`; their neighbourhoods'
+  // vertices are owned (pass.Owner) until the end of the pass.
+  void ChooseIndependent(IndependentSetPass& pass, std::int64_t budget);
+  // The vertices of the triangles around t's corners, and of the whole piece when t's choice is
+  // its vanishing, in pass.Neighbourhood; false when a chosen candidate owns one of them (the
+  // list may then be incomplete).
+  bool ListNeighbourhood(IndependentSetPass& pass, Id t) const;
+  // Check every chosen triangle (in parallel): its collapse and its outcome.
+  void CheckChosen(IndependentSetPass& pass) const;
+  // Make the legal collapses, in choice order, until they reach the budget (in parallel; the
+  // others are skipped); returns how many triangles they removed.
+  std::int64_t CollapseChosen(IndependentSetPass& pass, std::int64_t budget);
+  // Chosen triangles blocked by a low-valence apex try the swap while `removed` (what the pass
+  // removed so far, which the swaps add to) is short of the budget; then every chosen triangle
+  // is counted as collapsed or parked as refused. Returns whether MaximumError refused one.
+  bool SettleChosen(IndependentSetPass& pass, std::int64_t budget, std::int64_t& removed);
+  // List for re-weighting the triangles around the pass's survivors (for the curvature method
+  // also one ring further out), whose weight its collapses changed.
+  void ListChangedAroundSurvivors(IndependentSetPass& pass);
+  // The greedy loop makes the rest of the level (the passes stalled); false when it stopped
+  // short of the level's target (stuck, MaximumError reached or aborted).
+  bool HandLevelToGreedy(IndependentSetPass& pass);
 
   // The curvature method re-weights the triangles one ring out from a collapse lazily (see
   // GreedySteps): MarkStale lowers the cost of triangle s once to StaleCostFactor times its
