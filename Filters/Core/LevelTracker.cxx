@@ -79,14 +79,39 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   // Every pass is data-parallel, with the same result for any number of threads (compactions
   // by fixed blocks, a counting sort or a sort of distinct keys): with two threads the serial
   // passes here had been a tenth of the whole hierarchy's time.
-  const TriangleMesh& mesh = state.Mesh;
-  const Id nv = mesh.GetNumberOfPoints();
-  const Id nt = mesh.GetNumberOfTriangles();
+  std::vector<Id> vertices = this->ListLiveVertices(state);
+  level = LevelData();
+  level.EstimatedError = estimatedError;
+  this->CopyLiveMesh(state, vertices, triangles, level);
+  this->WriteSources(vertices, level.Sources);
+  this->WriteCorrespondence(state, this->RankCollapses(vertices), level);
+  if (!this->AncestorTotal.empty())
+  {
+    this->LayOutAncestors(vertices);
+  }
 
-  // Live vertices (a live vertex has live triangles, or is what is left of a vanished piece)
-  // and triangles, numbered in increasing id order. Only the last level's vertices are looked
-  // at (nothing comes alive again), and the listed triangles: at the coarse levels a small part
-  // of the mesh.
+  // New groups for the next level.
+  const Id count = static_cast<Id>(vertices.size());
+  vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
+    {
+      const Id v = vertices[i];
+      this->GroupNext[v] = InvalidId;
+      this->GroupTail[v] = v;
+      this->GroupWeight[v] = 1.0f;
+      this->GroupSequence[v] = -1;
+      this->PreviousIndex[v] = i;
+    }
+  });
+  this->PreviousVertices.swap(vertices);
+}
+
+//------------------------------------------------------------------------------
+// Live vertices (a live vertex has live triangles, or is what is left of a vanished piece),
+// numbered in increasing id order, with NewIndex mapping them to their numbers. Only the last
+// level's vertices are looked at (nothing comes alive again).
+std::vector<Id> LevelTracker::ListLiveVertices(const CollapseMesh& state)
+{
   const std::vector<Id>& candidates = this->PreviousVertices;
   const auto liveVertex = [&](Id i) {
     const Id v = candidates[i];
@@ -94,18 +119,25 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
       (state.TriangleCount(v) > 0 || (state.Flags[v] & FlagVanished) != 0);
   };
   const ParallelCompaction liveVertices(static_cast<Id>(candidates.size()), liveVertex);
-  const Id count = liveVertices.Count();
   std::vector<Id>& newIndex = this->NewIndex; // kept between snapshots: no fresh pages each time
-  ResizeFresh(newIndex, nv);
+  ResizeFresh(newIndex, state.Mesh.GetNumberOfPoints());
   vtkSMPTools::Fill(newIndex.begin(), newIndex.end(), InvalidId);
-  std::vector<Id> vertices = FreshVector<Id>(count);
+  std::vector<Id> vertices = FreshVector<Id>(liveVertices.Count());
   liveVertices.Write(liveVertex, [&](Id i, Id slot) {
     newIndex[candidates[i]] = slot;
     vertices[slot] = candidates[i];
   });
+  return vertices;
+}
 
-  level = LevelData();
-  level.EstimatedError = estimatedError;
+// The level's points (the live `vertices`) and its live triangles, numbered in increasing id
+// order: among `triangles` when given (at the coarse levels a small part of the mesh), else all.
+void LevelTracker::CopyLiveMesh(const CollapseMesh& state, const std::vector<Id>& vertices,
+  const std::vector<Id>* triangles, LevelData& level) const
+{
+  const TriangleMesh& mesh = state.Mesh;
+  const Id count = static_cast<Id>(vertices.size());
+  const std::vector<Id>& newIndex = this->NewIndex;
   ResizeFresh(level.Mesh.Points, 3 * static_cast<std::size_t>(count));
   vtkSMPTools::For(0, count, [&](Id begin, Id end) {
     for (Id i = begin; i < end; ++i)
@@ -117,7 +149,7 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
   const auto triangleAt = [&](Id i) { return all ? i : (*triangles)[i]; };
   const auto liveTriangle = [&](Id i) { return state.IsAlive(triangleAt(i)); };
   const ParallelCompaction liveTriangles(
-    all ? nt : static_cast<Id>(triangles->size()), liveTriangle);
+    all ? mesh.GetNumberOfTriangles() : static_cast<Id>(triangles->size()), liveTriangle);
   ResizeFresh(level.Mesh.Triangles, 3 * static_cast<std::size_t>(liveTriangles.Count()));
   ResizeFresh(level.LevelZeroTriangle, liveTriangles.Count());
   liveTriangles.Write(liveTriangle, [&](Id i, Id slot) {
@@ -129,9 +161,12 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
     out[2] = newIndex[tri[2]];
     level.LevelZeroTriangle[slot] = t;
   });
+}
 
-  // Point sources: the previous level's points of each group, with their weights.
-  PointSources& sources = level.Sources;
+// Point sources: the previous level's points of each group, with their weights.
+void LevelTracker::WriteSources(const std::vector<Id>& vertices, PointSources& sources) const
+{
+  const Id count = static_cast<Id>(vertices.size());
   ResizeFresh(sources.Offsets, static_cast<std::size_t>(count) + 1);
   sources.Offsets[0] = 0;
   vtkSMPTools::For(0, count, [&](Id begin, Id end) {
@@ -162,11 +197,15 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
       }
     }
   });
+}
 
-  // Correspondence and collapse order of the previous level's points. Ranks are the order of
-  // the last collapse of each group, renumbered 0, 1, 2, ...: sort the groups that collapsed by
-  // that collapse (distinct numbers: one collapse, one survivor), and give every point the
-  // rank of the group it ends in.
+//------------------------------------------------------------------------------
+// Per live vertex, the rank of its group's last collapse: the collapse numbers renumbered 0, 1,
+// 2, ... by sorting the groups that collapsed by that collapse (distinct numbers: one
+// collapse, one survivor); InvalidId for a group that did not collapse.
+std::vector<Id> LevelTracker::RankCollapses(const std::vector<Id>& vertices)
+{
+  const Id count = static_cast<Id>(vertices.size());
   const auto collapsed = [&](Id i) { return this->GroupSequence[vertices[i]] >= 0; };
   const ParallelCompaction collapsedGroups(count, collapsed);
   std::vector<Id> rankOf = FreshVector<Id>(count, InvalidId);
@@ -219,6 +258,15 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
       }
     });
   }
+  return rankOf;
+}
+
+// Correspondence and collapse order of the previous level's points: every point takes the
+// number and the rank (`rankOf`) of the group it ends in.
+void LevelTracker::WriteCorrespondence(
+  const CollapseMesh& state, const std::vector<Id>& rankOf, LevelData& level) const
+{
+  const std::vector<Id>& newIndex = this->NewIndex;
   const Id previousCount = static_cast<Id>(this->PreviousVertices.size());
   ResizeFresh(level.Target, previousCount);
   ResizeFresh(level.Rank, previousCount);
@@ -234,25 +282,6 @@ void LevelTracker::Snapshot(const CollapseMesh& state, double estimatedError, Le
       level.Rank[k] = newIndex[root] == InvalidId ? InvalidId : rankOf[newIndex[root]];
     }
   });
-
-  if (!this->AncestorTotal.empty())
-  {
-    this->LayOutAncestors(vertices);
-  }
-
-  // New groups for the next level.
-  vtkSMPTools::For(0, count, [&](Id begin, Id end) {
-    for (Id i = begin; i < end; ++i)
-    {
-      const Id v = vertices[i];
-      this->GroupNext[v] = InvalidId;
-      this->GroupTail[v] = v;
-      this->GroupWeight[v] = 1.0f;
-      this->GroupSequence[v] = -1;
-      this->PreviousIndex[v] = i;
-    }
-  });
-  this->PreviousVertices.swap(vertices);
 }
 
 //------------------------------------------------------------------------------

@@ -25,6 +25,7 @@ namespace meshlod
 {
 class CollapseMesh;
 struct LevelData;
+struct PointSources;
 
 class LevelTracker
 {
@@ -64,6 +65,14 @@ public:
   Id AncestorCount(Id v) const { return this->AncestorTotal[v]; }
 
 private:
+  // Snapshot's steps (LevelTracker.cxx).
+  std::vector<Id> ListLiveVertices(const CollapseMesh& state);
+  void CopyLiveMesh(const CollapseMesh& state, const std::vector<Id>& vertices,
+    const std::vector<Id>* triangles, LevelData& level) const;
+  void WriteSources(const std::vector<Id>& vertices, PointSources& sources) const;
+  std::vector<Id> RankCollapses(const std::vector<Id>& vertices);
+  void WriteCorrespondence(
+    const CollapseMesh& state, const std::vector<Id>& rankOf, LevelData& level) const;
   void LayOutAncestors(const std::vector<Id>& vertices);
 
   std::vector<Id> GroupNext;
