@@ -317,35 +317,34 @@ void TextureBaker::ColorAt(const double point[3], float rgba[4]) const
 }
 
 //------------------------------------------------------------------------------
-vtkSmartPointer<vtkImageData> TextureBaker::Bake(const TriangleMesh& mesh,
-  const TextureAtlas& atlas, const std::function<bool(double)>& progress) const
+namespace
 {
-  const Id nt = mesh.GetNumberOfTriangles();
-  const Id side = atlas.Resolution;
-  const int components = this->Components;
-  // Texels are quantised as they are computed: a float staging image would be four times the
-  // texture's size (4.3 GB at TextureResolution 16384).
-  auto scalars = vtkSmartPointer<vtkUnsignedCharArray>::New();
-  scalars->SetName("Texture");
-  scalars->SetNumberOfComponents(components);
-  scalars->SetNumberOfTuples(static_cast<vtkIdType>(side) * side);
-  unsigned char* dst = scalars->GetPointer(0);
-  std::fill_n(dst, static_cast<size_t>(components) * side * side, static_cast<unsigned char>(0));
-  const auto store = [&](Id x, Id y, const float rgba[4])
-  {
-    const size_t index = static_cast<size_t>(y) * side + x;
-    unsigned char* texel = dst + static_cast<size_t>(components) * index;
-    for (int c = 0; c < components; ++c)
-    {
-      texel[c] = static_cast<unsigned char>(std::lround(std::min(255.0f, std::max(0.0f, rgba[c]))));
-    }
-  };
+// Colours sampled along every edge of the mesh from its lower point id, at the finest spacing
+// of the blocks on either side: the two blocks that share an edge show the same colours along it.
+struct EdgeSamples
+{
+  std::vector<Id> Steps;     // per edge: its intervals
+  std::vector<Id> Offsets;   // per edge: its first sample
+  std::vector<float> Colors; // 4 per sample
 
-  // Edge samples, spaced from the lower point id, at the finest spacing both sides share.
-  const MeshEdges edges = FindEdges(mesh);
+  const float* At(Id e, Id j) const
+  {
+    return this->Colors.data() + 4 * static_cast<size_t>(this->Offsets[e] + j);
+  }
+  float* At(Id e, Id j)
+  {
+    return this->Colors.data() + 4 * static_cast<size_t>(this->Offsets[e] + j);
+  }
+};
+
+EdgeSamples SampleEdges(const TextureBaker& baker, const TriangleMesh& mesh,
+  const TextureAtlas& atlas, const MeshEdges& edges)
+{
+  EdgeSamples samples;
   const Id ne = static_cast<Id>(edges.Lo.size());
-  std::vector<Id> steps(ne, std::numeric_limits<Id>::max());
-  for (Id t = 0; t < nt; ++t)
+  std::vector<Id>& steps = samples.Steps;
+  steps.assign(ne, std::numeric_limits<Id>::max());
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
   {
     const Id s = atlas.Blocks[atlas.TriangleBlock[t]].Size - 1;
     for (int k = 0; k < 3; ++k)
@@ -354,12 +353,12 @@ vtkSmartPointer<vtkImageData> TextureBaker::Bake(const TriangleMesh& mesh,
       e = std::min(e, s);
     }
   }
-  std::vector<Id> sampleOffsets(static_cast<size_t>(ne) + 1, 0);
+  samples.Offsets.assign(static_cast<size_t>(ne) + 1, 0);
   for (Id e = 0; e < ne; ++e)
   {
-    sampleOffsets[e + 1] = sampleOffsets[e] + steps[e] + 1;
+    samples.Offsets[e + 1] = samples.Offsets[e] + steps[e] + 1;
   }
-  std::vector<float> samples(4 * static_cast<size_t>(sampleOffsets[ne]));
+  samples.Colors.resize(4 * static_cast<size_t>(samples.Offsets[ne]));
   vtkSMPTools::For(0,
     ne,
     [&](Id begin, Id end)
@@ -375,13 +374,141 @@ vtkSmartPointer<vtkImageData> TextureBaker::Bake(const TriangleMesh& mesh,
           {
             std::copy_n(mesh.Point(edges.Hi[e]), 3, p); // exactly the end point
           }
-          this->ColorAt(p, samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j));
+          baker.ColorAt(p, samples.At(e, j));
         }
       }
     });
+  return samples;
+}
 
-  // Texels, row by row of each block. Integer barycentrics (twice the signed areas) tell
-  // inside, edge and outside exactly. The rows go in chunks, so that a large texture
+// The texels of a square image, quantised as they are computed: a float staging image would be
+// four times the texture's size (4.3 GB at TextureResolution 16384).
+struct TexelWriter
+{
+  unsigned char* Texels;
+  Id Side;
+  int Components;
+
+  void Store(Id x, Id y, const float rgba[4]) const
+  {
+    const size_t index = static_cast<size_t>(y) * this->Side + x;
+    unsigned char* texel = this->Texels + static_cast<size_t>(this->Components) * index;
+    for (int c = 0; c < this->Components; ++c)
+    {
+      texel[c] = static_cast<unsigned char>(std::lround(std::min(255.0f, std::max(0.0f, rgba[c]))));
+    }
+  }
+};
+
+// The colour of a texel of triangle t on the edge opposite corner `onEdge` (`n`: the texel's
+// integer barycentrics, `area` their sum): the edge's samples interpolated at the texel's exact
+// rational position along the edge, from its lower point id.
+void EdgeTexelColor(const TriangleMesh& mesh, const MeshEdges& edges, const EdgeSamples& samples,
+  Id t, int onEdge, const std::int64_t n[3], std::int64_t area, float out[4])
+{
+  const Id* tri = mesh.Triangle(t);
+  const int from = (onEdge + 1) % 3, to = (onEdge + 2) % 3;
+  const Id e = edges.OfCorner[3 * t + from];
+  const Id steps = samples.Steps[e];
+  std::int64_t numerator = n[to], denominator = area;
+  if (denominator < 0)
+  {
+    numerator = -numerator;
+    denominator = -denominator;
+  }
+  if (tri[to] != edges.Hi[e])
+  {
+    numerator = denominator - numerator;
+  }
+  const std::int64_t scaled = numerator * steps;
+  const Id j0 = static_cast<Id>(std::min<std::int64_t>(steps, scaled / denominator));
+  const Id j1 = std::min<Id>(steps, j0 + 1);
+  const double w = static_cast<double>(scaled % denominator) / denominator;
+  const float* s0 = samples.At(e, j0);
+  const float* s1 = samples.At(e, j1);
+  for (int c = 0; c < 4; ++c)
+  {
+    out[c] = static_cast<float>((1.0 - w) * s0[c] + w * s1[c]);
+  }
+}
+
+// Row `row` of the blocks' rows (`firstRow`: the rows of the blocks before each; the blocks do
+// not overlap: any order, any thread). Integer barycentrics (twice the signed areas) tell
+// inside, edge and outside exactly.
+void BakeRow(const TextureBaker& baker, const TriangleMesh& mesh, const TextureAtlas& atlas,
+  const MeshEdges& edges, const EdgeSamples& samples, const std::vector<Id>& firstRow, Id row,
+  const TexelWriter& texels)
+{
+  const Id b = static_cast<Id>(
+    std::upper_bound(firstRow.begin(), firstRow.end(), row) - firstRow.begin() - 1);
+  const TextureAtlas::Block& block = atlas.Blocks[b];
+  const Id s = block.Size - 1;
+  const Id y = block.Y + (row - firstRow[b]);
+  for (Id x = block.X; x < block.X + block.Size; ++x)
+  {
+    const bool upperHalf = (x - block.X) + (y - block.Y) > s;
+    const Id t = (upperHalf && block.Upper != InvalidId) ? block.Upper : block.Lower;
+    const Id* tc = atlas.CornerTexel.data() + 6 * static_cast<size_t>(t);
+    const Id* tri = mesh.Triangle(t);
+    std::int64_t n[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      const Id* p = tc + 2 * ((k + 1) % 3);
+      const Id* q = tc + 2 * ((k + 2) % 3);
+      n[k] = static_cast<std::int64_t>(p[0] - x) * (q[1] - y) -
+        static_cast<std::int64_t>(p[1] - y) * (q[0] - x);
+    }
+    const std::int64_t area = n[0] + n[1] + n[2];
+    float out[4];
+    int onEdge = -1;
+    if (!upperHalf || block.Upper != InvalidId)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        onEdge = (n[k] == 0) ? k : onEdge;
+      }
+    }
+    if (onEdge >= 0)
+    {
+      EdgeTexelColor(mesh, edges, samples, t, onEdge, n, area, out);
+      texels.Store(x, y, out);
+      continue;
+    }
+    // Inside the triangle, or in the padding half extending the lower triangle.
+    double p[3] = { 0.0, 0.0, 0.0 };
+    for (int k = 0; k < 3; ++k)
+    {
+      const double w = static_cast<double>(n[k]) / area;
+      const double* corner = mesh.Point(tri[k]);
+      for (int c = 0; c < 3; ++c)
+      {
+        p[c] += w * corner[c];
+      }
+    }
+    baker.ColorAt(p, out);
+    texels.Store(x, y, out);
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkImageData> TextureBaker::Bake(const TriangleMesh& mesh,
+  const TextureAtlas& atlas, const std::function<bool(double)>& progress) const
+{
+  const Id side = atlas.Resolution;
+  const int components = this->Components;
+  auto scalars = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  scalars->SetName("Texture");
+  scalars->SetNumberOfComponents(components);
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(side) * side);
+  unsigned char* dst = scalars->GetPointer(0);
+  std::fill_n(dst, static_cast<size_t>(components) * side * side, static_cast<unsigned char>(0));
+  const TexelWriter texels{ dst, side, components };
+
+  const MeshEdges edges = FindEdges(mesh);
+  const EdgeSamples samples = SampleEdges(*this, mesh, atlas, edges);
+
+  // Texels, row by row of each block. The rows go in chunks, so that a large texture
   // (TextureResolution 16384 takes minutes) reports progress and can be stopped; rows rather
   // than blocks, so that a chunk of a few large blocks still keeps every thread busy.
   const Id numberOfBlocks = static_cast<Id>(atlas.Blocks.size());
@@ -391,82 +518,6 @@ vtkSmartPointer<vtkImageData> TextureBaker::Bake(const TriangleMesh& mesh,
     firstRow[b + 1] = firstRow[b] + atlas.Blocks[b].Size;
   }
   const Id rows = firstRow[numberOfBlocks];
-  // Row `row` of the blocks' rows (the blocks do not overlap: any order, any thread).
-  const auto bakeRow = [&](Id row)
-  {
-    const Id b = static_cast<Id>(
-      std::upper_bound(firstRow.begin(), firstRow.end(), row) - firstRow.begin() - 1);
-    const TextureAtlas::Block& block = atlas.Blocks[b];
-    const Id s = block.Size - 1;
-    const Id y = block.Y + (row - firstRow[b]);
-    for (Id x = block.X; x < block.X + block.Size; ++x)
-    {
-      const bool upperHalf = (x - block.X) + (y - block.Y) > s;
-      const Id t = (upperHalf && block.Upper != InvalidId) ? block.Upper : block.Lower;
-      const Id* tc = atlas.CornerTexel.data() + 6 * static_cast<size_t>(t);
-      const Id* tri = mesh.Triangle(t);
-      std::int64_t n[3];
-      for (int k = 0; k < 3; ++k)
-      {
-        const Id* p = tc + 2 * ((k + 1) % 3);
-        const Id* q = tc + 2 * ((k + 2) % 3);
-        n[k] = static_cast<std::int64_t>(p[0] - x) * (q[1] - y) -
-          static_cast<std::int64_t>(p[1] - y) * (q[0] - x);
-      }
-      const std::int64_t area = n[0] + n[1] + n[2];
-      float out[4];
-      int onEdge = -1;
-      if (!upperHalf || block.Upper != InvalidId)
-      {
-        for (int k = 0; k < 3; ++k)
-        {
-          onEdge = (n[k] == 0) ? k : onEdge;
-        }
-      }
-      if (onEdge >= 0)
-      {
-        // On the edge opposite corner `onEdge`: the fraction towards its end corner.
-        const int from = (onEdge + 1) % 3, to = (onEdge + 2) % 3;
-        const Id e = edges.OfCorner[3 * t + from];
-        // Exact rational position along the edge's samples, from its lower point id.
-        std::int64_t numerator = n[to], denominator = area;
-        if (denominator < 0)
-        {
-          numerator = -numerator;
-          denominator = -denominator;
-        }
-        if (tri[to] != edges.Hi[e])
-        {
-          numerator = denominator - numerator;
-        }
-        const std::int64_t scaled = numerator * steps[e];
-        const Id j0 = static_cast<Id>(std::min<std::int64_t>(steps[e], scaled / denominator));
-        const Id j1 = std::min<Id>(steps[e], j0 + 1);
-        const double w = static_cast<double>(scaled % denominator) / denominator;
-        const float* s0 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j0);
-        const float* s1 = samples.data() + 4 * static_cast<size_t>(sampleOffsets[e] + j1);
-        for (int c = 0; c < 4; ++c)
-        {
-          out[c] = static_cast<float>((1.0 - w) * s0[c] + w * s1[c]);
-        }
-        store(x, y, out);
-        continue;
-      }
-      // Inside the triangle, or in the padding half extending the lower triangle.
-      double p[3] = { 0.0, 0.0, 0.0 };
-      for (int k = 0; k < 3; ++k)
-      {
-        const double w = static_cast<double>(n[k]) / area;
-        const double* corner = mesh.Point(tri[k]);
-        for (int c = 0; c < 3; ++c)
-        {
-          p[c] += w * corner[c];
-        }
-      }
-      this->ColorAt(p, out);
-      store(x, y, out);
-    }
-  };
   constexpr int Chunks = 16;
   for (int chunk = 0; chunk < Chunks; ++chunk)
   {
@@ -477,7 +528,7 @@ vtkSmartPointer<vtkImageData> TextureBaker::Bake(const TriangleMesh& mesh,
       {
         for (Id row = begin; row < end; ++row)
         {
-          bakeRow(row);
+          BakeRow(*this, mesh, atlas, edges, samples, firstRow, row, texels);
         }
       });
     if (progress && !progress(static_cast<double>(chunk + 1) / Chunks))
