@@ -66,17 +66,14 @@ struct Unit
   double Area = 0.0;
   Id Size = 2;
 };
-} // namespace
 
-//------------------------------------------------------------------------------
-void BuildTextureAtlas(const TriangleMesh& mesh, Id resolution, TextureAtlas& atlas)
+// The blocks to place: each triangle, in id order, paired with an unpaired neighbour across its
+// longest such edge.
+std::vector<Unit> PairTriangles(const TriangleMesh& mesh)
 {
-  atlas = TextureAtlas();
   const Id nt = mesh.GetNumberOfTriangles();
   TriangleTopology topology;
   topology.Build(mesh);
-
-  // Pair each triangle, in id order, with an unpaired neighbour across its longest such edge.
   std::vector<Unit> units;
   std::vector<unsigned char> paired(nt, 0);
   for (Id t = 0; t < nt; ++t)
@@ -114,8 +111,14 @@ void BuildTextureAtlas(const TriangleMesh& mesh, Id resolution, TextureAtlas& at
     }
     units.push_back(unit);
   }
+  return units;
+}
 
-  // One texel density for all blocks: the largest whose power-of-two blocks fit the texture.
+// Block sizes at one texel density for all blocks: the largest whose power-of-two blocks fit the
+// texture. Returns the texture's side (`resolution`, or larger when there are more blocks than
+// it holds at two texels).
+Id SizeBlocks(std::vector<Unit>& units, Id resolution)
+{
   Id side = NextPowerOfTwo(std::max<Id>(resolution, 2));
   const std::int64_t unitCount = static_cast<std::int64_t>(units.size());
   while (4 * unitCount > static_cast<std::int64_t>(side) * side)
@@ -148,17 +151,18 @@ void BuildTextureAtlas(const TriangleMesh& mesh, Id resolution, TextureAtlas& at
     (layout(middle) <= capacity ? low : high) = middle;
   }
   layout(low);
+  return side;
+}
 
-  // Largest blocks first, in Morton order: each block starts at a multiple of its own area.
+// The blocks placed, largest first, in Morton order: each block starts at a multiple of its own
+// area.
+void PlaceBlocks(const std::vector<Unit>& units, TextureAtlas& atlas)
+{
   std::vector<Id> order(units.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(
     order.begin(), order.end(), [&](Id a, Id b) { return units[a].Size > units[b].Size; });
-  atlas.Resolution = side;
   atlas.Blocks.resize(units.size());
-  atlas.TriangleBlock.assign(nt, InvalidId);
-  atlas.CornerTexel.assign(6 * static_cast<size_t>(nt), 0);
-  atlas.CornerPoint.assign(3 * static_cast<size_t>(nt), InvalidId);
   std::int64_t offset = 0;
   for (const Id u : order)
   {
@@ -170,41 +174,59 @@ void BuildTextureAtlas(const TriangleMesh& mesh, Id resolution, TextureAtlas& at
     block.Upper = units[u].Second;
     offset += static_cast<std::int64_t>(block.Size) * block.Size;
   }
+}
 
-  // Corners and split points, block by block.
+// Corners and split points of block u's triangles.
+void SetBlockCorners(const TriangleMesh& mesh, const Unit& unit, Id u, TextureAtlas& atlas)
+{
+  const TextureAtlas::Block& block = atlas.Blocks[u];
+  const Id s = block.Size - 1;
+  const Id t = block.Lower;
+  const Id* tri = mesh.Triangle(t);
+  const int h = unit.Edge;
+  const Id a = tri[h], b = tri[(h + 1) % 3];
+  const Id pointA = static_cast<Id>(atlas.SplitPoints.size());
+  auto setCorner = [&](Id triangle, int corner, Id x, Id y, Id split)
+  {
+    atlas.CornerTexel[6 * static_cast<size_t>(triangle) + 2 * corner] = block.X + x;
+    atlas.CornerTexel[6 * static_cast<size_t>(triangle) + 2 * corner + 1] = block.Y + y;
+    atlas.CornerPoint[3 * static_cast<size_t>(triangle) + corner] = split;
+  };
+  atlas.SplitPoints.push_back(a);
+  atlas.SplitPoints.push_back(b);
+  atlas.SplitPoints.push_back(tri[(h + 2) % 3]);
+  setCorner(t, h, s, 0, pointA);
+  setCorner(t, (h + 1) % 3, 0, s, pointA + 1);
+  setCorner(t, (h + 2) % 3, 0, 0, pointA + 2);
+  atlas.TriangleBlock[t] = u;
+  if (block.Upper != InvalidId)
+  {
+    const Id* other = mesh.Triangle(block.Upper);
+    const int ca = CornerOf(other, a), cb = CornerOf(other, b);
+    const int apex = 3 - ca - cb;
+    atlas.SplitPoints.push_back(other[apex]);
+    setCorner(block.Upper, ca, s, 0, pointA);
+    setCorner(block.Upper, cb, 0, s, pointA + 1);
+    setCorner(block.Upper, apex, s, s, pointA + 3);
+    atlas.TriangleBlock[block.Upper] = u;
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+void BuildTextureAtlas(const TriangleMesh& mesh, Id resolution, TextureAtlas& atlas)
+{
+  atlas = TextureAtlas();
+  const Id nt = mesh.GetNumberOfTriangles();
+  std::vector<Unit> units = PairTriangles(mesh);
+  atlas.Resolution = SizeBlocks(units, resolution);
+  atlas.TriangleBlock.assign(nt, InvalidId);
+  atlas.CornerTexel.assign(6 * static_cast<size_t>(nt), 0);
+  atlas.CornerPoint.assign(3 * static_cast<size_t>(nt), InvalidId);
+  PlaceBlocks(units, atlas);
   for (size_t u = 0; u < units.size(); ++u)
   {
-    const TextureAtlas::Block& block = atlas.Blocks[u];
-    const Id s = block.Size - 1;
-    const Id t = block.Lower;
-    const Id* tri = mesh.Triangle(t);
-    const int h = units[u].Edge;
-    const Id a = tri[h], b = tri[(h + 1) % 3];
-    const Id pointA = static_cast<Id>(atlas.SplitPoints.size());
-    auto setCorner = [&](Id triangle, int corner, Id x, Id y, Id split)
-    {
-      atlas.CornerTexel[6 * static_cast<size_t>(triangle) + 2 * corner] = block.X + x;
-      atlas.CornerTexel[6 * static_cast<size_t>(triangle) + 2 * corner + 1] = block.Y + y;
-      atlas.CornerPoint[3 * static_cast<size_t>(triangle) + corner] = split;
-    };
-    atlas.SplitPoints.push_back(a);
-    atlas.SplitPoints.push_back(b);
-    atlas.SplitPoints.push_back(tri[(h + 2) % 3]);
-    setCorner(t, h, s, 0, pointA);
-    setCorner(t, (h + 1) % 3, 0, s, pointA + 1);
-    setCorner(t, (h + 2) % 3, 0, 0, pointA + 2);
-    atlas.TriangleBlock[t] = static_cast<Id>(u);
-    if (block.Upper != InvalidId)
-    {
-      const Id* other = mesh.Triangle(block.Upper);
-      const int ca = CornerOf(other, a), cb = CornerOf(other, b);
-      const int apex = 3 - ca - cb;
-      atlas.SplitPoints.push_back(other[apex]);
-      setCorner(block.Upper, ca, s, 0, pointA);
-      setCorner(block.Upper, cb, 0, s, pointA + 1);
-      setCorner(block.Upper, apex, s, s, pointA + 3);
-      atlas.TriangleBlock[block.Upper] = static_cast<Id>(u);
-    }
+    SetBlockCorners(mesh, units[u], static_cast<Id>(u), atlas);
   }
 }
 
