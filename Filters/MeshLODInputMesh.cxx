@@ -181,6 +181,90 @@ constexpr double SeamTolerance = 1e-12;
 constexpr double SeamRoundingUnits = 64.0; // times DBL_EPSILON times the largest coordinate
 constexpr size_t MaximumSeamGroups = 16;
 
+// The distance up to which seam points coincide (see MergeSeamPoints). Rounding is relative to
+// the coordinates themselves: far from the origin (a scan in georeferenced coordinates) the last
+// bits of a seam point are worth more than SeamTolerance of the diagonal, and the same mesh would
+// stay open there that is stitched at the origin.
+double SeamPointTolerance(const TriangleMesh& mesh, const std::vector<Id>& candidates)
+{
+  double largest = 0.0;
+  for (const Id v : candidates)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      largest = std::max(largest, std::abs(mesh.Point(v)[k]));
+    }
+  }
+  return std::max(SeamTolerance * mesh.BoundingDiagonal(),
+    SeamRoundingUnits * std::numeric_limits<double>::epsilon() * largest);
+}
+
+// One run of neighbours in a sorted order (`run`, `n` points, each within the tolerance of the
+// one before). A member joins the first of the run's groups (so far) whose first member is
+// within the tolerance and carries the same point data, or starts a group: comparing neighbours
+// only would keep apart two agreeing twins sorted on either side of a third that differs. A
+// member coinciding with another group's first member is marked `apart`.
+struct SeamRun
+{
+  const TriangleMesh& Mesh;
+  const PointDataAgreement& Agree;
+  double Tolerance2;
+  std::vector<Id>& Root; // union-find over the vertices; a group's root is its lowest id
+  std::vector<unsigned char>& Apart;
+  std::vector<Id> Groups;          // the first member of each group
+  std::vector<size_t> MemberGroup; // per member: its group
+
+  void Merge(const Id* run, size_t n)
+  {
+    this->Groups.clear();
+    this->MemberGroup.clear();
+    for (size_t j = 0; j < n; ++j)
+    {
+      const Id v = run[j];
+      size_t joined = this->Groups.size();
+      // A bounded number of groups per run: many coincident points with distinct data (a
+      // pathological input) would otherwise cost the square of their number.
+      const size_t first = this->Groups.size() > MaximumSeamGroups
+        ? this->Groups.size() - MaximumSeamGroups
+        : 0;
+      for (size_t g = first; g < this->Groups.size() && joined == this->Groups.size(); ++g)
+      {
+        if (this->Near(this->Groups[g], v) && this->Agree(this->Groups[g], v))
+        {
+          const Id a = FindRoot(this->Root, this->Groups[g]), b = FindRoot(this->Root, v);
+          this->Root[std::max(a, b)] = std::min(a, b);
+          joined = g;
+        }
+      }
+      if (joined == this->Groups.size())
+      {
+        this->Groups.push_back(v);
+      }
+      this->MemberGroup.push_back(joined);
+    }
+    for (size_t j = 0; this->Groups.size() > 1 && j < n; ++j)
+    {
+      const size_t own = this->MemberGroup[j];
+      const size_t from = own > MaximumSeamGroups ? own - MaximumSeamGroups : 0;
+      const size_t to = std::min(this->Groups.size(), own + MaximumSeamGroups + 1);
+      for (size_t g = from; g < to; ++g)
+      {
+        if (g != own && this->Near(this->Groups[g], run[j]))
+        {
+          this->Apart.resize(this->Root.size(), 0);
+          this->Apart[run[j]] = 1;
+          break;
+        }
+      }
+    }
+  }
+
+  bool Near(Id a, Id b) const
+  {
+    return Distance2(this->Mesh.Point(a), this->Mesh.Point(b)) <= this->Tolerance2;
+  }
+};
+
 vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
   const PointDataAgreement& agree, vtkIdType& keptApart)
 {
@@ -200,26 +284,10 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
   {
     return 0;
   }
-  // Rounding is relative to the coordinates themselves: far from the origin (a scan in
-  // georeferenced coordinates) the last bits of a seam point are worth more than SeamTolerance of
-  // the diagonal, and the same mesh would stay open there that is stitched at the origin.
-  double largest = 0.0;
-  for (const Id v : candidates)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      largest = std::max(largest, std::abs(mesh.Point(v)[k]));
-    }
-  }
-  const double tolerance = std::max(SeamTolerance * mesh.BoundingDiagonal(),
-    SeamRoundingUnits * std::numeric_limits<double>::epsilon() * largest);
-
-  const double tolerance2 = tolerance * tolerance;
-  std::vector<Id> groups;           // per run: the first member of each group
-  std::vector<size_t> memberGroup;  // per run member: its group
-  // Union-find over the vertices; a group's root is its lowest id.
+  const double tolerance = SeamPointTolerance(mesh, candidates);
   std::vector<Id> root = FreshVector<Id>(nv);
   std::iota(root.begin(), root.end(), 0);
+  SeamRun runs{ mesh, agree, tolerance * tolerance, root, apart, {}, {} };
   for (int first = 0; first < 3; ++first)
   {
     auto less = [&](Id a, Id b) {
@@ -236,60 +304,15 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
       return a < b;
     };
     std::sort(candidates.begin(), candidates.end(), less);
-    // Runs of neighbours in this order, each within the tolerance of the one before. A member
-    // joins the first of the run's groups (so far) whose first member is within the tolerance
-    // and carries the same point data, or starts a group: comparing neighbours only would keep
-    // apart two agreeing twins sorted on either side of a third that differs.
+    // Runs of neighbours in this order, each within the tolerance of the one before.
     for (size_t begin = 0; begin < candidates.size();)
     {
       size_t end = begin + 1;
-      while (end < candidates.size() &&
-        Distance2(mesh.Point(candidates[end - 1]), mesh.Point(candidates[end])) <= tolerance2)
+      while (end < candidates.size() && runs.Near(candidates[end - 1], candidates[end]))
       {
         ++end;
       }
-      groups.clear();
-      memberGroup.clear();
-      for (size_t j = begin; j < end; ++j)
-      {
-        const Id v = candidates[j];
-        size_t joined = groups.size();
-        // A bounded number of groups per run: many coincident points with distinct data (a
-        // pathological input) would otherwise cost the square of their number.
-        const size_t first =
-          groups.size() > MaximumSeamGroups ? groups.size() - MaximumSeamGroups : 0;
-        for (size_t g = first; g < groups.size() && joined == groups.size(); ++g)
-        {
-          if (Distance2(mesh.Point(groups[g]), mesh.Point(v)) <= tolerance2 &&
-            agree(groups[g], v))
-          {
-            const Id a = FindRoot(root, groups[g]), b = FindRoot(root, v);
-            root[std::max(a, b)] = std::min(a, b);
-            joined = g;
-          }
-        }
-        if (joined == groups.size())
-        {
-          groups.push_back(v);
-        }
-        memberGroup.push_back(joined);
-      }
-      // A member coinciding with another group's first member is left apart from it.
-      for (size_t j = begin; groups.size() > 1 && j < end; ++j)
-      {
-        const size_t own = memberGroup[j - begin];
-        const size_t from = own > MaximumSeamGroups ? own - MaximumSeamGroups : 0;
-        const size_t to = std::min(groups.size(), own + MaximumSeamGroups + 1);
-        for (size_t g = from; g < to; ++g)
-        {
-          if (g != own && Distance2(mesh.Point(groups[g]), mesh.Point(candidates[j])) <= tolerance2)
-          {
-            apart.resize(nv, 0);
-            apart[candidates[j]] = 1;
-            break;
-          }
-        }
-      }
+      runs.Merge(candidates.data() + begin, end - begin);
       begin = end;
     }
   }
