@@ -24,6 +24,16 @@ constexpr const char* LevelOfDetailName = "LevelOfDetail";
 // A pipeline time within this many levels of a level's time step is that level.
 constexpr double LevelSnapTolerance = 1e-9;
 using meshlod::geomorph::HierarchyTime;
+
+// The level of detail at pipeline time `time`, in [0, levels - 1]. The advertised time steps,
+// i * timeScale, need not divide back to i (3 * 0.7 / 0.7 is 2.9999999999999996, whose floor is
+// level 2 collapsed almost to level 3): a time that close to a level's is that level.
+double LevelAtTime(double time, double timeScale, int levels)
+{
+  const double lod = std::min(std::max(time / timeScale, 0.0), static_cast<double>(levels - 1));
+  const double nearest = std::round(lod);
+  return std::abs(lod - nearest) <= LevelSnapTolerance ? nearest : lod;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -181,15 +191,7 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
   if (pipelineTime)
   {
     const double time = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
-    lod = std::min(std::max(time / this->TimeScale, 0.0), static_cast<double>(n - 1));
-    // The advertised time steps, i * TimeScale, need not divide back to i (3 * 0.7 / 0.7 is
-    // 2.9999999999999996, whose floor is level 2 collapsed almost to level 3): a time that
-    // close to a level's is that level.
-    const double nearest = std::round(lod);
-    if (std::abs(lod - nearest) <= LevelSnapTolerance)
-    {
-      lod = nearest;
-    }
+    lod = LevelAtTime(time, this->TimeScale, n);
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), time);
   }
   else if (lod > n - 1)
@@ -201,36 +203,7 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
 
   // 3. The mesh.
   this->UpdateProgress(0.0);
-  bool ok = true;
-  if (this->TargetNumberOfTriangles >= 0)
-  {
-    ok = impl.ProduceExactCount(
-      this, this->TargetNumberOfTriangles, this->CollapseFraction, output, lod);
-  }
-  else
-  {
-    int level = static_cast<int>(std::floor(lod));
-    double t = lod - level;
-    if (level >= n - 1)
-    {
-      level = n - 1;
-      t = 0.0;
-    }
-    lod = level + t;
-    if (t == 0.0)
-    {
-      impl.ProduceLevel(level, output);
-    }
-    else if (impl.Mode == MORPH_ARRAYS)
-    {
-      ok = impl.ProducePartialCollapse(this, level, t, output);
-    }
-    else
-    {
-      ok = impl.ProduceNearestBlend(this, level, t, output);
-    }
-  }
-  if (!ok)
+  if (!this->Produce(lod, output))
   {
     output->Initialize();
     return 1;
@@ -243,4 +216,33 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
   this->ActualNumberOfTriangles = output->GetNumberOfPolys();
   this->UpdateProgress(1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+// The mesh at `lod` (or at TargetNumberOfTriangles), into `output`; `lod` becomes the level of
+// detail produced. False when it failed or was stopped.
+bool vtkLODGeomorph::Produce(double& lod, vtkPolyData* output)
+{
+  Internals& impl = *this->Impl;
+  if (this->TargetNumberOfTriangles >= 0)
+  {
+    return impl.ProduceExactCount(
+      this, this->TargetNumberOfTriangles, this->CollapseFraction, output, lod);
+  }
+  const int n = static_cast<int>(impl.Levels.size());
+  int level = static_cast<int>(std::floor(lod));
+  double t = lod - level;
+  if (level >= n - 1)
+  {
+    level = n - 1;
+    t = 0.0;
+  }
+  lod = level + t;
+  if (t == 0.0)
+  {
+    impl.ProduceLevel(level, output);
+    return true;
+  }
+  return impl.Mode == MORPH_ARRAYS ? impl.ProducePartialCollapse(this, level, t, output)
+                                   : impl.ProduceNearestBlend(this, level, t, output);
 }

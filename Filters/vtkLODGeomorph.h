@@ -300,6 +300,8 @@ private:
   vtkLODGeomorph(const vtkLODGeomorph&) = delete;
   void operator=(const vtkLODGeomorph&) = delete;
 
+  bool Produce(double& lod, vtkPolyData* output);
+
   struct Internals;
   std::unique_ptr<Internals> Impl;
 };
