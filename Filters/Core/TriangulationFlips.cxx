@@ -541,6 +541,101 @@ double ClosestPointOnTriangle(const double p[3],
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// Each interior edge once, from its triangle of lower id: into `gain`, after / before where the
+// flip is worth making, else -1. Only the edges of triangles marked `changed` are judged again
+// (candidates left by a sweep that skipped them for a shared vertex keep their gain).
+void JudgeEdges(const TriangleMesh& level, const TriangleTopology& topology,
+  const FlipJudge& judge, const TriangulationFlipOptions& options,
+  const std::vector<std::uint8_t>& changed, std::vector<float>& gain)
+{
+  const double minimumOpposite = options.MinimumOppositeAngles * (vtkMath::Pi() / 180.0);
+  vtkSMPTools::For(0,
+    level.GetNumberOfTriangles(),
+    [&](Id begin, Id end)
+    {
+      for (Id t = begin; t < end; ++t)
+      {
+        const Id* tri = level.Triangle(t);
+        for (int k = 0; k < 3; ++k)
+        {
+          float& g = gain[3 * static_cast<size_t>(t) + k];
+          const Id u = topology.EdgeNeighbors[3 * static_cast<size_t>(t) + k];
+          if (u <= t)
+          {
+            g = -1.0f; // boundary, non-manifold, or judged from u
+            continue;
+          }
+          if (!changed[t] && !changed[u])
+          {
+            continue; // the same quad as in the sweep before
+          }
+          g = -1.0f;
+          const Id a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
+          const Id d = OppositeOfReversed(level.Triangle(u), a, b);
+          // (A quad whose corners off the edge are sharp needs no judging, see the header.)
+          double before, after;
+          if (d != InvalidId && d != c &&
+            CornerAngle(level.Point(c), level.Point(a), level.Point(b)) +
+                CornerAngle(level.Point(d), level.Point(b), level.Point(a)) >=
+              minimumOpposite &&
+            judge.Judge(level, a, b, c, d, before, after) &&
+            after <= options.RequiredGain * before)
+          {
+            g = static_cast<float>(after / before);
+          }
+        }
+      }
+    });
+}
+
+// The flips judged worth making, best gain first, at most one per vertex and sweep: the
+// triangles around an untouched vertex are as they were judged, so is every edge test below.
+// The triangles flipped are marked in `changedNext`; returns the number of flips.
+Id MakeFlips(TriangleMesh& level, const TriangleTopology& topology, std::vector<float>& gain,
+  std::vector<std::uint8_t>& changedNext)
+{
+  std::vector<Id> candidates;
+  for (Id e = 0; e < 3 * level.GetNumberOfTriangles(); ++e)
+  {
+    if (gain[e] >= 0.0f)
+    {
+      candidates.push_back(e);
+    }
+  }
+  std::stable_sort(candidates.begin(),
+    candidates.end(),
+    [&](Id x, Id y) { return gain[x] < gain[y]; });
+  std::vector<std::uint8_t> used(level.GetNumberOfPoints(), 0);
+  Id made = 0;
+  for (const Id e : candidates)
+  {
+    const Id t = e / 3;
+    const int k = static_cast<int>(e % 3);
+    Id* tri = level.Triangle(t);
+    const Id u = topology.EdgeNeighbors[e];
+    const Id a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
+    const Id d = OppositeOfReversed(level.Triangle(u), a, b);
+    if (d == InvalidId || used[a] || used[b] || used[c] || used[d] ||
+      HasEdge(level, topology.VertexTriangles, c, d))
+    {
+      continue;
+    }
+    const Id flippedT[3] = { c, a, d };
+    const Id flippedU[3] = { d, b, c };
+    std::copy_n(flippedT, 3, tri);
+    std::copy_n(flippedU, 3, level.Triangle(u));
+    used[a] = used[b] = used[c] = used[d] = 1;
+    changedNext[t] = changedNext[u] = 1;
+    gain[e] = -1.0f;
+    ++made;
+  }
+  return made;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 Id ImproveTriangulation(const TriangleMesh& input,
   const VertexTriangleAdjacency& inputTriangles,
   const std::vector<Id>& startVertex,
@@ -556,11 +651,7 @@ Id ImproveTriangulation(const TriangleMesh& input,
     4.0 * errorBound * errorBound,
     std::pow(MinimumSeparation * errorBound, 2) };
   const Id nt = level.GetNumberOfTriangles();
-  const Id np = level.GetNumberOfPoints();
-  const double minimumOpposite = options.MinimumOppositeAngles * (vtkMath::Pi() / 180.0);
   std::vector<float> gain(3 * static_cast<size_t>(nt), -1.0f);
-  std::vector<Id> candidates;
-  std::vector<std::uint8_t> used;
   // A judgement depends on the quad's four points only: after the first sweep only the edges of
   // the triangles a flip changed are judged again.
   std::vector<std::uint8_t> changed(nt, 1), changedNext(nt, 0);
@@ -569,83 +660,9 @@ Id ImproveTriangulation(const TriangleMesh& input,
   {
     TriangleTopology topology;
     topology.Build(level);
-    // Each interior edge once, from its triangle of lower id: after / before, or -1.
-    // (Candidates left by a sweep that skipped them for a shared vertex keep their gain.)
-    vtkSMPTools::For(0,
-      nt,
-      [&](Id begin, Id end)
-      {
-        for (Id t = begin; t < end; ++t)
-        {
-          const Id* tri = level.Triangle(t);
-          for (int k = 0; k < 3; ++k)
-          {
-            float& g = gain[3 * static_cast<size_t>(t) + k];
-            const Id u = topology.EdgeNeighbors[3 * static_cast<size_t>(t) + k];
-            if (u <= t)
-            {
-              g = -1.0f; // boundary, non-manifold, or judged from u
-              continue;
-            }
-            if (!changed[t] && !changed[u])
-            {
-              continue; // the same quad as in the sweep before
-            }
-            g = -1.0f;
-            const Id a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
-            const Id d = OppositeOfReversed(level.Triangle(u), a, b);
-            // (A quad whose corners off the edge are sharp needs no judging, see the header.)
-            double before, after;
-            if (d != InvalidId && d != c &&
-              CornerAngle(level.Point(c), level.Point(a), level.Point(b)) +
-                  CornerAngle(level.Point(d), level.Point(b), level.Point(a)) >=
-                minimumOpposite &&
-              judge.Judge(level, a, b, c, d, before, after) &&
-              after <= options.RequiredGain * before)
-            {
-              g = static_cast<float>(after / before);
-            }
-          }
-        }
-      });
-    candidates.clear();
-    for (Id e = 0; e < 3 * nt; ++e)
-    {
-      if (gain[e] >= 0.0f)
-      {
-        candidates.push_back(e);
-      }
-    }
-    std::stable_sort(candidates.begin(),
-      candidates.end(),
-      [&](Id x, Id y) { return gain[x] < gain[y]; });
-    // At most one flip per vertex and sweep: the triangles around an untouched vertex are as
-    // they were judged, so is every edge test below.
-    used.assign(np, 0);
+    JudgeEdges(level, topology, judge, options, changed, gain);
     std::fill(changedNext.begin(), changedNext.end(), 0);
-    Id made = 0;
-    for (const Id e : candidates)
-    {
-      const Id t = e / 3;
-      const int k = static_cast<int>(e % 3);
-      Id* tri = level.Triangle(t);
-      const Id u = topology.EdgeNeighbors[e];
-      const Id a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
-      const Id d = OppositeOfReversed(level.Triangle(u), a, b);
-      if (d == InvalidId || used[a] || used[b] || used[c] || used[d] ||
-        HasEdge(level, topology.VertexTriangles, c, d))
-      {
-        continue;
-      }
-      const Id flippedT[3] = { c, a, d };
-      const Id flippedU[3] = { d, b, c };
-      std::copy_n(flippedT, 3, tri);
-      std::copy_n(flippedU, 3, level.Triangle(u));
-      used[a] = used[b] = used[c] = used[d] = 1;
-      changedNext[t] = changedNext[u] = 1;
-      gain[e] = -1.0f;
-      ++made;
-    }
+    const Id made = MakeFlips(level, topology, gain, changedNext);
     flips += made;
     changed.swap(changedNext);
     if (made == 0)
