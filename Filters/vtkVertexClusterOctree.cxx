@@ -156,6 +156,96 @@ meshlod::LevelData ToLevelData(meshlod::ClusterLevel& level,
   }
   return data;
 }
+
+// The colour source for baking: the input texture at its texture coordinates, else a colour
+// array (ColorArrayName, else the scalars). False, with the reason in `problem`, when neither
+// can be used.
+bool InitializeBaker(meshlod::TextureBaker& baker,
+  const meshlod::InputMesh& in,
+  vtkDataArray* inputTCoords,
+  vtkImageData* texture,
+  const char* colorArrayName,
+  std::string& problem)
+{
+  bool ready = false;
+  if (texture && inputTCoords)
+  {
+    ready = baker.InitializeFromTexture(in.Source, inputTCoords, texture, problem);
+  }
+  else
+  {
+    vtkDataArray* colors = colorArrayName ? in.Source->GetPointData()->GetArray(colorArrayName)
+                                          : in.Source->GetPointData()->GetScalars();
+    if (colors == nullptr)
+    {
+      const bool other = colorArrayName &&
+        in.Source->GetPointData()->GetAbstractArray(colorArrayName) != nullptr;
+      problem = !colorArrayName
+        ? std::string("the input has neither texture coordinates with a texture on port 1 "
+                      "nor colour scalars")
+        : std::string(other ? "the input's point array " : "the input has no point array ") +
+          "named " + colorArrayName + (other ? " is not numeric (a data array)" : "");
+    }
+    else
+    {
+      ready = baker.InitializeFromColors(in.Source, colors, problem);
+    }
+  }
+  return ready;
+}
+
+// Block b of the textures output holds the texture of level b: named as that level's block.
+void NameTextureBlocks(vtkMultiBlockDataSet* textures)
+{
+  for (unsigned int b = 0; b < textures->GetNumberOfBlocks(); ++b)
+  {
+    textures->GetMetaData(b)->Set(
+      vtkCompositeDataSet::NAME(), meshlod::LevelBlockName(static_cast<int>(b)).c_str());
+  }
+}
+
+// The normals array of an output level: each point (split as `split` says) takes the normal of
+// its level point.
+void SetLevelNormals(vtkPolyData* poly,
+  const std::string& normalsName,
+  const std::vector<float>& normals,
+  const SplitMap& split)
+{
+  vtkNew<vtkFloatArray> array;
+  array->SetName(normalsName.c_str());
+  array->SetNumberOfComponents(3);
+  array->SetNumberOfTuples(poly->GetNumberOfPoints());
+  for (vtkIdType q = 0; q < poly->GetNumberOfPoints(); ++q)
+  {
+    array->SetTypedTuple(
+      q, normals.data() + 3 * static_cast<size_t>(split.Point(static_cast<Id>(q))));
+  }
+  poly->GetPointData()->SetNormals(array);
+}
+
+// The texture coordinates of an output level: the texel of each triangle corner in `atlas`, on
+// the point the atlas gives that corner.
+void SetLevelTCoords(vtkPolyData* poly,
+  const std::string& tcoordsName,
+  const meshlod::TriangleMesh& mesh,
+  const meshlod::TextureAtlas& atlas)
+{
+  vtkNew<vtkFloatArray> tcoords;
+  tcoords->SetName(tcoordsName.c_str());
+  tcoords->SetNumberOfComponents(2);
+  tcoords->SetNumberOfTuples(poly->GetNumberOfPoints());
+  for (Id t = 0; t < mesh.GetNumberOfTriangles(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const Id q = atlas.CornerPoint[3 * static_cast<size_t>(t) + k];
+      const Id* texel = atlas.CornerTexel.data() + 6 * static_cast<size_t>(t) + 2 * k;
+      tcoords->SetTypedComponent(q, 0, static_cast<float>(atlas.U(texel[0])));
+      tcoords->SetTypedComponent(q, 1, static_cast<float>(atlas.U(texel[1])));
+    }
+  }
+  poly->GetPointData()->SetTCoords(tcoords);
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -391,6 +481,37 @@ bool vtkVertexClusterOctree::CheckSettings()
 }
 
 //------------------------------------------------------------------------------
+// The levels after level 0, RequestData's second half: the octree of the input, then each
+// requested level made, checked against its request and handed to the hierarchy with its
+// normals, texture atlas and baked texture. (Nested in the filter so that it reads the filter's
+// settings and warns in its name.)
+struct vtkVertexClusterOctree::LevelMaker
+{
+  vtkVertexClusterOctree* Self;
+  meshlod::InputMesh& In;
+  meshlod::HierarchyBuilder& Builder;
+  meshlod::TextureBaker& Baker;
+  vtkDataArray* InputTCoords; // null when the input has none
+  vtkMultiBlockDataSet* Output;
+  vtkMultiBlockDataSet* Textures;
+
+  // False when the execution was aborted: RequestData then returns at once.
+  bool MakeLevels();
+  // The levels LevelMode asks for (epsilons in world units).
+  std::vector<LevelRequest> Requests(double unit) const;
+  meshlod::OctreeClusteringOptions ClusteringOptions(double unit) const;
+  // Level i + 1, for request i, with the warnings it calls for; false when it would keep no
+  // triangle.
+  bool MakeLevel(meshlod::OctreeClustering& clustering,
+    const std::vector<LevelRequest>& requests,
+    size_t i,
+    meshlod::ClusterLevel& level);
+  // The texture atlas of level i + 1 (i from 0), and its points split as the atlas splits them.
+  SplitMap BuildAtlas(
+    const meshlod::ClusterLevel& level, size_t i, meshlod::TextureAtlas& atlas) const;
+};
+
+//------------------------------------------------------------------------------
 int vtkVertexClusterOctree::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -441,39 +562,12 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
     return 0;
   }
 
-  // The colour source for baking: the input texture at its texture coordinates, else a colour
-  // array.
   meshlod::TextureBaker baker;
   vtkDataArray* inputTCoords = in.Source->GetPointData()->GetTCoords();
   if (this->BakeTexture)
   {
     std::string problem;
-    bool ready = false;
-    if (texture && inputTCoords)
-    {
-      ready = baker.InitializeFromTexture(in.Source, inputTCoords, texture, problem);
-    }
-    else
-    {
-      vtkDataArray* colors = this->ColorArrayName
-        ? in.Source->GetPointData()->GetArray(this->ColorArrayName)
-        : in.Source->GetPointData()->GetScalars();
-      if (colors == nullptr)
-      {
-        const bool other = this->ColorArrayName &&
-          in.Source->GetPointData()->GetAbstractArray(this->ColorArrayName) != nullptr;
-        problem = !this->ColorArrayName
-          ? std::string("the input has neither texture coordinates with a texture on port 1 "
-                        "nor colour scalars")
-          : std::string(other ? "the input's point array " : "the input has no point array ") +
-            "named " + this->ColorArrayName + (other ? " is not numeric (a data array)" : "");
-      }
-      else
-      {
-        ready = baker.InitializeFromColors(in.Source, colors, problem);
-      }
-    }
-    if (!ready)
+    if (!InitializeBaker(baker, in, inputTCoords, texture, this->ColorArrayName, problem))
     {
       vtkErrorMacro("BakeTexture is on but "
         << problem
@@ -481,29 +575,6 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
            "array (SetColorArrayName) or turn BakeTexture off.");
       return 0;
     }
-  }
-
-  const double unit = this->RelativeUnits ? in.Mesh.BoundingDiagonal() : 1.0;
-  std::vector<LevelRequest> requests;
-  switch (this->LevelMode)
-  {
-    case EPSILON_LIST:
-      for (const double e : this->EpsilonValues)
-      {
-        requests.push_back({ false, e * unit, 0 });
-      }
-      break;
-    case TARGET_TRIANGLE_COUNTS:
-      for (const vtkIdType n : this->TargetTriangleCounts)
-      {
-        requests.push_back({ true, 0.0, n });
-      }
-      break;
-    default:
-      for (int i = 0; i < this->NumberOfLevels; ++i)
-      {
-        requests.push_back({ false, this->Epsilon * std::pow(this->EpsilonFactor, i) * unit, 0 });
-      }
   }
 
   meshlod::HierarchyBuilder builder;
@@ -521,157 +592,10 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   }
   this->UpdateProgress(0.1);
 
-  meshlod::OctreeClusteringOptions options;
-  options.MaximumCellSize = this->MaximumCellSize * unit;
-  options.MaximumPointsPerCell = this->MaximumPointsPerCell;
-  options.RepresentativeIterations = this->RepresentativeIterations;
-  options.FlipEdges = this->FlipEdges;
-  options.PreserveTopology = this->PreserveTopology;
-  options.BoundaryWeight = this->BoundaryWeight;
-  options.OrderFlatClusters = this->LevelMode == TARGET_TRIANGLE_COUNTS;
-  // The clustering asks the topology only which edges are boundaries.
-  in.Topology.KeepBoundaryFlagsOnly();
-  meshlod::OctreeClustering clustering(in.Mesh, in.Topology, options);
-  clustering.BuildTree();
-  this->UpdateProgress(0.4);
-  if (this->GetAbortExecute())
+  LevelMaker levels{ this, in, builder, baker, inputTCoords, output, textures };
+  if (!levels.MakeLevels())
   {
     return 1;
-  }
-
-  vtkDataArray* inputNormals = in.Source->GetPointData()->GetNormals();
-  const std::string normalsName =
-    inputNormals && inputNormals->GetName() ? inputNormals->GetName() : "Normals";
-  const std::string tcoordsName =
-    inputTCoords && inputTCoords->GetName() ? inputTCoords->GetName() : "TCoords";
-  meshlod::LevelCentering centering;
-  std::vector<double> levelZeroPoints; // only if its points are neither float nor double
-  if (this->CenterOnInput)
-  {
-    centering.SetLevelZero(builder.GetLevelZeroView(levelZeroPoints));
-  }
-  SplitMap previous;
-  Id previousPoints = in.Mesh.GetNumberOfPoints();
-  for (size_t i = 0; i < requests.size(); ++i)
-  {
-    meshlod::ClusterLevel level;
-    // (A count above the input's asks for no change; clamped so that it fits the core's ids.)
-    const Id count =
-      static_cast<Id>(std::min<vtkIdType>(requests[i].Count, in.Mesh.GetNumberOfTriangles()));
-    const bool made = requests[i].ByCount ? clustering.MakeLevelForTriangleCount(count, level)
-                                          : clustering.MakeLevel(requests[i].Epsilon, level);
-    if (!made)
-    {
-      vtkWarningMacro(
-        "Level " << i + 1 << " would keep no triangle; the hierarchy stops at level " << i << ".");
-      break;
-    }
-    this->LevelEpsilons.push_back(level.Epsilon);
-    const vtkIdType previousTriangles =
-      builder.GetLevel(builder.GetNumberOfLevels() - 1)->GetNumberOfPolys();
-    if (requests[i].ByCount)
-    {
-      this->WarnIfCountMissed(static_cast<int>(i + 1), requests[i].Count,
-        static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()), previousTriangles);
-    }
-    else if (static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()) == previousTriangles)
-    {
-      // Kept (level i answers epsilon i), but said: a repeated level is rarely what was meant.
-      vtkWarningMacro("Level " << i + 1 << " keeps the " << previousTriangles
-                               << " triangles of level " << i << ": its epsilon ("
-                               << requests[i].Epsilon
-                               << " in world units) merges nothing more (a larger "
-                                  "EpsilonFactor or larger epsilon values give coarser levels).");
-    }
-
-    if (this->CenterOnInput)
-    {
-      centering.Apply(
-        level.Mesh, level.Target, level.SourceOffsets, level.SourceParents, level.SourceWeights);
-    }
-    meshlod::TextureAtlas atlas;
-    SplitMap split;
-    if (this->BakeTexture)
-    {
-      meshlod::BuildTextureAtlas(level.Mesh, this->TextureResolution, atlas);
-      if (atlas.Resolution > this->TextureResolution)
-      {
-        vtkWarningMacro("Level " << i + 1 << " has " << level.Mesh.GetNumberOfTriangles()
-                                 << " triangles, too many for a " << this->TextureResolution
-                                 << "^2 texture; its texture has " << atlas.Resolution
-                                 << "^2 texels.");
-      }
-      split.SplitToPoint = atlas.SplitPoints;
-      split.FirstSplit.assign(level.Mesh.GetNumberOfPoints(), InvalidId);
-      for (Id q = static_cast<Id>(atlas.SplitPoints.size()) - 1; q >= 0; --q)
-      {
-        split.FirstSplit[atlas.SplitPoints[q]] = q;
-      }
-    }
-    const std::vector<float> normals =
-      this->ComputeNormals ? PointNormals(level.Mesh) : std::vector<float>();
-    builder.AppendLevel(
-      ToLevelData(level, previous, previousPoints, split, this->BakeTexture ? &atlas : nullptr));
-    vtkPolyData* poly = builder.GetLevel(builder.GetNumberOfLevels() - 1);
-
-    if (this->ComputeNormals)
-    {
-      vtkNew<vtkFloatArray> array;
-      array->SetName(normalsName.c_str());
-      array->SetNumberOfComponents(3);
-      array->SetNumberOfTuples(poly->GetNumberOfPoints());
-      for (vtkIdType q = 0; q < poly->GetNumberOfPoints(); ++q)
-      {
-        array->SetTypedTuple(
-          q, normals.data() + 3 * static_cast<size_t>(split.Point(static_cast<Id>(q))));
-      }
-      poly->GetPointData()->SetNormals(array);
-    }
-    if (this->BakeTexture)
-    {
-      vtkNew<vtkFloatArray> tcoords;
-      tcoords->SetName(tcoordsName.c_str());
-      tcoords->SetNumberOfComponents(2);
-      tcoords->SetNumberOfTuples(poly->GetNumberOfPoints());
-      for (Id t = 0; t < level.Mesh.GetNumberOfTriangles(); ++t)
-      {
-        for (int k = 0; k < 3; ++k)
-        {
-          const Id q = atlas.CornerPoint[3 * static_cast<size_t>(t) + k];
-          const Id* texel = atlas.CornerTexel.data() + 6 * static_cast<size_t>(t) + 2 * k;
-          tcoords->SetTypedComponent(q, 0, static_cast<float>(atlas.U(texel[0])));
-          tcoords->SetTypedComponent(q, 1, static_cast<float>(atlas.U(texel[1])));
-        }
-      }
-      poly->GetPointData()->SetTCoords(tcoords);
-      // The baking reports the second half of this level's share of the progress.
-      const double half = 0.25 / requests.size();
-      const double start = 0.4 + half * (2 * i + 1);
-      vtkSmartPointer<vtkImageData> texture = baker.Bake(level.Mesh, atlas,
-        [&](double fraction)
-        {
-          this->UpdateProgress(start + half * fraction);
-          return !this->GetAbortExecute();
-        });
-      if (texture == nullptr)
-      {
-        output->Initialize();
-        textures->Initialize();
-        return 1;
-      }
-      textures->SetBlock(static_cast<unsigned int>(i + 1), texture);
-      MarkAtlasLevel(poly, static_cast<int>(i + 1));
-    }
-
-    previousPoints = static_cast<Id>(poly->GetNumberOfPoints());
-    previous = std::move(split);
-    this->UpdateProgress(0.4 + 0.5 * (i + 1) / requests.size());
-    if (this->GetAbortExecute())
-    {
-      output->Initialize();
-      textures->Initialize();
-      return 1;
-    }
   }
 
   if (this->MeasureLevelErrors)
@@ -681,14 +605,213 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   builder.Finish(output);
   if (this->BakeTexture)
   {
-    for (unsigned int b = 0; b < textures->GetNumberOfBlocks(); ++b)
-    {
-      textures->GetMetaData(b)->Set(
-        vtkCompositeDataSet::NAME(), meshlod::LevelBlockName(static_cast<int>(b)).c_str());
-    }
+    NameTextureBlocks(textures);
   }
   this->UpdateProgress(1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
+{
+  vtkVertexClusterOctree* self = this->Self;
+  meshlod::InputMesh& in = this->In;
+  meshlod::HierarchyBuilder& builder = this->Builder;
+  const double unit = self->RelativeUnits ? in.Mesh.BoundingDiagonal() : 1.0;
+  const std::vector<LevelRequest> requests = this->Requests(unit);
+  const meshlod::OctreeClusteringOptions options = this->ClusteringOptions(unit);
+  // The clustering asks the topology only which edges are boundaries.
+  in.Topology.KeepBoundaryFlagsOnly();
+  meshlod::OctreeClustering clustering(in.Mesh, in.Topology, options);
+  clustering.BuildTree();
+  self->UpdateProgress(0.4);
+  if (self->GetAbortExecute())
+  {
+    return false;
+  }
+
+  vtkDataArray* inputNormals = in.Source->GetPointData()->GetNormals();
+  const std::string normalsName =
+    inputNormals && inputNormals->GetName() ? inputNormals->GetName() : "Normals";
+  vtkDataArray* inputTCoords = this->InputTCoords;
+  const std::string tcoordsName =
+    inputTCoords && inputTCoords->GetName() ? inputTCoords->GetName() : "TCoords";
+  meshlod::LevelCentering centering;
+  std::vector<double> levelZeroPoints; // only if its points are neither float nor double
+  if (self->CenterOnInput)
+  {
+    centering.SetLevelZero(builder.GetLevelZeroView(levelZeroPoints));
+  }
+  SplitMap previous;
+  Id previousPoints = in.Mesh.GetNumberOfPoints();
+  for (size_t i = 0; i < requests.size(); ++i)
+  {
+    meshlod::ClusterLevel level;
+    if (!this->MakeLevel(clustering, requests, i, level))
+    {
+      break;
+    }
+
+    if (self->CenterOnInput)
+    {
+      centering.Apply(
+        level.Mesh, level.Target, level.SourceOffsets, level.SourceParents, level.SourceWeights);
+    }
+    meshlod::TextureAtlas atlas;
+    SplitMap split;
+    if (self->BakeTexture)
+    {
+      split = this->BuildAtlas(level, i, atlas);
+    }
+    const std::vector<float> normals =
+      self->ComputeNormals ? PointNormals(level.Mesh) : std::vector<float>();
+    builder.AppendLevel(
+      ToLevelData(level, previous, previousPoints, split, self->BakeTexture ? &atlas : nullptr));
+    vtkPolyData* poly = builder.GetLevel(builder.GetNumberOfLevels() - 1);
+
+    if (self->ComputeNormals)
+    {
+      SetLevelNormals(poly, normalsName, normals, split);
+    }
+    if (self->BakeTexture)
+    {
+      SetLevelTCoords(poly, tcoordsName, level.Mesh, atlas);
+      // The baking reports the second half of this level's share of the progress.
+      const double half = 0.25 / requests.size();
+      const double start = 0.4 + half * (2 * i + 1);
+      vtkSmartPointer<vtkImageData> texture = this->Baker.Bake(level.Mesh, atlas,
+        [&](double fraction)
+        {
+          self->UpdateProgress(start + half * fraction);
+          return !self->GetAbortExecute();
+        });
+      if (texture == nullptr)
+      {
+        this->Output->Initialize();
+        this->Textures->Initialize();
+        return false;
+      }
+      this->Textures->SetBlock(static_cast<unsigned int>(i + 1), texture);
+      MarkAtlasLevel(poly, static_cast<int>(i + 1));
+    }
+
+    previousPoints = static_cast<Id>(poly->GetNumberOfPoints());
+    previous = std::move(split);
+    self->UpdateProgress(0.4 + 0.5 * (i + 1) / requests.size());
+    if (self->GetAbortExecute())
+    {
+      this->Output->Initialize();
+      this->Textures->Initialize();
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+std::vector<LevelRequest> vtkVertexClusterOctree::LevelMaker::Requests(double unit) const
+{
+  const vtkVertexClusterOctree* self = this->Self;
+  std::vector<LevelRequest> requests;
+  switch (self->LevelMode)
+  {
+    case EPSILON_LIST:
+      for (const double e : self->EpsilonValues)
+      {
+        requests.push_back({ false, e * unit, 0 });
+      }
+      break;
+    case TARGET_TRIANGLE_COUNTS:
+      for (const vtkIdType n : self->TargetTriangleCounts)
+      {
+        requests.push_back({ true, 0.0, n });
+      }
+      break;
+    default:
+      for (int i = 0; i < self->NumberOfLevels; ++i)
+      {
+        requests.push_back({ false, self->Epsilon * std::pow(self->EpsilonFactor, i) * unit, 0 });
+      }
+  }
+  return requests;
+}
+
+//------------------------------------------------------------------------------
+meshlod::OctreeClusteringOptions vtkVertexClusterOctree::LevelMaker::ClusteringOptions(
+  double unit) const
+{
+  const vtkVertexClusterOctree* self = this->Self;
+  meshlod::OctreeClusteringOptions options;
+  options.MaximumCellSize = self->MaximumCellSize * unit;
+  options.MaximumPointsPerCell = self->MaximumPointsPerCell;
+  options.RepresentativeIterations = self->RepresentativeIterations;
+  options.FlipEdges = self->FlipEdges;
+  options.PreserveTopology = self->PreserveTopology;
+  options.BoundaryWeight = self->BoundaryWeight;
+  options.OrderFlatClusters = self->LevelMode == TARGET_TRIANGLE_COUNTS;
+  return options;
+}
+
+//------------------------------------------------------------------------------
+bool vtkVertexClusterOctree::LevelMaker::MakeLevel(meshlod::OctreeClustering& clustering,
+  const std::vector<LevelRequest>& requests,
+  size_t i,
+  meshlod::ClusterLevel& level)
+{
+  vtkVertexClusterOctree* self = this->Self;
+  const meshlod::HierarchyBuilder& builder = this->Builder;
+  // (A count above the input's asks for no change; clamped so that it fits the core's ids.)
+  const Id count =
+    static_cast<Id>(std::min<vtkIdType>(requests[i].Count, this->In.Mesh.GetNumberOfTriangles()));
+  const bool made = requests[i].ByCount ? clustering.MakeLevelForTriangleCount(count, level)
+                                        : clustering.MakeLevel(requests[i].Epsilon, level);
+  if (!made)
+  {
+    vtkWarningWithObjectMacro(self,
+      "Level " << i + 1 << " would keep no triangle; the hierarchy stops at level " << i << ".");
+    return false;
+  }
+  self->LevelEpsilons.push_back(level.Epsilon);
+  const vtkIdType previousTriangles =
+    builder.GetLevel(builder.GetNumberOfLevels() - 1)->GetNumberOfPolys();
+  if (requests[i].ByCount)
+  {
+    self->WarnIfCountMissed(static_cast<int>(i + 1), requests[i].Count,
+      static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()), previousTriangles);
+  }
+  else if (static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()) == previousTriangles)
+  {
+    // Kept (level i answers epsilon i), but said: a repeated level is rarely what was meant.
+    vtkWarningWithObjectMacro(self,
+      "Level " << i + 1 << " keeps the " << previousTriangles << " triangles of level " << i
+               << ": its epsilon (" << requests[i].Epsilon
+               << " in world units) merges nothing more (a larger "
+                  "EpsilonFactor or larger epsilon values give coarser levels).");
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+SplitMap vtkVertexClusterOctree::LevelMaker::BuildAtlas(
+  const meshlod::ClusterLevel& level, size_t i, meshlod::TextureAtlas& atlas) const
+{
+  const vtkVertexClusterOctree* self = this->Self;
+  meshlod::BuildTextureAtlas(level.Mesh, self->TextureResolution, atlas);
+  if (atlas.Resolution > self->TextureResolution)
+  {
+    vtkWarningWithObjectMacro(self,
+      "Level " << i + 1 << " has " << level.Mesh.GetNumberOfTriangles()
+               << " triangles, too many for a " << self->TextureResolution
+               << "^2 texture; its texture has " << atlas.Resolution << "^2 texels.");
+  }
+  SplitMap split;
+  split.SplitToPoint = atlas.SplitPoints;
+  split.FirstSplit.assign(level.Mesh.GetNumberOfPoints(), InvalidId);
+  for (Id q = static_cast<Id>(atlas.SplitPoints.size()) - 1; q >= 0; --q)
+  {
+    split.FirstSplit[atlas.SplitPoints[q]] = q;
+  }
+  return split;
 }
 
 //------------------------------------------------------------------------------

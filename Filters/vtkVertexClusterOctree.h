@@ -526,6 +526,8 @@ private:
 
   bool CheckSettings();
   void WarnIfCountMissed(int level, vtkIdType asked, vtkIdType reached, vtkIdType previous);
+  // RequestData's levels after level 0 (defined in the .cxx).
+  struct LevelMaker;
 };
 
 #endif

@@ -136,6 +136,15 @@ struct NodeStore
     this->Work.clear();
   }
 };
+
+// The e1 errors of the nodes `store` created, from their quadrics.
+void ComputeCreatedE1(NodeStore& store, double tolerance)
+{
+  for (Id i = 0; i < store.Created; ++i)
+  {
+    ComputeE1(store.Record(store.Base + i), store.Work[i].Q, store.Work[i].Sum, tolerance);
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -836,6 +845,20 @@ void ClusterTree::FindCurves()
 }
 
 //------------------------------------------------------------------------------
+// The bottom tier: the vertices bucketed by their cell at TierDepth (KeyOffsets, CellVertices;
+// Cells lists the keys of the cells that hold some), and what building each cell leaves for
+// the top tier: its number of nodes, its top components with their quadrics and its half-edges
+// to other cells.
+struct ClusterTree::BottomTier
+{
+  std::vector<Id> KeyOffsets, CellVertices;
+  std::vector<Id> Cells;
+  std::vector<Id> CellCounts;
+  std::vector<std::vector<FinishedNode>> CellRoots;
+  std::vector<std::vector<HalfEdge>> CellTop;
+};
+
+//------------------------------------------------------------------------------
 void ClusterTree::Build(const TriangleMesh& mesh,
   const TriangleTopology& topology,
   const ClusterTreeOptions& options)
@@ -847,16 +870,29 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   this->Nodes.clear();
   AssignFresh(this->LeafParent, this->NV, InvalidId);
   this->ComputeFrame();
-  const Id nv = this->NV;
   this->FindCurves();
   this->FindSeams();
   Builder builder(*this);
   this->ComputeCodes();
 
+  BottomTier tier;
+  this->BucketVertices(tier);
+  this->BuildBottomTier(builder, tier);
+  this->RenumberBottomTier(builder, tier);
+  this->BuildTopTier(builder, tier);
+  this->ComputeOrder();
+}
+
+//------------------------------------------------------------------------------
+void ClusterTree::BucketVertices(BottomTier& tier) const
+{
+  const Id nv = this->NV;
+  std::vector<Id>& keyOffsets = tier.KeyOffsets;
+  std::vector<Id>& cellVertices = tier.CellVertices;
+  std::vector<Id>& cells = tier.Cells;
   // Vertices bucketed by their cell at TierDepth (stable: each cell lists its vertices by id).
   const int shift = MaxDepth - TierDepth;
   const Id numberOfKeys = Id(1) << TierDepth;
-  std::vector<Id> keyOffsets, cellVertices;
   GroupByKey(
     static_cast<size_t>(numberOfKeys),
     [&](auto&& emit) {
@@ -866,7 +902,6 @@ void ClusterTree::Build(const TriangleMesh& mesh,
       }
     },
     keyOffsets, cellVertices);
-  std::vector<Id> cells;
   for (Id key = 0; key < numberOfKeys; ++key)
   {
     if (keyOffsets[key + 1] > keyOffsets[key])
@@ -874,7 +909,16 @@ void ClusterTree::Build(const TriangleMesh& mesh,
       cells.push_back(key);
     }
   }
+}
 
+//------------------------------------------------------------------------------
+void ClusterTree::BuildBottomTier(Builder& builder, BottomTier& tier)
+{
+  const Id nv = this->NV;
+  const TriangleMesh& mesh = *this->Mesh;
+  const std::vector<Id>& keyOffsets = tier.KeyOffsets;
+  const std::vector<Id>& cellVertices = tier.CellVertices;
+  const std::vector<Id>& cells = tier.Cells;
   // Bottom tier, cell by cell. Node ids are provisional, NV + (first slot of the cell in
   // cellVertices) + local index: a cell of n vertices makes at most n - 1 nodes, so the ranges
   // never overlap, and each cell writes its nodes straight into the node array, sized for all
@@ -882,10 +926,13 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   // built, except those of its top components, which the top tier still needs.
   const Id numberOfCells = static_cast<Id>(cells.size());
   ResizeFresh(this->Nodes, nv);
-  std::vector<Id> cellCounts(numberOfCells, 0);
-  std::vector<std::vector<FinishedNode>> cellRoots(numberOfCells);
-  std::vector<std::vector<HalfEdge>> cellTop(numberOfCells);
-  const VertexTriangleAdjacency& adj = topology.VertexTriangles;
+  std::vector<Id>& cellCounts = tier.CellCounts;
+  std::vector<std::vector<FinishedNode>>& cellRoots = tier.CellRoots;
+  std::vector<std::vector<HalfEdge>>& cellTop = tier.CellTop;
+  cellCounts.assign(numberOfCells, 0);
+  cellRoots.resize(numberOfCells);
+  cellTop.resize(numberOfCells);
+  const VertexTriangleAdjacency& adj = this->Topology->VertexTriangles;
   vtkSMPTools::For(0,
     numberOfCells,
     [&](Id begin, Id end)
@@ -913,11 +960,7 @@ void ClusterTree::Build(const TriangleMesh& mesh,
         SortByDepth(items, scratch);
         store.Restart(nv + keyOffsets[key]);
         builder.MergeSorted(items, c * (MaxDepth + 2), store);
-        for (Id i = 0; i < store.Created; ++i)
-        {
-          ComputeE1(store.Record(store.Base + i), store.Work[i].Q, store.Work[i].Sum,
-            options.PlacementTolerance);
-        }
+        ComputeCreatedE1(store, this->Options.PlacementTolerance);
         for (Id i = keyOffsets[key]; i < keyOffsets[key + 1]; ++i)
         {
           const Id v = cellVertices[i];
@@ -930,7 +973,18 @@ void ClusterTree::Build(const TriangleMesh& mesh,
         cellCounts[c] = store.Created;
       }
     });
+}
 
+//------------------------------------------------------------------------------
+void ClusterTree::RenumberBottomTier(Builder& builder, BottomTier& tier)
+{
+  const Id nv = this->NV;
+  const std::vector<Id>& keyOffsets = tier.KeyOffsets;
+  const std::vector<Id>& cellVertices = tier.CellVertices;
+  const std::vector<Id>& cells = tier.Cells;
+  const std::vector<Id>& cellCounts = tier.CellCounts;
+  std::vector<std::vector<FinishedNode>>& cellRoots = tier.CellRoots;
+  const Id numberOfCells = static_cast<Id>(cells.size());
   // Final ids: the cells' nodes in cell order, then the top tier's.
   std::vector<Id>& nodeOffsets = this->CellNodeOffsets;
   nodeOffsets.assign(static_cast<size_t>(numberOfCells) + 1, 0);
@@ -985,7 +1039,16 @@ void ClusterTree::Build(const TriangleMesh& mesh,
       std::copy(from, from + cellCounts[c], this->Nodes.begin() + nodeOffsets[c]);
     }
   }
+}
 
+//------------------------------------------------------------------------------
+void ClusterTree::BuildTopTier(Builder& builder, BottomTier& tier)
+{
+  const Id nv = this->NV;
+  const std::vector<Id>& nodeOffsets = this->CellNodeOffsets;
+  std::vector<std::vector<FinishedNode>>& cellRoots = tier.CellRoots;
+  std::vector<std::vector<HalfEdge>>& cellTop = tier.CellTop;
+  const Id numberOfCells = static_cast<Id>(tier.Cells.size());
   // Top tier, serially.
   // The cells' top components with their quadrics, by id (each cell's list is sorted, and its
   // ids lie above the previous cell's), and the half-edges between cells.
@@ -1015,14 +1078,9 @@ void ClusterTree::Build(const TriangleMesh& mesh,
   store.Finished = &finished;
   store.Restart(nv + nodeOffsets[numberOfCells]);
   builder.MergeSorted(top, numberOfCells * (MaxDepth + 2), store);
-  for (Id i = 0; i < store.Created; ++i)
-  {
-    ComputeE1(
-      store.Record(store.Base + i), store.Work[i].Q, store.Work[i].Sum, options.PlacementTolerance);
-  }
+  ComputeCreatedE1(store, this->Options.PlacementTolerance);
   // (The room of the NV - 1 nodes a tree can have stays: shrinking would copy the array.)
   this->Nodes.resize(nodeOffsets[numberOfCells] + store.Created);
-  this->ComputeOrder();
 }
 
 //------------------------------------------------------------------------------

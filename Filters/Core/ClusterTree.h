@@ -225,6 +225,14 @@ private:
   void PlaceIslands();
   void FindCurves();
   void FindSeams();
+  // Build's steps after the codes: the vertices bucketed by their cell of the bottom tier, that
+  // tier built cell by cell (in parallel, on provisional node ids), its nodes given their final
+  // ids, and the top tier built over them (serially).
+  struct BottomTier;
+  void BucketVertices(BottomTier& tier) const;
+  void BuildBottomTier(Builder& builder, BottomTier& tier);
+  void RenumberBottomTier(Builder& builder, BottomTier& tier);
+  void BuildTopTier(Builder& builder, BottomTier& tier);
   void ComputeOrder();
   void ComputeChildren();
 };

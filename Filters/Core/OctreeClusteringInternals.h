@@ -257,6 +257,26 @@ struct OctreeClustering::Internals
   /// what the level removes; replaces best with that trial and returns its count.
   Id BackOff(Id count, ClusterLevel& best);
   void Finalize(octree::Synthesis& s, ClusterLevel& level) const;
+  // Finalize's steps. `final` lists the kept triangles that make the level, `newId` maps a
+  // cluster to the level's point (InvalidId for a cluster no such triangle uses) and `redirect`
+  // a vanished cluster to the kept cluster that takes its previous points.
+  std::vector<Id> KeptTriangles(const octree::Synthesis& s) const;
+  Id SetLevelPoints(const octree::Synthesis& s,
+    const std::vector<Id>& final,
+    std::vector<Id>& newId,
+    ClusterLevel& level) const;
+  void SetLevelTriangles(const octree::Synthesis& s,
+    const std::vector<Id>& final,
+    const std::vector<Id>& newId,
+    ClusterLevel& level) const;
+  std::vector<Id> RedirectVanished(const octree::Synthesis& s, const std::vector<Id>& newId) const;
+  void SetTargetsAndRanks(const octree::Synthesis& s,
+    const std::vector<Id>& newId,
+    const std::vector<Id>& redirect,
+    Id points,
+    ClusterLevel& level) const;
+  void SetSources(
+    const octree::Synthesis& s, const std::vector<Id>& newId, Id points, ClusterLevel& level) const;
   // Makes the chosen level the current one, then flips its edges towards the input
   // (Options.FlipEdges).
   void Commit(ClusterLevel& level);

@@ -746,10 +746,25 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
 // Points, triangles, targets, ranks and sources of a level from its synthesis.
 void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) const
 {
-  const Id clusters = static_cast<Id>(s.Cut.size());
-  const Id previousPoints = this->PreviousPoints();
-  const Id previousTriangles = this->PreviousTriangles();
-  const Id* prev = this->PreviousTriangleData();
+  const std::vector<Id> final = this->KeptTriangles(s);
+  const Id count = static_cast<Id>(final.size());
+  if (count == 0)
+  {
+    return; // everything collapsed: no level
+  }
+  std::vector<Id> newId;
+  const Id points = this->SetLevelPoints(s, final, newId, level);
+  this->SetLevelTriangles(s, final, newId, level);
+  const std::vector<Id> redirect = this->RedirectVanished(s, newId);
+  this->SetTargetsAndRanks(s, newId, redirect, points, level);
+  this->SetSources(s, newId, points, level);
+}
+
+//------------------------------------------------------------------------------
+// The kept triangles that go into the level: those that repeat no earlier one, and without the
+// topology repairs those that repeat one in the opposite order.
+std::vector<Id> OctreeClustering::Internals::KeptTriangles(const Synthesis& s) const
+{
   // Without the topology repairs two triangles on the same clusters in opposite orders (a
   // thin part folded flat) both stay: each is the image of its finer triangles, so MorphTargetId
   // keeps every triangle's orientation (dropping one left finer triangles mapped onto the
@@ -762,13 +777,20 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
     [&](Id j) { return s.Duplicate[j] == 0 || (free && s.Duplicate[j] == OppositeDuplicate); },
     [&](Id j, Id slot) { final[slot] = j; });
   final.resize(count);
-  if (count == 0)
-  {
-    return; // everything collapsed: no level
-  }
+  return final;
+}
 
+//------------------------------------------------------------------------------
+// The level's points and its estimated error; newId maps a cluster to its point (InvalidId for
+// a cluster that no triangle of `final` uses). Returns the number of points.
+Id OctreeClustering::Internals::SetLevelPoints(const Synthesis& s,
+  const std::vector<Id>& final,
+  std::vector<Id>& newId,
+  ClusterLevel& level) const
+{
+  const Id clusters = static_cast<Id>(s.Cut.size());
   // Points: the clusters some triangle uses, in depth-first order.
-  std::vector<Id> newId = FreshVector<Id>(clusters, InvalidId);
+  newId = FreshVector<Id>(clusters, InvalidId);
   for (const Id j : final)
   {
     for (int c = 0; c < 3; ++c)
@@ -796,6 +818,18 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
     }
   }
   level.EstimatedError = worst;
+  return points;
+}
+
+//------------------------------------------------------------------------------
+// The level's triangles (the kept triangles `final` on their points) and the input triangle each
+// comes from.
+void OctreeClustering::Internals::SetLevelTriangles(const Synthesis& s,
+  const std::vector<Id>& final,
+  const std::vector<Id>& newId,
+  ClusterLevel& level) const
+{
+  const Id count = static_cast<Id>(final.size());
   ResizeFresh(level.Mesh.Triangles, 3 * static_cast<size_t>(count));
   ResizeFresh(level.LevelZeroTriangle, count);
   vtkSMPTools::For(0,
@@ -812,7 +846,18 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
         level.LevelZeroTriangle[i] = this->LevelZeroOf(s.From[j]);
       }
     });
+}
 
+//------------------------------------------------------------------------------
+// Per cluster without a point (newId InvalidId), the kept cluster that takes its previous points
+// (InvalidId for the others).
+std::vector<Id> OctreeClustering::Internals::RedirectVanished(
+  const Synthesis& s, const std::vector<Id>& newId) const
+{
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  const Id previousPoints = this->PreviousPoints();
+  const Id previousTriangles = this->PreviousTriangles();
+  const Id* prev = this->PreviousTriangleData();
   // Clusters that lost all their triangles send their previous points to the nearest cluster
   // joined to them by a previous triangle, else to the nearer kept cluster before or after them
   // in depth-first order.
@@ -875,7 +920,20 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
       nextKept = newId[k] != InvalidId ? k : nextKept;
     }
   }
+  return redirect;
+}
 
+//------------------------------------------------------------------------------
+// Each previous point's target (the point of its cluster, or of the cluster its vanished cluster
+// is redirected to) and collapse rank.
+void OctreeClustering::Internals::SetTargetsAndRanks(const Synthesis& s,
+  const std::vector<Id>& newId,
+  const std::vector<Id>& redirect,
+  Id points,
+  ClusterLevel& level) const
+{
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  const Id previousPoints = this->PreviousPoints();
   // Targets; collapse ranks: the clusters that changed, by increasing error.
   ResizeFresh(level.Target, previousPoints);
   std::vector<unsigned char> receives = FreshVector<unsigned char>(clusters, 0);
@@ -915,7 +973,13 @@ void OctreeClustering::Internals::Finalize(Synthesis& s, ClusterLevel& level) co
     level.Rank[p] = rankOfPoint[level.Target[p]];
   }
   level.ChangedClusters = static_cast<Id>(ranked.size());
+}
 
+//------------------------------------------------------------------------------
+void OctreeClustering::Internals::SetSources(
+  const Synthesis& s, const std::vector<Id>& newId, Id points, ClusterLevel& level) const
+{
+  const Id previousPoints = this->PreviousPoints();
   // Sources: the previous points of each cluster, weighted by the input vertices they stand for.
   GroupByKey(
     static_cast<size_t>(points),
