@@ -748,46 +748,7 @@ bool vtkLODGeomorph::Internals::ProduceNearestBlend(
   MergedTopology& merged = cache.Merged;
   if (shortEdge != merged.ShortEdges)
   {
-    merged.ShortEdges.swap(shortEdge);
-    std::vector<Id> representative;
-    meshlod::MergeAlongEdges(
-      cache.Edges, merged.ShortEdges.data(), static_cast<Id>(n), representative);
-    std::vector<Id> newId(n);
-    merged.Source.clear();
-    merged.Source.reserve(n);
-    for (vtkIdType p = 0; p < n; ++p)
-    {
-      if (representative[p] == p)
-      {
-        newId[p] = static_cast<Id>(merged.Source.size());
-        merged.Source.push_back(static_cast<Id>(p));
-      }
-      else
-      {
-        newId[p] = newId[representative[p]]; // the representative has a lower id
-      }
-    }
-    std::vector<Id> keptTriangles;
-    merged.Cells = CompactTriangles(
-      cache.Triangles, [&](Id p) { return newId[p]; }, [](vtkIdType) { return true; },
-      keptTriangles);
-    merged.CellData = SubsetCellData(poly->GetCellData(), keptTriangles);
-    // Merging only has to remove about what the coarser level removed; far below that it eats
-    // the surface (a tolerance near the mesh's size merges every edge). Half is the limit: the
-    // default tolerance near t = 1 can go a little below (0.2% on a 2M-triangle benchmark
-    // transition). Said once per tolerance value.
-    const vtkIdType coarseTriangles = coarse->GetNumberOfPolys();
-    if (merged.Cells->GetNumberOfCells() < coarseTriangles / 2 &&
-      merged.WarnedTolerance != self->MergeTolerance)
-    {
-      merged.WarnedTolerance = self->MergeTolerance;
-      vtkWarningWithObjectMacro(self,
-        "MergeTolerance " << self->MergeTolerance << " merged the blend of levels " << level
-                          << " and " << level + 1 << " down to " << merged.Cells->GetNumberOfCells()
-                          << " triangles, under half of level " << level + 1 << "'s ("
-                          << coarseTriangles << "): the tolerance is too large for this mesh "
-                          << "(the default 1e-4 merges only edges shorter than a pixel).");
-    }
+    this->MergeShortEdges(self, level, shortEdge);
   }
   plan.NumberOfPoints = static_cast<vtkIdType>(merged.Source.size());
   plan.Source = merged.Source.data();
@@ -798,6 +759,58 @@ bool vtkLODGeomorph::Internals::ProduceNearestBlend(
   output->SetPolys(merged.Cells);
   output->GetCellData()->ShallowCopy(merged.CellData);
   return true;
+}
+
+// The blend of `level` and the next with the points joined by the edges marked in `shortEdge`
+// merged (taken from it), and the triangles that degenerate removed: cache.Merged.
+void vtkLODGeomorph::Internals::MergeShortEdges(
+  vtkLODGeomorph* self, int level, std::vector<std::uint8_t>& shortEdge)
+{
+  LevelCache& cache = this->Levels[level];
+  vtkPolyData* poly = cache.Poly;
+  vtkPolyData* coarse = this->Levels[level + 1].Poly;
+  const vtkIdType n = poly->GetNumberOfPoints();
+  MergedTopology& merged = cache.Merged;
+  merged.ShortEdges.swap(shortEdge);
+  std::vector<Id> representative;
+  meshlod::MergeAlongEdges(
+    cache.Edges, merged.ShortEdges.data(), static_cast<Id>(n), representative);
+  std::vector<Id> newId(n);
+  merged.Source.clear();
+  merged.Source.reserve(n);
+  for (vtkIdType p = 0; p < n; ++p)
+  {
+    if (representative[p] == p)
+    {
+      newId[p] = static_cast<Id>(merged.Source.size());
+      merged.Source.push_back(static_cast<Id>(p));
+    }
+    else
+    {
+      newId[p] = newId[representative[p]]; // the representative has a lower id
+    }
+  }
+  std::vector<Id> keptTriangles;
+  merged.Cells = CompactTriangles(
+    cache.Triangles, [&](Id p) { return newId[p]; }, [](vtkIdType) { return true; },
+    keptTriangles);
+  merged.CellData = SubsetCellData(poly->GetCellData(), keptTriangles);
+  // Merging only has to remove about what the coarser level removed; far below that it eats
+  // the surface (a tolerance near the mesh's size merges every edge). Half is the limit: the
+  // default tolerance near t = 1 can go a little below (0.2% on a 2M-triangle benchmark
+  // transition). Said once per tolerance value.
+  const vtkIdType coarseTriangles = coarse->GetNumberOfPolys();
+  if (merged.Cells->GetNumberOfCells() < coarseTriangles / 2 &&
+    merged.WarnedTolerance != self->MergeTolerance)
+  {
+    merged.WarnedTolerance = self->MergeTolerance;
+    vtkWarningWithObjectMacro(self,
+      "MergeTolerance " << self->MergeTolerance << " merged the blend of levels " << level
+                        << " and " << level + 1 << " down to " << merged.Cells->GetNumberOfCells()
+                        << " triangles, under half of level " << level + 1 << "'s ("
+                        << coarseTriangles << "): the tolerance is too large for this mesh "
+                        << "(the default 1e-4 merges only edges shorter than a pixel).");
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -868,10 +881,60 @@ void vtkLODGeomorph::Internals::BuildExactTopology(int level, Id steps, Id nextS
 bool vtkLODGeomorph::Internals::ProduceExactCount(
   vtkLODGeomorph* self, vtkIdType count, double fraction, vtkPolyData* output, double& lod)
 {
-  const int n = static_cast<int>(this->Levels.size());
-  auto trianglesOf = [&](int level) { return this->Levels[level].Poly->GetNumberOfPolys(); };
-  // The coarsest level with at least `count` triangles.
   int level = -1;
+  if (this->ProduceWholeLevelFor(self, count, output, lod, level))
+  {
+    return true;
+  }
+  if (!this->EnsureSchedule(self, level))
+  {
+    return false;
+  }
+  auto trianglesOf = [&](int i) { return this->Levels[i].Poly->GetNumberOfPolys(); };
+  const meshlod::CollapseSchedule& schedule = *this->Levels[level].Schedule;
+  const Id steps = schedule.StepsForCount(count);
+  // Parity and single joins miss by a triangle or two; more means joins no order could make
+  // valid (a transition between levels far apart, whose clusters merge many points at once).
+  auto warnIfFar = [&](vtkIdType reached)
+  {
+    if (count - reached > std::max<vtkIdType>(3, count / 50))
+    {
+      vtkWarningWithObjectMacro(self,
+        "TargetNumberOfTriangles " << count << ": the nearest reachable count below it is "
+                                   << reached << " (between levels " << level << " and "
+                                   << level + 1 << ", of " << trianglesOf(level) << " and "
+                                   << trianglesOf(level + 1)
+                                   << " triangles, some collapses merge too many points at "
+                                      "once to be applied one point at a time; levels closer "
+                                      "together give finer steps).");
+    }
+  };
+  if (steps < 0)
+  {
+    // Even the whole transition leaves more: the next level is the nearest count below.
+    lod = level + 1;
+    this->ProduceLevel(level + 1, output);
+    warnIfFar(trianglesOf(level + 1));
+    return true;
+  }
+  const Id nextStep = schedule.NextRemovingStep(steps);
+  this->ProduceSteps(level, steps, nextStep, fraction, output);
+  warnIfFar(output->GetNumberOfPolys());
+  const double moved = nextStep > 0 ? fraction * (nextStep - steps) : 0.0;
+  lod = level + (steps + moved) / std::max<Id>(1, schedule.NumberOfSteps());
+  return true;
+}
+
+// The coarsest level with at least `count` triangles, into `level`. Where a whole level is the
+// answer (that level has exactly `count`, or it is the finest or the coarsest and `count` lies
+// beyond, or there are no collapse ranks to go part of the way), it is produced, with a warning
+// where its count is not `count`, and true is returned.
+bool vtkLODGeomorph::Internals::ProduceWholeLevelFor(
+  vtkLODGeomorph* self, vtkIdType count, vtkPolyData* output, double& lod, int& level)
+{
+  const int n = static_cast<int>(this->Levels.size());
+  auto trianglesOf = [&](int i) { return this->Levels[i].Poly->GetNumberOfPolys(); };
+  level = -1;
   for (int i = 0; i < n; ++i)
   {
     if (trianglesOf(i) >= count)
@@ -914,37 +977,14 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
     this->ProduceLevel(level + 1, output);
     return true;
   }
-  if (!this->EnsureSchedule(self, level))
-  {
-    return false;
-  }
-  const meshlod::CollapseSchedule& schedule = *this->Levels[level].Schedule;
-  const Id steps = schedule.StepsForCount(count);
-  // Parity and single joins miss by a triangle or two; more means joins no order could make
-  // valid (a transition between levels far apart, whose clusters merge many points at once).
-  auto warnIfFar = [&](vtkIdType reached)
-  {
-    if (count - reached > std::max<vtkIdType>(3, count / 50))
-    {
-      vtkWarningWithObjectMacro(self,
-        "TargetNumberOfTriangles " << count << ": the nearest reachable count below it is "
-                                   << reached << " (between levels " << level << " and "
-                                   << level + 1 << ", of " << trianglesOf(level) << " and "
-                                   << trianglesOf(level + 1)
-                                   << " triangles, some collapses merge too many points at "
-                                      "once to be applied one point at a time; levels closer "
-                                      "together give finer steps).");
-    }
-  };
-  if (steps < 0)
-  {
-    // Even the whole transition leaves more: the next level is the nearest count below.
-    lod = level + 1;
-    this->ProduceLevel(level + 1, output);
-    warnIfFar(trianglesOf(level + 1));
-    return true;
-  }
-  const Id nextStep = schedule.NextRemovingStep(steps);
+  return false;
+}
+
+// The mesh after `steps` steps of the transition from `level`, the points of the step after
+// (`nextStep`) moved by `fraction` of the way.
+void vtkLODGeomorph::Internals::ProduceSteps(
+  int level, Id steps, Id nextStep, double fraction, vtkPolyData* output)
+{
   if (this->Exact.Level != level || this->Exact.Steps != steps)
   {
     this->BuildExactTopology(level, steps, nextStep);
@@ -974,9 +1014,5 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
     output->GetPointData());
   output->SetPolys(exact.Cells);
   output->GetCellData()->ShallowCopy(exact.CellData);
-  warnIfFar(exact.Cells->GetNumberOfCells());
-  const double moved = nextStep > 0 ? fraction * (nextStep - steps) : 0.0;
-  lod = level + (steps + moved) / std::max<Id>(1, schedule.NumberOfSteps());
-  return true;
 }
 

@@ -114,6 +114,12 @@ struct vtkLODGeomorph::Internals
   bool ProduceNearestBlend(vtkLODGeomorph* self, int level, double t, vtkPolyData* output);
   bool ProduceExactCount(
     vtkLODGeomorph* self, vtkIdType count, double fraction, vtkPolyData* output, double& lod);
+  // ProduceExactCount's and ProduceNearestBlend's steps (MeshLODGeomorphInternals.cxx).
+  bool ProduceWholeLevelFor(
+    vtkLODGeomorph* self, vtkIdType count, vtkPolyData* output, double& lod, int& level);
+  void ProduceSteps(
+    int level, meshlod::Id steps, meshlod::Id nextStep, double fraction, vtkPolyData* output);
+  void MergeShortEdges(vtkLODGeomorph* self, int level, std::vector<std::uint8_t>& shortEdge);
   void BuildExactTopology(int level, meshlod::Id steps, meshlod::Id nextStep);
 };
 
