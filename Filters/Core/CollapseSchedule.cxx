@@ -14,7 +14,8 @@ namespace meshlod
 {
 namespace
 {
-// A collapse of m points tries at most max(1, TestBudget / m) next points per step (see Build).
+// A collapse of m points tries at most max(1, TestBudget / m) next points per step (see
+// NextOfCollapse).
 constexpr size_t TestBudget = 16384;
 // The points of collapses left waiting at the end join interleaved when together they number at
 // most this many (each step may test up to TestBudget / m candidates, m the group's largest

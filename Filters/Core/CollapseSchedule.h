@@ -73,9 +73,10 @@ struct VTKFILTERSMESHLOD_EXPORT CollapseSchedule
 
   /// `target` and `rank` hold one entry per point; `atTarget[p]` is non-zero when point p is
   /// already at its target position. With `positions` and `targetPositions` (x, y, z per point:
-  /// where it is, where it goes), a collapse's points join, where they can, in an order that
-  /// folds no triangle over (see Build); with `waitForFolds` too, a collapse whose whole merge
-  /// would fold a triangle waits like one that would leave its target without one fan.
+  /// where it is, where it goes), a collapse's points join, where they can, in an order that folds
+  /// no triangle over (see IsFolded, CollapseScheduleFans.cxx); with `waitForFolds` too, a collapse
+  /// whose whole merge would fold a triangle waits like one that would leave its target without one
+  /// fan.
   void Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints, const Id* target,
     const std::int64_t* rank, const std::uint8_t* atTarget, const double* positions = nullptr,
     const double* targetPositions = nullptr, bool waitForFolds = false);
