@@ -201,6 +201,31 @@ struct OctreeClustering::Internals
     const double* surface) const;
   bool CurveMayMerge(Id node) const;
   void Evaluate(Id index, octree::EvaluationScratch& scratch);
+  // Evaluate's steps: the representative placed (into v0) and kept near its cell, a vertex
+  // standing in for one that flips a triangle (returns whether it still flips), and the error.
+  void PlaceRepresentative(const Quadric& q1,
+    const octree::EvaluationScratch& crossing,
+    const double centre[3],
+    double cell,
+    double v0[3]) const;
+  double PlacementError(
+    const Quadric& q1, const octree::EvaluationScratch& crossing, const double x[3]) const;
+  double KeepInsideCell(Id node,
+    const Quadric& q1,
+    const octree::EvaluationScratch& crossing,
+    const double centre[3],
+    double v0[3]) const;
+  bool StandInVertex(Id node,
+    const Quadric& q1,
+    const octree::EvaluationScratch& crossing,
+    const double* surface,
+    double weight,
+    double& value,
+    double v0[3]) const;
+  double ClusterError(const octree::EvaluationScratch& scratch,
+    double value,
+    double weight,
+    const double v0[3]) const;
   double BoundaryDistance(const std::vector<Id>& edges, const double v0[3]) const;
   void ProjectOnBoundary(const std::vector<Id>& edges, double v0[3]) const;
   void RepresentativeOf(Id node, double out[3]) const;
@@ -211,7 +236,29 @@ struct OctreeClustering::Internals
   void ComputeActivation(bool guess = false);
   void CollectCut(double epsilon, std::vector<Id>& cut) const;
   void CutAt(double epsilon, std::vector<Id>& cut, bool update = false);
+  // CutAt's steps: the candidates sorted into those to evaluate, those that qualify and those
+  // that fail; the count and error ratios of the evaluated; a node replaced by the topmost
+  // qualifying nodes below it.
+  void TriageCandidates(const std::vector<Id>& candidates,
+    double epsilon,
+    std::vector<Id>& pending,
+    std::vector<Id>& kept,
+    std::vector<Id>& failed);
+  void RecordEvaluations(const std::vector<Id>& evaluated);
+  void DescendToQualifying(
+    Id node, double epsilon, std::vector<Id>& stack, std::vector<Id>& into) const;
   double EpsilonForCount(Id target) const;
+  // EpsilonForCount's steps: the nodes that count, the span and histogram of their activations
+  // (binned by ActivationBins), and the epsilon found among the nodes of one bin.
+  struct ActivationBins;
+  bool CountsForEstimate(Id i) const;
+  void ActivationSpan(double& lo, double& hi, std::int64_t& total) const;
+  std::vector<std::int64_t> ActivationHistogram(const ActivationBins& bin) const;
+  double EpsilonInBin(const ActivationBins& bin,
+    int b,
+    std::int64_t before,
+    std::int64_t need,
+    double hi) const;
   std::int64_t EstimateAt(double epsilon) const;
   double SearchEpsilon(Id target, Id tolerance);
 
@@ -225,6 +272,24 @@ struct OctreeClustering::Internals
   Id MarkPinches(octree::Synthesis& s);
   Id MarkBreaks(octree::Synthesis& s);
   Id MarkFarVanishing(octree::Synthesis& s, double epsilon);
+  // MarkFarVanishing's steps. `alive` flags the clusters that keep a triangle, `slot` maps a
+  // previous piece to its place among the vanishing ones (InvalidId for the others); the grid
+  // holds the kept surface near which a piece may vanish.
+  struct KeptSurfaceGrid;
+  std::vector<std::uint32_t> VanishingPieces(const octree::Synthesis& s,
+    const std::vector<unsigned char>& alive,
+    std::vector<Id>& slot) const;
+  std::vector<double> VanishingBoxes(const std::vector<Id>& slot, std::size_t count) const;
+  void FillKeptSurfaceGrid(const octree::Synthesis& s,
+    const std::vector<unsigned char>& alive,
+    KeptSurfaceGrid& grid) const;
+  bool NearKeptSurface(const octree::Synthesis& s,
+    const KeptSurfaceGrid& grid,
+    const double centre[3],
+    double radius) const;
+  std::vector<Id> ClustersOfRefusedPieces(const octree::Synthesis& s,
+    const std::vector<Id>& slot,
+    const std::vector<unsigned char>& refused) const;
   Id MarkClosedHoles(octree::Synthesis& s, double epsilon);
   void LabelHoles();
   /// MarkChanged for refusals that hold for the current trial level only (TrialRefusals).

@@ -93,7 +93,61 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
   }
   vtkSMPThreadLocal<EvaluationScratch> scratch;
   std::vector<Id> pending, failed, kept, stack;
-  auto queue = [&](Id node)
+  std::vector<Id> candidates;
+  candidates.swap(cut);
+  for (;;)
+  {
+    pending.clear();
+    failed.clear();
+    this->TriageCandidates(candidates, epsilon, pending, kept, failed);
+    if (pending.empty() && failed.empty())
+    {
+      break;
+    }
+    vtkSMPTools::For(0,
+      static_cast<Id>(pending.size()),
+      [&](Id begin, Id end)
+      {
+        EvaluationScratch& local = scratch.Local();
+        for (Id j = begin; j < end; ++j)
+        {
+          this->Evaluate(pending[j] - this->NV, local);
+        }
+      });
+    this->RecordEvaluations(pending);
+    candidates.clear();
+    for (const Id node : pending)
+    {
+      if (this->Thr[node - this->NV] <= epsilon)
+      {
+        kept.push_back(node);
+      }
+      else
+      {
+        this->DescendToQualifying(node, epsilon, stack, candidates);
+      }
+    }
+    for (const Id node : failed)
+    {
+      this->DescendToQualifying(node, epsilon, stack, candidates);
+    }
+  }
+  cut.swap(kept);
+  vtkSMPTools::Sort(cut.begin(),
+    cut.end(),
+    [&](Id a, Id b) { return this->Tree.Position(a) < this->Tree.Position(b); });
+}
+
+//------------------------------------------------------------------------------
+// CutAt's candidates sorted out: the nodes to evaluate (each given a slot, serially) into
+// `pending`, those that qualify into `kept` and the others into `failed`.
+void OctreeClustering::Internals::TriageCandidates(const std::vector<Id>& candidates,
+  double epsilon,
+  std::vector<Id>& pending,
+  std::vector<Id>& kept,
+  std::vector<Id>& failed)
+{
+  for (const Id node : candidates)
   {
     if (node >= this->NV && this->State[node - this->NV] == NodeState::NotEvaluated &&
       !this->Refused[node - this->NV])
@@ -110,87 +164,85 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
     {
       failed.push_back(node); // refused since its evaluation, or before it (update only)
     }
-  };
-  // Replace a node that does not qualify by the topmost qualifying nodes below it.
-  auto descend = [&](Id node, std::vector<Id>& into)
+  }
+}
+
+//------------------------------------------------------------------------------
+// After the nodes `evaluated` were: their count, and the logarithms of their errors over e1 by
+// which ComputeActivation's guesses raise the e1 of the nodes not evaluated yet.
+void OctreeClustering::Internals::RecordEvaluations(const std::vector<Id>& evaluated)
+{
+  this->Evaluated += static_cast<Id>(evaluated.size());
+  for (const Id node : evaluated)
   {
-    stack.assign(1, node);
-    while (!stack.empty())
+    const Id i = node - this->NV;
+    const float e1 = this->Tree.Nodes[i].E1;
+    const double error = this->NodeError(node);
+    if (this->State[i] == NodeState::Admissible && e1 > 0.0f && error > 0.0)
     {
-      const Id parent = stack.back();
-      stack.pop_back();
-      for (const Id* c = this->Tree.ChildrenBegin(parent); c != this->Tree.ChildrenEnd(parent); ++c)
-      {
-        const Id child = *c;
-        if (child < this->NV || this->Thr[child - this->NV] <= epsilon)
-        {
-          into.push_back(child);
-        }
-        else
-        {
-          stack.push_back(child);
-        }
-      }
+      this->LogRatioSum += std::log(error / e1);
+      ++this->RatioCount;
     }
-  };
-  std::vector<Id> candidates;
-  candidates.swap(cut);
-  for (;;)
+  }
+}
+
+//------------------------------------------------------------------------------
+// Replace a node that does not qualify by the topmost qualifying nodes below it, appended to
+// `into` (`stack`: room for the walk, kept from one call to the next).
+void OctreeClustering::Internals::DescendToQualifying(
+  Id node, double epsilon, std::vector<Id>& stack, std::vector<Id>& into) const
+{
+  stack.assign(1, node);
+  while (!stack.empty())
   {
-    pending.clear();
-    failed.clear();
-    for (const Id node : candidates)
+    const Id parent = stack.back();
+    stack.pop_back();
+    for (const Id* c = this->Tree.ChildrenBegin(parent); c != this->Tree.ChildrenEnd(parent); ++c)
     {
-      queue(node);
-    }
-    if (pending.empty() && failed.empty())
-    {
-      break;
-    }
-    vtkSMPTools::For(0,
-      static_cast<Id>(pending.size()),
-      [&](Id begin, Id end)
+      const Id child = *c;
+      if (child < this->NV || this->Thr[child - this->NV] <= epsilon)
       {
-        EvaluationScratch& local = scratch.Local();
-        for (Id j = begin; j < end; ++j)
-        {
-          this->Evaluate(pending[j] - this->NV, local);
-        }
-      });
-    this->Evaluated += static_cast<Id>(pending.size());
-    for (const Id node : pending)
-    {
-      const Id i = node - this->NV;
-      const float e1 = this->Tree.Nodes[i].E1;
-      const double error = this->NodeError(node);
-      if (this->State[i] == NodeState::Admissible && e1 > 0.0f && error > 0.0)
-      {
-        this->LogRatioSum += std::log(error / e1);
-        ++this->RatioCount;
-      }
-    }
-    candidates.clear();
-    for (const Id node : pending)
-    {
-      if (this->Thr[node - this->NV] <= epsilon)
-      {
-        kept.push_back(node);
+        into.push_back(child);
       }
       else
       {
-        descend(node, candidates);
+        stack.push_back(child);
       }
     }
-    for (const Id node : failed)
+  }
+}
+
+//------------------------------------------------------------------------------
+// Positive floats order like their bit patterns: bin by the leading bits above `lo` (bin 0 holds
+// `lo` and below), as many as keep the bins from `lo` to `hi` under Count.
+struct OctreeClustering::Internals::ActivationBins
+{
+  static constexpr int Count = 4096;
+  float Low;
+  std::uint32_t Base;
+  int Shift = 0;
+
+  static std::uint32_t Bits(float a)
+  {
+    std::uint32_t u;
+    std::memcpy(&u, &a, sizeof(u));
+    return u;
+  }
+  ActivationBins(double lo, double hi)
+    : Low(static_cast<float>(lo))
+    , Base(Bits(static_cast<float>(lo)))
+  {
+    const std::uint32_t range = Bits(static_cast<float>(hi)) - this->Base;
+    while ((range >> this->Shift) >= static_cast<std::uint32_t>(Count - 1))
     {
-      descend(node, candidates);
+      ++this->Shift;
     }
   }
-  cut.swap(kept);
-  vtkSMPTools::Sort(cut.begin(),
-    cut.end(),
-    [&](Id a, Id b) { return this->Tree.Position(a) < this->Tree.Position(b); });
-}
+  int operator()(float a) const
+  {
+    return a <= this->Low ? 0 : 1 + static_cast<int>((Bits(a) - this->Base) >> this->Shift);
+  }
+};
 
 //------------------------------------------------------------------------------
 // The smallest epsilon whose cut keeps at most `target` input triangles by the estimate
@@ -199,16 +251,50 @@ void OctreeClustering::Internals::CutAt(double epsilon, std::vector<Id>& cut, bo
 // collapsing every mergeable node keeps more.
 double OctreeClustering::Internals::EpsilonForCount(Id target) const
 {
-  const Id ni = this->Tree.NumberOfInternalNodes();
   const std::int64_t need = static_cast<std::int64_t>(this->NT) - target;
   if (need <= 0)
   {
     return 0.0;
   }
   // Three parallel passes over the nodes that can collapse (sums, minima and maxima: the same
-  // for any thread count).
-  const auto counts = [&](Id i)
-  { return this->Tree.Nodes[i].Dies > 0 && this->Activation[i] < Infinite; };
+  // for any thread count): ActivationSpan, ActivationHistogram and EpsilonInBin.
+  double lo = 0.0, hi = 0.0;
+  std::int64_t total = 0;
+  this->ActivationSpan(lo, hi, total);
+  if (total < need)
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  if (!(hi > 0.0))
+  {
+    return 0.0;
+  }
+  const ActivationBins bin(lo, hi);
+  const std::vector<std::int64_t> histogram = this->ActivationHistogram(bin);
+  std::int64_t before = 0;
+  int b = 0;
+  for (; b < ActivationBins::Count && before + histogram[b] < need; ++b)
+  {
+    before += histogram[b];
+  }
+  return this->EpsilonInBin(bin, b, before, need, hi);
+}
+
+//------------------------------------------------------------------------------
+// Whether internal node i counts in EpsilonForCount: triangles degenerate in it, and it
+// collapses at a finite epsilon.
+bool OctreeClustering::Internals::CountsForEstimate(Id i) const
+{
+  return this->Tree.Nodes[i].Dies > 0 && this->Activation[i] < Infinite;
+}
+
+//------------------------------------------------------------------------------
+// Over the nodes that count (CountsForEstimate): the triangles that degenerate in them in all
+// (`total`), and the smallest and largest of their positive activations (`lo` is the largest
+// double and `hi` 0 when none is positive).
+void OctreeClustering::Internals::ActivationSpan(double& lo, double& hi, std::int64_t& total) const
+{
+  const Id ni = this->Tree.NumberOfInternalNodes();
   struct Span
   {
     double Low = std::numeric_limits<double>::max();
@@ -221,7 +307,7 @@ double OctreeClustering::Internals::EpsilonForCount(Id target) const
     for (Id i = begin; i < end; ++i)
     {
       const float a = this->Activation[i];
-      if (counts(i))
+      if (this->CountsForEstimate(i))
       {
         span.Total += this->Tree.Nodes[i].Dies;
         if (a > 0.0f)
@@ -232,52 +318,37 @@ double OctreeClustering::Internals::EpsilonForCount(Id target) const
       }
     }
   });
-  double lo = std::numeric_limits<double>::max(), hi = 0.0;
-  std::int64_t total = 0;
+  lo = std::numeric_limits<double>::max();
+  hi = 0.0;
+  total = 0;
   for (const Span& span : spans)
   {
     lo = std::min(lo, span.Low);
     hi = std::max(hi, span.High);
     total += span.Total;
   }
-  if (total < need)
-  {
-    return std::numeric_limits<double>::infinity();
-  }
-  if (!(hi > 0.0))
-  {
-    return 0.0;
-  }
-  // Positive floats order like their bit patterns: bin by the leading bits above `lo`.
-  constexpr int bins = 4096;
-  auto bits = [](float a)
-  {
-    std::uint32_t u;
-    std::memcpy(&u, &a, sizeof(u));
-    return u;
-  };
-  const std::uint32_t base = bits(static_cast<float>(lo));
-  const std::uint32_t range = bits(static_cast<float>(hi)) - base;
-  int shift = 0;
-  while ((range >> shift) >= static_cast<std::uint32_t>(bins - 1))
-  {
-    ++shift;
-  }
-  auto bin = [&](float a)
-  { return a <= static_cast<float>(lo) ? 0 : 1 + static_cast<int>((bits(a) - base) >> shift); };
+}
+
+//------------------------------------------------------------------------------
+// The triangles that degenerate in the nodes that count (CountsForEstimate), summed by the bin
+// of their activation.
+std::vector<std::int64_t> OctreeClustering::Internals::ActivationHistogram(
+  const ActivationBins& bin) const
+{
+  const Id ni = this->Tree.NumberOfInternalNodes();
   vtkSMPThreadLocal<std::vector<std::int64_t>> histograms;
   vtkSMPTools::For(0, ni, [&](Id begin, Id end) {
     std::vector<std::int64_t>& local = histograms.Local();
-    local.resize(bins, 0);
+    local.resize(ActivationBins::Count, 0);
     for (Id i = begin; i < end; ++i)
     {
-      if (counts(i))
+      if (this->CountsForEstimate(i))
       {
         local[bin(this->Activation[i])] += this->Tree.Nodes[i].Dies;
       }
     }
   });
-  std::vector<std::int64_t> histogram = FreshVector<std::int64_t>(bins, 0);
+  std::vector<std::int64_t> histogram = FreshVector<std::int64_t>(ActivationBins::Count, 0);
   for (const std::vector<std::int64_t>& local : histograms)
   {
     for (std::size_t k = 0; k < local.size(); ++k)
@@ -285,14 +356,22 @@ double OctreeClustering::Internals::EpsilonForCount(Id target) const
       histogram[k] += local[k];
     }
   }
-  std::int64_t before = 0;
-  int b = 0;
-  for (; b < bins && before + histogram[b] < need; ++b)
-  {
-    before += histogram[b];
-  }
+  return histogram;
+}
+
+//------------------------------------------------------------------------------
+// The activation at which the nodes of bin b, taken in order, bring the triangles that
+// degenerate from `before` (those of the bins below b) to `need`; `hi` when they do not.
+double OctreeClustering::Internals::EpsilonInBin(const ActivationBins& bin,
+  int b,
+  std::int64_t before,
+  std::int64_t need,
+  double hi) const
+{
+  const Id ni = this->Tree.NumberOfInternalNodes();
   // The nodes of that bin, sorted by (activation, triangles).
-  const auto inThatBin = [&](Id i) { return counts(i) && bin(this->Activation[i]) == b; };
+  const auto inThatBin = [&](Id i)
+  { return this->CountsForEstimate(i) && bin(this->Activation[i]) == b; };
   const ParallelCompaction binNodes(ni, inThatBin);
   std::vector<std::pair<float, Id>> inBin(binNodes.Count());
   binNodes.Write(inThatBin,

@@ -271,9 +271,51 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
 
   double centre[3];
   this->Tree.Centroid(node, centre);
-  const double tolerance = this->Options.PlacementTolerance;
-  const double cell = this->Tree.CellSize(n.Depth);
   double v0[3];
+  this->PlaceRepresentative(q1, crossing, centre, this->Tree.CellSize(n.Depth), v0);
+  double value = this->KeepInsideCell(node, q1, crossing, centre, v0);
+  // A cluster on an open boundary keeps its representative on the input's boundary: the closest
+  // point of its boundary edges (a small move, paid for in the error below).
+  if (!scratch.BoundaryEdges.empty())
+  {
+    this->ProjectOnBoundary(scratch.BoundaryEdges, v0);
+    value = this->PlacementError(q1, crossing, v0);
+  }
+  // The cluster's normal is coherent when its triangles mostly face one way: the length of their
+  // summed normals (twice their area each) is at least CoherentNormal times twice their area
+  // (the weight of the face planes, plus the boundary planes' if any).
+  const double weight = q1.Weight();
+  const double* normal = slot + 3;
+  const bool coherent =
+    Dot(normal, normal) >= 4.0 * CoherentNormal * CoherentNormal * weight * weight;
+  const double* surface = coherent ? normal : nullptr;
+  // Where the representative would flip a triangle, one of the cluster's vertices may stand in
+  // for it (StandInVertex). (Not on an open boundary, whose representative stays on the
+  // boundary.)
+  bool flips = this->HasFlip(v0, crossing, n.Depth, surface);
+  if (flips && scratch.BoundaryEdges.empty())
+  {
+    flips = this->StandInVertex(node, q1, crossing, surface, weight, value, v0);
+  }
+  const double error = this->ClusterError(scratch, value, weight, v0);
+  std::copy_n(v0, 3, slot);
+  slot[6] = static_cast<float>(error); // as a threshold, in single precision
+  this->State[index] =
+    flips || !this->CurveMayMerge(node) ? NodeState::Inadmissible : NodeState::Admissible;
+  this->UpdateThreshold(index);
+}
+
+//------------------------------------------------------------------------------
+// The representative before the checks, into v0: the minimiser of q1, then that of q1 with the
+// crossing terms (e2, §3) at the last placement, until a step moves it by at most 1e-9 times the
+// cell size or the iterations run out.
+void OctreeClustering::Internals::PlaceRepresentative(const Quadric& q1,
+  const EvaluationScratch& crossing,
+  const double centre[3],
+  double cell,
+  double v0[3]) const
+{
+  const double tolerance = this->Options.PlacementTolerance;
   MinimizeQuadric(q1, centre, tolerance, v0);
   const int iterations = this->Options.RepresentativeIterations;
   for (int it = 0; it < iterations; ++it)
@@ -289,18 +331,32 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
       break;
     }
   }
-  auto errorAt = [&](const double x[3])
-  {
-    Quadric q = q1;
-    if (iterations > 0)
-    {
-      this->AddCrossingTerms(x, crossing, q);
-    }
-    return q.Evaluate(x);
-  };
+}
 
-  // A placement far outside the cell means near-parallel planes met far away: fall back to the
-  // best of the centroid and the cluster's vertices (§2.3).
+//------------------------------------------------------------------------------
+// The quadric error of a representative at x: q1, with the crossing terms at x when the
+// representative is iterated (PlaceRepresentative).
+double OctreeClustering::Internals::PlacementError(
+  const Quadric& q1, const EvaluationScratch& crossing, const double x[3]) const
+{
+  Quadric q = q1;
+  if (this->Options.RepresentativeIterations > 0)
+  {
+    this->AddCrossingTerms(x, crossing, q);
+  }
+  return q.Evaluate(x);
+}
+
+//------------------------------------------------------------------------------
+// A placement far outside the cell means near-parallel planes met far away: fall back to the
+// best of the centroid and the cluster's vertices (§2.3). Returns the error at v0.
+double OctreeClustering::Internals::KeepInsideCell(Id node,
+  const Quadric& q1,
+  const EvaluationScratch& crossing,
+  const double centre[3],
+  double v0[3]) const
+{
+  const ClusterNode& n = this->Tree.Nodes[node - this->NV];
   double low[3], extent[3];
   this->Tree.CellBox(this->FirstVertex(node), n.Depth, low, extent);
   bool outside = false;
@@ -312,13 +368,13 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   if (outside)
   {
     std::copy_n(centre, 3, v0);
-    value = errorAt(v0);
+    value = this->PlacementError(q1, crossing, v0);
     const Id first = this->Tree.Position(node);
     for (Id pos = first; pos < first + n.Count; ++pos)
     {
       double p[3];
       this->Tree.RelativePoint(this->Tree.Order[pos], p);
-      const double e = errorAt(p);
+      const double e = this->PlacementError(q1, crossing, p);
       if (e < value)
       {
         value = e;
@@ -328,62 +384,70 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   }
   else
   {
-    value = errorAt(v0);
+    value = this->PlacementError(q1, crossing, v0);
   }
-  // A cluster on an open boundary keeps its representative on the input's boundary: the closest
-  // point of its boundary edges (a small move, paid for in the error below).
-  if (!scratch.BoundaryEdges.empty())
+  return value;
+}
+
+//------------------------------------------------------------------------------
+// Beyond §2.3: where the quadric's minimiser would flip a triangle, the best of the cluster's
+// own vertices (a sample: FlipFreeCandidates) that flips none stands for it, and the cluster
+// is refused only when none is left. The refusals split such clusters down to small cells,
+// and the search for a count made up for them by coarser clusters elsewhere: on the 154k
+// metaballs isosurface at 1% the Hausdorff and RMS distances fell from 1.10 and 0.80 to 0.73
+// and 0.59 times vtkQuadricClustering's, on a torus and noisy spheres from 1.24-1.49 to
+// 1.01-1.15 (Benchmarks/RESULTS.md). A vertex with an error stands in only where the
+// minimiser has one: where the planes meet without one (a solid's corner or edge), a vertex
+// that cuts it would not be refused but would take the cluster's error from nothing to
+// much, and a search for a count then cut the corners of a flat-faced solid (a subdivided
+// icosahedron asked for 205 triangles got 206 at 7.7% of its diagonal; vtkQuadricClustering
+// had none at 192): there only a vertex without error may stand in (one in a flat part's
+// plane).
+// The stand-in goes into v0 and its error into `value`; returns whether the representative
+// still flips a triangle (no vertex may stand in).
+bool OctreeClustering::Internals::StandInVertex(Id node,
+  const Quadric& q1,
+  const EvaluationScratch& crossing,
+  const double* surface,
+  double weight,
+  double& value,
+  double v0[3]) const
+{
+  const ClusterNode& n = this->Tree.Nodes[node - this->NV];
+  const double cell = this->Tree.CellSize(n.Depth);
+  bool flips = true;
+  const double exact = ExactPlacement * cell * cell * weight; // a value of rounding size
+  const double acceptable = value > exact ? std::numeric_limits<double>::infinity() : exact;
+  const Id first = this->Tree.Position(node);
+  const Id stride = std::max<Id>(1, n.Count / FlipFreeCandidates);
+  for (Id pos = first; pos < first + n.Count; pos += stride)
   {
-    this->ProjectOnBoundary(scratch.BoundaryEdges, v0);
-    value = errorAt(v0);
-  }
-  // The cluster's normal is coherent when its triangles mostly face one way: the length of their
-  // summed normals (twice their area each) is at least CoherentNormal times twice their area
-  // (the weight of the face planes, plus the boundary planes' if any).
-  const double weight = q1.Weight();
-  const double* normal = slot + 3;
-  const bool coherent =
-    Dot(normal, normal) >= 4.0 * CoherentNormal * CoherentNormal * weight * weight;
-  const double* surface = coherent ? normal : nullptr;
-  // Beyond §2.3: where the quadric's minimiser would flip a triangle, the best of the cluster's
-  // own vertices (a sample: FlipFreeCandidates) that flips none stands for it, and the cluster
-  // is refused only when none is left. The refusals split such clusters down to small cells,
-  // and the search for a count made up for them by coarser clusters elsewhere: on the 154k
-  // metaballs isosurface at 1% the Hausdorff and RMS distances fell from 1.10 and 0.80 to 0.73
-  // and 0.59 times vtkQuadricClustering's, on a torus and noisy spheres from 1.24-1.49 to
-  // 1.01-1.15 (Benchmarks/RESULTS.md). A vertex with an error stands in only where the
-  // minimiser has one: where the planes meet without one (a solid's corner or edge), a vertex
-  // that cuts it would not be refused but would take the cluster's error from nothing to
-  // much, and a search for a count then cut the corners of a flat-faced solid (a subdivided
-  // icosahedron asked for 205 triangles got 206 at 7.7% of its diagonal; vtkQuadricClustering
-  // had none at 192): there only a vertex without error may stand in (one in a flat part's
-  // plane). (Not on an open boundary, whose representative stays on the boundary.)
-  bool flips = this->HasFlip(v0, crossing, n.Depth, surface);
-  if (flips && scratch.BoundaryEdges.empty())
-  {
-    const double exact = ExactPlacement * cell * cell * weight; // a value of rounding size
-    const double acceptable = value > exact ? std::numeric_limits<double>::infinity() : exact;
-    const Id first = this->Tree.Position(node);
-    const Id stride = std::max<Id>(1, n.Count / FlipFreeCandidates);
-    for (Id pos = first; pos < first + n.Count; pos += stride)
+    double p[3];
+    this->Tree.RelativePoint(this->Tree.Order[pos], p);
+    const double e = this->PlacementError(q1, crossing, p);
+    if ((flips ? e <= acceptable : e < value) && !this->HasFlip(p, crossing, n.Depth, surface))
     {
-      double p[3];
-      this->Tree.RelativePoint(this->Tree.Order[pos], p);
-      const double e = errorAt(p);
-      if ((flips ? e <= acceptable : e < value) && !this->HasFlip(p, crossing, n.Depth, surface))
-      {
-        flips = false;
-        value = e;
-        std::copy_n(p, 3, v0);
-      }
+      flips = false;
+      value = e;
+      std::copy_n(p, 3, v0);
     }
   }
-  // The error: the root mean squared distance to the planes of the related triangle set, and
-  // separately the largest distance to a boundary edge's perpendicular plane (few, so they would
-  // hardly count in the mean: an open boundary is kept within epsilon too; their own root mean
-  // square let a large cluster at a corner of a rough height field sit 39 edges along one side,
-  // cutting the corner off). No single plane may be farther than twice that: a mean lets
-  // elongated or bent clusters stray far at their ends.
+  return flips;
+}
+
+//------------------------------------------------------------------------------
+// The error: the root mean squared distance to the planes of the related triangle set, and
+// separately the largest distance to a boundary edge's perpendicular plane (few, so they would
+// hardly count in the mean: an open boundary is kept within epsilon too; their own root mean
+// square let a large cluster at a corner of a rough height field sit 39 edges along one side,
+// cutting the corner off). No single plane may be farther than twice that: a mean lets
+// elongated or bent clusters stray far at their ends. `value`: the quadric's value at v0,
+// `weight` its weight.
+double OctreeClustering::Internals::ClusterError(const EvaluationScratch& scratch,
+  double value,
+  double weight,
+  const double v0[3]) const
+{
   double error = weight > 0.0 ? std::sqrt(value / weight) : 0.0;
   if (this->Options.BoundaryWeight > 0.0)
   {
@@ -395,12 +459,7 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
     const double* plane = scratch.Planes.data() + i;
     farthest = std::max(farthest, std::abs(Dot(plane, v0) + plane[3]));
   }
-  error = std::max(error, 0.5 * farthest);
-  std::copy_n(v0, 3, slot);
-  slot[6] = static_cast<float>(error); // as a threshold, in single precision
-  this->State[index] =
-    flips || !this->CurveMayMerge(node) ? NodeState::Inadmissible : NodeState::Admissible;
-  this->UpdateThreshold(index);
+  return std::max(error, 0.5 * farthest);
 }
 
 //------------------------------------------------------------------------------

@@ -55,6 +55,44 @@ struct Pieces
     }
   }
 };
+
+// A cluster's link (MarkPinchedVertices): the far edges of its kept triangles, two ends each,
+// and room to join them, kept by each thread from one cluster to the next.
+struct LinkScratch
+{
+  std::vector<Id> Ends, Vertices, Up;
+};
+
+// Whether the link in mine.Ends falls apart: two or more components.
+bool LinkFallsApart(LinkScratch& mine)
+{
+  // Components of the link: union-find over its vertices, numbered by sorting.
+  mine.Vertices = mine.Ends;
+  std::sort(mine.Vertices.begin(), mine.Vertices.end());
+  mine.Vertices.erase(
+    std::unique(mine.Vertices.begin(), mine.Vertices.end()), mine.Vertices.end());
+  const Id n = static_cast<Id>(mine.Vertices.size());
+  mine.Up.resize(n);
+  std::iota(mine.Up.begin(), mine.Up.end(), Id(0));
+  auto local = [&](Id v)
+  {
+    return static_cast<Id>(
+      std::lower_bound(mine.Vertices.begin(), mine.Vertices.end(), v) -
+      mine.Vertices.begin());
+  };
+  Id components = n;
+  for (std::size_t e = 0; e + 1 < mine.Ends.size(); e += 2)
+  {
+    const Id a = FindRoot(mine.Up, local(mine.Ends[e]));
+    const Id b = FindRoot(mine.Up, local(mine.Ends[e + 1]));
+    if (a != b)
+    {
+      mine.Up[std::max(a, b)] = std::min(a, b);
+      --components;
+    }
+  }
+  return components > 1;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -506,10 +544,6 @@ Id OctreeClustering::Internals::MarkPinchedVertices(Synthesis& s)
     },
     offsets, around);
   std::vector<unsigned char> pinched = FreshVector<unsigned char>(clusters, 0);
-  struct LinkScratch
-  {
-    std::vector<Id> Ends, Vertices, Up;
-  };
   vtkSMPThreadLocal<LinkScratch> scratch;
   vtkSMPTools::For(0,
     clusters,
@@ -545,32 +579,7 @@ Id OctreeClustering::Internals::MarkPinchedVertices(Synthesis& s)
         {
           continue;
         }
-        // Components of the link: union-find over its vertices, numbered by sorting.
-        mine.Vertices = mine.Ends;
-        std::sort(mine.Vertices.begin(), mine.Vertices.end());
-        mine.Vertices.erase(
-          std::unique(mine.Vertices.begin(), mine.Vertices.end()), mine.Vertices.end());
-        const Id n = static_cast<Id>(mine.Vertices.size());
-        mine.Up.resize(n);
-        std::iota(mine.Up.begin(), mine.Up.end(), Id(0));
-        auto local = [&](Id v)
-        {
-          return static_cast<Id>(
-            std::lower_bound(mine.Vertices.begin(), mine.Vertices.end(), v) -
-            mine.Vertices.begin());
-        };
-        Id components = n;
-        for (std::size_t e = 0; e + 1 < mine.Ends.size(); e += 2)
-        {
-          const Id a = FindRoot(mine.Up, local(mine.Ends[e]));
-          const Id b = FindRoot(mine.Up, local(mine.Ends[e + 1]));
-          if (a != b)
-          {
-            mine.Up[std::max(a, b)] = std::min(a, b);
-            --components;
-          }
-        }
-        pinched[k] = components > 1 ? 1 : 0;
+        pinched[k] = LinkFallsApart(mine) ? 1 : 0;
       }
     });
   std::vector<Id> marks;

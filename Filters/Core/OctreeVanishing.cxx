@@ -76,7 +76,54 @@ bool NearKeptTriangle(const Synthesis& s, const std::vector<Id>& offsets,
   }
   return false;
 }
+
+// The clusters that keep a triangle (one that is not a duplicate).
+std::vector<unsigned char> AliveClusters(const Synthesis& s)
+{
+  const Id kept = static_cast<Id>(s.From.size());
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  std::vector<unsigned char> alive = FreshVector<unsigned char>(clusters, 0);
+  for (Id j = 0; j < kept; ++j)
+  {
+    if (!s.Duplicate[j])
+    {
+      const Id* tri = s.Triangles.data() + 3 * j;
+      alive[tri[0]] = alive[tri[1]] = alive[tri[2]] = 1;
+    }
+  }
+  return alive;
+}
 } // namespace
+
+//------------------------------------------------------------------------------
+// The previous level's points in clusters that keep triangles, in a grid of cells
+// VanishingReach * epsilon wide, sorted by cell: the kept triangles around such points within
+// reach of a piece's centre (found in the 27 cells around it) are the surface that may take
+// the piece's place. (The kept points alone are too sparse to judge by: a speck a fifth of its
+// radius above a sphere lay farther than twice the epsilon from every one.)
+struct OctreeClustering::Internals::KeptSurfaceGrid
+{
+  using Cell = std::array<std::int64_t, 3>;
+  const double* Centre; // the tree's
+  double Reach;         // VanishingReach * epsilon
+  std::vector<std::pair<Cell, Id>> Points;
+  std::vector<Id> Offsets, Around; // the kept triangles of each cluster
+
+  KeptSurfaceGrid(const double* centre, double reach)
+    : Centre(centre)
+    , Reach(reach)
+  {
+  }
+  Cell CellOf(const double* x) const
+  {
+    Cell cell;
+    for (int c = 0; c < 3; ++c)
+    {
+      cell[c] = static_cast<std::int64_t>(std::floor((x[c] - this->Centre[c]) / this->Reach));
+    }
+    return cell;
+  }
+};
 
 //------------------------------------------------------------------------------
 // Vanishing pieces: a connected piece of the previous level of which no cluster keeps a
@@ -91,22 +138,54 @@ bool NearKeptTriangle(const Synthesis& s, const std::vector<Id>& offsets,
 // lies farther from the input everywhere, may let the piece go).
 Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
 {
-  const std::uint32_t pieces = this->PreviousPieces;
-  if (pieces <= 1)
+  if (this->PreviousPieces <= 1)
   {
     return 0;
   }
-  const Id kept = static_cast<Id>(s.From.size());
-  const Id clusters = static_cast<Id>(s.Cut.size());
-  std::vector<unsigned char> alive = FreshVector<unsigned char>(clusters, 0);
-  for (Id j = 0; j < kept; ++j)
+  const std::vector<unsigned char> alive = AliveClusters(s);
+  std::vector<Id> slot;
+  const std::vector<std::uint32_t> vanishing = this->VanishingPieces(s, alive, slot);
+  if (vanishing.empty())
   {
-    if (!s.Duplicate[j])
-    {
-      const Id* tri = s.Triangles.data() + 3 * j;
-      alive[tri[0]] = alive[tri[1]] = alive[tri[2]] = 1;
-    }
+    return 0;
   }
+  const std::vector<double> box = this->VanishingBoxes(slot, vanishing.size());
+  const double reach = VanishingReach * epsilon;
+  KeptSurfaceGrid grid(this->Tree.Centre, reach);
+  if (reach > 0.0)
+  {
+    this->FillKeptSurfaceGrid(s, alive, grid);
+  }
+  std::vector<unsigned char> refused(vanishing.size(), 0);
+  bool any = false;
+  for (std::size_t i = 0; i < vanishing.size(); ++i)
+  {
+    const double* b = box.data() + 6 * i;
+    const double centre[3] = { 0.5 * (b[0] + b[3]), 0.5 * (b[1] + b[4]), 0.5 * (b[2] + b[5]) };
+    const double radius = 0.5 * BoxDiagonal(b, b + 3);
+    if (!(radius > 0.0))
+    {
+      continue; // all its points at one place: nothing is lost
+    }
+    const bool near = radius < reach && this->NearKeptSurface(s, grid, centre, radius);
+    refused[i] = near ? 0 : 1;
+    any = any || !near;
+  }
+  if (!any)
+  {
+    return 0;
+  }
+  return this->MarkForTrial(s, this->ClustersOfRefusedPieces(s, slot, refused));
+}
+
+//------------------------------------------------------------------------------
+// The pieces of the previous level that had triangles and keep none (`alive`: the clusters that
+// keep a triangle), in order; `slot` maps each piece to its place among them (InvalidId for the
+// others).
+std::vector<std::uint32_t> OctreeClustering::Internals::VanishingPieces(
+  const Synthesis& s, const std::vector<unsigned char>& alive, std::vector<Id>& slot) const
+{
+  const std::uint32_t pieces = this->PreviousPieces;
   // 1: had triangles in the previous level; 2: keeps some.
   std::vector<unsigned char> state(pieces, 0);
   const Id previousTriangles = this->PreviousTriangles();
@@ -123,9 +202,8 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
       state[this->PieceOf(p)] = 2;
     }
   }
-  // The bounding box of each vanishing piece's previous points.
   std::vector<std::uint32_t> vanishing;
-  std::vector<Id> slot(pieces, InvalidId);
+  slot.assign(pieces, InvalidId);
   for (std::uint32_t piece = 0; piece < pieces; ++piece)
   {
     if (state[piece] == 1)
@@ -134,15 +212,21 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
       vanishing.push_back(piece);
     }
   }
-  if (vanishing.empty())
-  {
-    return 0;
-  }
-  std::vector<double> box(6 * vanishing.size());
-  for (std::size_t i = 0; i < vanishing.size(); ++i)
+  return vanishing;
+}
+
+//------------------------------------------------------------------------------
+// The bounding box of each vanishing piece's previous points, 6 numbers each (`count` pieces,
+// placed by `slot`: VanishingPieces).
+std::vector<double> OctreeClustering::Internals::VanishingBoxes(
+  const std::vector<Id>& slot, std::size_t count) const
+{
+  std::vector<double> box(6 * count);
+  for (std::size_t i = 0; i < count; ++i)
   {
     ClearBox(box.data() + 6 * i);
   }
+  const Id previousPoints = this->PreviousPoints();
   for (Id p = 0; p < previousPoints; ++p)
   {
     const Id i = slot[this->PieceOf(p)];
@@ -154,74 +238,68 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
     this->RepresentativeOf(this->NodeOfPoint(p), x);
     GrowBox(box.data() + 6 * i, x);
   }
-  // The previous level's points in clusters that keep triangles, in a grid of cells
-  // VanishingReach * epsilon wide, sorted by cell: the kept triangles around such points within
-  // reach of a piece's centre (found in the 27 cells around it) are the surface that may take
-  // the piece's place. (The kept points alone are too sparse to judge by: a speck a fifth of its
-  // radius above a sphere lay farther than twice the epsilon from every one.)
-  const double reach = VanishingReach * epsilon;
-  using Cell = std::array<std::int64_t, 3>;
-  auto cellOf = [&](const double* x)
+  return box;
+}
+
+//------------------------------------------------------------------------------
+// The grid's points (those of the clusters that keep a triangle, `alive`) and the kept triangles
+// of each cluster; only with a positive reach (cells of no width have no use).
+void OctreeClustering::Internals::FillKeptSurfaceGrid(
+  const Synthesis& s, const std::vector<unsigned char>& alive, KeptSurfaceGrid& grid) const
+{
+  const Id previousPoints = this->PreviousPoints();
+  for (Id p = 0; p < previousPoints; ++p)
   {
-    Cell cell;
-    for (int c = 0; c < 3; ++c)
+    if (alive[s.PointCluster[p]])
     {
-      cell[c] = static_cast<std::int64_t>(std::floor((x[c] - this->Tree.Centre[c]) / reach));
+      double x[3];
+      this->RepresentativeOf(this->NodeOfPoint(p), x);
+      grid.Points.emplace_back(grid.CellOf(x), p);
     }
-    return cell;
-  };
-  std::vector<std::pair<Cell, Id>> grid;
-  std::vector<Id> offsets, around; // the kept triangles of each cluster
-  if (reach > 0.0)
-  {
-    for (Id p = 0; p < previousPoints; ++p)
-    {
-      if (alive[s.PointCluster[p]])
-      {
-        double x[3];
-        this->RepresentativeOf(this->NodeOfPoint(p), x);
-        grid.emplace_back(cellOf(x), p);
-      }
-    }
-    std::sort(grid.begin(), grid.end());
-    GroupKeptTriangles(s, offsets, around);
   }
-  std::vector<unsigned char> refused(vanishing.size(), 0);
-  bool any = false;
-  for (std::size_t i = 0; i < vanishing.size(); ++i)
+  std::sort(grid.Points.begin(), grid.Points.end());
+  GroupKeptTriangles(s, grid.Offsets, grid.Around);
+}
+
+//------------------------------------------------------------------------------
+// Whether the kept triangles come within the grid's reach of all of a piece of the given centre
+// and radius (below the reach): one of them within the reach less the radius of its centre,
+// around a grid point within the reach of it.
+bool OctreeClustering::Internals::NearKeptSurface(const Synthesis& s,
+  const KeptSurfaceGrid& grid,
+  const double centre[3],
+  double radius) const
+{
+  using Cell = KeptSurfaceGrid::Cell;
+  const double reach = grid.Reach;
+  bool near = false;
+  const Cell home = grid.CellOf(centre);
+  for (int n = 0; n < 27 && !near; ++n)
   {
-    const double* b = box.data() + 6 * i;
-    const double centre[3] = { 0.5 * (b[0] + b[3]), 0.5 * (b[1] + b[4]), 0.5 * (b[2] + b[5]) };
-    const double radius = 0.5 * BoxDiagonal(b, b + 3);
-    if (!(radius > 0.0))
+    const Cell cell = { home[0] + n % 3 - 1, home[1] + (n / 3) % 3 - 1, home[2] + n / 9 - 1 };
+    auto it = std::lower_bound(grid.Points.begin(), grid.Points.end(), std::make_pair(cell, Id(0)));
+    for (; it != grid.Points.end() && it->first == cell && !near; ++it)
     {
-      continue; // all its points at one place: nothing is lost
+      double x[3];
+      this->RepresentativeOf(this->NodeOfPoint(it->second), x);
+      near = Distance2(centre, x) <= reach * reach &&
+        NearKeptTriangle(
+          s, grid.Offsets, grid.Around, s.PointCluster[it->second], centre, reach - radius);
     }
-    bool near = false;
-    if (radius < reach)
-    {
-      const Cell home = cellOf(centre);
-      for (int n = 0; n < 27 && !near; ++n)
-      {
-        const Cell cell = { home[0] + n % 3 - 1, home[1] + (n / 3) % 3 - 1, home[2] + n / 9 - 1 };
-        auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(cell, Id(0)));
-        for (; it != grid.end() && it->first == cell && !near; ++it)
-        {
-          double x[3];
-          this->RepresentativeOf(this->NodeOfPoint(it->second), x);
-          near = Distance2(centre, x) <= reach * reach &&
-            NearKeptTriangle(s, offsets, around, s.PointCluster[it->second], centre, reach - radius);
-        }
-      }
-    }
-    refused[i] = near ? 0 : 1;
-    any = any || !near;
   }
-  if (!any)
-  {
-    return 0;
-  }
+  return near;
+}
+
+//------------------------------------------------------------------------------
+// The clusters of the previous triangles of the vanishing pieces that are `refused`, three per
+// triangle.
+std::vector<Id> OctreeClustering::Internals::ClustersOfRefusedPieces(const Synthesis& s,
+  const std::vector<Id>& slot,
+  const std::vector<unsigned char>& refused) const
+{
   std::vector<Id> far;
+  const Id previousTriangles = this->PreviousTriangles();
+  const Id* prev = this->PreviousTriangleData();
   for (Id t = 0; t < previousTriangles; ++t)
   {
     const Id* tri = prev + 3 * t;
@@ -234,7 +312,7 @@ Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
       }
     }
   }
-  return this->MarkForTrial(s, far);
+  return far;
 }
 
 //------------------------------------------------------------------------------
