@@ -118,6 +118,17 @@ CollapseScheduleBuilder::CollapseScheduleBuilder(CollapseSchedule& schedule, con
   this->NextLevelValid.assign(this->NumberOfTargets, 0);
   this->InconsistentAt.assign(this->NumberOfTargets, 0);
 
+  this->ListCollapses();
+  this->Frontier.In.assign(numberOfPoints, 0);
+  this->Waiting.assign(this->Collapses.size(), 0);
+}
+
+// The collapses: runs of Moving with one rank and one target (points of rank -1 with one
+// target together), and the collapse of each point.
+void CollapseScheduleBuilder::ListCollapses()
+{
+  const Id* target = this->Target;
+  const std::int64_t* rank = this->Rank;
   for (size_t begin = 0; begin < this->Moving.size();)
   {
     const Id first = this->Moving[begin];
@@ -131,7 +142,7 @@ CollapseScheduleBuilder::CollapseScheduleBuilder(CollapseSchedule& schedule, con
     this->Collapses.emplace_back(begin, end);
     begin = end;
   }
-  this->CollapseOfPoint.assign(numberOfPoints, this->Collapses.size());
+  this->CollapseOfPoint.assign(this->NumberOfPoints, this->Collapses.size());
   for (size_t c = 0; c < this->Collapses.size(); ++c)
   {
     for (size_t i = this->Collapses[c].first; i < this->Collapses[c].second; ++i)
@@ -139,8 +150,6 @@ CollapseScheduleBuilder::CollapseScheduleBuilder(CollapseSchedule& schedule, con
       this->CollapseOfPoint[this->Moving[i]] = c;
     }
   }
-  this->Frontier.In.assign(numberOfPoints, 0);
-  this->Waiting.assign(this->Collapses.size(), 0);
 }
 
 //------------------------------------------------------------------------------

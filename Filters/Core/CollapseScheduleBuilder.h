@@ -71,6 +71,7 @@ public:
   const std::vector<std::uint8_t>& ValidSteps() const { return this->Valid; }
 
 private:
+  void ListCollapses();
   // Target t's sheets: those meeting at the one of its points on a curve where more than two
   // meet, else 1.
   int CountSheets(Id p);
