@@ -44,6 +44,13 @@ double ShapeMeasure(const double* p0, const double* p1, const double* p2)
   const double cosC = (a * a + b * b - c * c) / (2.0 * a * b);
   return std::max(0.0, 2.0 * (cosA + cosB + cosC - 1.0));
 }
+
+// Every how many of the triangles around v the fit reads (see FanTriangleLimit).
+Id EveryNthAround(const CollapseMesh& state, Id v)
+{
+  const Id around = state.TriangleCount(v);
+  return around > FanTriangleLimit ? (around + FanTriangleLimit - 1) / FanTriangleLimit : Id(1);
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -592,6 +599,41 @@ void CollapseCostModel::FitSurface(
     }
   }
 
+  this->ListStencil(tri, scratch);
+  this->ListFitPoints(tri, scratch);
+  std::vector<double>& points = scratch.Points;
+  SurfaceFitResult fit = FitQuadraticHeightField(
+    centroid, c.Normal, points.data(), static_cast<int>(points.size() / 3), scale);
+  if (!fit.Valid)
+  {
+    // Extended stencil: add the next ring of vertices.
+    this->AddNextRing(scratch);
+    fit = FitQuadraticHeightField(
+      centroid, c.Normal, points.data(), static_cast<int>(points.size() / 3), scale);
+  }
+  // The collapse point is on the normal through the centroid (paper 000: at the fitted
+  // surface, c + f(0, 0) n), at the height where the new triangles lie on the fitted surface on
+  // average or, ranked by FitDeviation, at its least (see CollapseHeight). A quadratic fitted
+  // to points spread far beyond the triangle can extrapolate wildly at its centre; the surface
+  // cannot be further from the centroid than about the triangle's size.
+  scratch.Fit = fit;
+  double height = 0.0;
+  if (fit.Valid && place)
+  {
+    const double best =
+      this->CollapseHeight(scratch, this->Options.CurvatureRanking == CurvatureCost::FitDeviation);
+    height = std::max(-scale, std::min(scale, best));
+  }
+  c.Kappa = fit.Valid ? fit.AbsoluteCurvature : 0.0;
+  for (int i = 0; i < 3; ++i)
+  {
+    c.Position[i] = centroid[i] + height * c.Normal[i];
+  }
+}
+
+//------------------------------------------------------------------------------
+void CollapseCostModel::ListStencil(const Id* tri, CostScratch& scratch) const
+{
   // The stencil: every vertex of the triangles around the three corners (current positions):
   // the corners and, from every triangle of their fans, the other vertices. (Only the vertices
   // that follow the corner would do around a consistently oriented closed fan, but not across
@@ -603,11 +645,6 @@ void CollapseCostModel::FitSurface(
   rimEdges.clear();
   rimWeights.clear();
   const auto member = [&](Id x) { return x == tri[0] || x == tri[1] || x == tri[2]; };
-  // Every how many of the triangles around v the fit reads (see FanTriangleLimit).
-  const auto everyNthAround = [&](Id v) {
-    const Id around = this->State.TriangleCount(v);
-    return around > FanTriangleLimit ? (around + FanTriangleLimit - 1) / FanTriangleLimit : Id(1);
-  };
   // Duplicates are dropped as they come (a dozen or so distinct vertices, most seen two to four
   // times): sorting the list with its duplicates had been a tenth of the curvature method's
   // time. Around a vertex of high valence (a cone's tip, a UV sphere's pole) the search would
@@ -629,7 +666,7 @@ void CollapseCostModel::FitSurface(
     // Around a fan's centre about every `every`-th ring triangle, standing for `every` of them
     // (see FanTriangleLimit; the neighbours of the collapsing triangle still come from the walks
     // around its other corners, unless those are fans' centres too).
-    const Id every = everyNthAround(corner);
+    const Id every = EveryNthAround(this->State, corner);
     this->State.ForEachTriangle(corner, every, [&](Id s) {
       const Id* st = this->State.Mesh.Triangle(s);
       const int c = CornerOf(st, corner);
@@ -650,7 +687,12 @@ void CollapseCostModel::FitSurface(
   }
   std::sort(stencil.begin(), stencil.end());
   stencil.erase(std::unique(stencil.begin(), stencil.end()), stencil.end());
+}
 
+//------------------------------------------------------------------------------
+void CollapseCostModel::ListFitPoints(const Id* tri, CostScratch& scratch) const
+{
+  const std::vector<Id>& stencil = scratch.Vertices;
   std::vector<double>& points = scratch.Points;
   points.resize(3 * stencil.size());
   for (std::size_t i = 0; i < stencil.size(); ++i)
@@ -677,51 +719,31 @@ void CollapseCostModel::FitSurface(
       points.push_back(x[2]);
     });
   }
+}
 
-  SurfaceFitResult fit = FitQuadraticHeightField(
-    centroid, c.Normal, points.data(), static_cast<int>(points.size() / 3), scale);
-  if (!fit.Valid)
+//------------------------------------------------------------------------------
+void CollapseCostModel::AddNextRing(CostScratch& scratch) const
+{
+  const std::vector<Id>& stencil = scratch.Vertices;
+  std::vector<double>& points = scratch.Points;
+  const std::size_t firstRing = stencil.size();
+  for (std::size_t i = 0; i < firstRing; ++i)
   {
-    // Extended stencil: add the next ring of vertices.
-    const std::size_t firstRing = stencil.size();
-    for (std::size_t i = 0; i < firstRing; ++i)
+    if (scratch.Owner != nullptr && scratch.Owner[stencil[i]] != scratch.Block)
     {
-      if (scratch.Owner != nullptr && scratch.Owner[stencil[i]] != scratch.Block)
-      {
-        continue;
-      }
-      this->State.ForEachTriangle(stencil[i], everyNthAround(stencil[i]), [&](Id s) {
-        const Id* st = this->State.Mesh.Triangle(s);
-        for (int k = 0; k < 3; ++k)
-        {
-          if (!std::binary_search(stencil.begin(), stencil.begin() + firstRing, st[k]))
-          {
-            const double* x = this->State.Mesh.Point(st[k]);
-            points.insert(points.end(), x, x + 3);
-          }
-        }
-      });
+      continue;
     }
-    fit = FitQuadraticHeightField(
-      centroid, c.Normal, points.data(), static_cast<int>(points.size() / 3), scale);
-  }
-  // The collapse point is on the normal through the centroid (paper 000: at the fitted
-  // surface, c + f(0, 0) n), at the height where the new triangles lie on the fitted surface on
-  // average or, ranked by FitDeviation, at its least (see CollapseHeight). A quadratic fitted
-  // to points spread far beyond the triangle can extrapolate wildly at its centre; the surface
-  // cannot be further from the centroid than about the triangle's size.
-  scratch.Fit = fit;
-  double height = 0.0;
-  if (fit.Valid && place)
-  {
-    const double best =
-      this->CollapseHeight(scratch, this->Options.CurvatureRanking == CurvatureCost::FitDeviation);
-    height = std::max(-scale, std::min(scale, best));
-  }
-  c.Kappa = fit.Valid ? fit.AbsoluteCurvature : 0.0;
-  for (int i = 0; i < 3; ++i)
-  {
-    c.Position[i] = centroid[i] + height * c.Normal[i];
+    this->State.ForEachTriangle(stencil[i], EveryNthAround(this->State, stencil[i]), [&](Id s) {
+      const Id* st = this->State.Mesh.Triangle(s);
+      for (int k = 0; k < 3; ++k)
+      {
+        if (!std::binary_search(stencil.begin(), stencil.begin() + firstRing, st[k]))
+        {
+          const double* x = this->State.Mesh.Point(st[k]);
+          points.insert(points.end(), x, x + 3);
+        }
+      }
+    });
   }
 }
 

@@ -205,6 +205,16 @@ private:
   // point on the normal through the centroid (see CollapseHeight).
   void FitSurface(
     const Id* tri, CollapseCandidate& candidate, CostScratch& scratch, bool place) const;
+  // The fit's stencil around the triangle, sorted, in scratch.Vertices, and the far edges of
+  // its ring triangles in scratch.RimEdges (pairs), each standing for RimWeights of them.
+  void ListStencil(const Id* tri, CostScratch& scratch) const;
+  // The points the fit reads, in scratch.Points: the stencil's, then the ancestral points of
+  // the triangle's corners.
+  void ListFitPoints(const Id* tri, CostScratch& scratch) const;
+  // The extended stencil, for a fit that failed on the first: the points of the vertices one
+  // ring beyond the stencil join scratch.Points (in a parallel round, only the rings around
+  // the stencil's vertices of scratch.Block).
+  void AddNextRing(CostScratch& scratch) const;
   // The height along the normal through the centroid at which the new triangles, from the
   // collapse point to the far edges of the ring triangles (FitSurface gathers them), lie on the
   // fitted surface on average or, with `leastDeviation`, at which their FitDeviation is least.

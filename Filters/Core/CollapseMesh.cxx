@@ -93,59 +93,7 @@ void CollapseMesh::Initialize(TriangleMesh&& input, TriangleTopology&& topology,
       {
         this->Flags[v] = kind == VertexKind::Boundary ? FlagBoundary : 0;
       }
-      Quadric q;
-      double surface = 0.0;
-      double facing[3] = { 0, 0, 0 };
-      for (Id i = adj.Begin(v); i < adj.End(v); ++i)
-      {
-        const Id t = adj.Triangles[i];
-        const Id* tri = mesh.Triangle(t);
-        Quadric plane;
-        double normal[3];
-        if (!TriangleQuadric(
-              mesh.Point(tri[0]), mesh.Point(tri[1]), mesh.Point(tri[2]), plane, normal))
-        {
-          continue; // degenerate triangle
-        }
-        if (planeWeight > 0.0)
-        {
-          // (TriangleQuadric weighs the plane by the area, half the normal's length.)
-          q.Add(plane, 2.0 * planeWeight / std::sqrt(Dot(normal, normal)));
-          surface += planeWeight;
-        }
-        else
-        {
-          q += plane;
-          surface += plane.Weight();
-        }
-        for (int i = 0; i < 3; ++i)
-        {
-          facing[i] += normal[i] / 6.0; // a third of the area vector (normal is twice it)
-        }
-        // Boundary edges of t at v get a plane through the edge, perpendicular to t, so that
-        // the boundary resists moving sideways. (A curve where sheets meet needs none: the
-        // planes of the sheets, in different directions, hold a vertex to it; planes through
-        // its edges as well would keep it at every wiggle of the input's curve: on a smoothed
-        // segmentation, 1.7 times the RMS distance at the coarse levels.)
-        const int c = CornerOf(tri, v);
-        for (const int e : { c, (c + 2) % 3 })
-        {
-          if (topology.EdgeNeighbors[3 * static_cast<std::size_t>(t) + e] == BoundaryEdge)
-          {
-            Quadric side;
-            BoundaryEdgeQuadric(mesh.Point(tri[e]), mesh.Point(tri[(e + 1) % 3]), normal,
-              boundaryWeight, side, boundaryScale);
-            q += side;
-          }
-        }
-      }
-      this->Quadrics[v] = q;
-      this->SurfaceWeights[v] = surface;
-      for (int i = 0; i < 3; ++i)
-      {
-        this->Facing[3 * static_cast<std::size_t>(v) + i] =
-          static_cast<float>(facing[i] * areaUnit);
-      }
+      this->SumPlanes(v, topology, boundaryWeight, boundaryScale, planeWeight, areaUnit);
     }
   });
 
@@ -165,6 +113,66 @@ void CollapseMesh::Initialize(TriangleMesh&& input, TriangleTopology&& topology,
   this->Rows.Triangles.swap(topology.VertexTriangles.Triangles);
   topology = TriangleTopology();
   this->ResetChains();
+}
+
+//------------------------------------------------------------------------------
+void CollapseMesh::SumPlanes(Id v, const TriangleTopology& topology, double boundaryWeight,
+  double boundaryScale, double planeWeight, double areaUnit)
+{
+  const TriangleMesh& mesh = this->Mesh;
+  const VertexTriangleAdjacency& adj = topology.VertexTriangles;
+  Quadric q;
+  double surface = 0.0;
+  double facing[3] = { 0, 0, 0 };
+  for (Id i = adj.Begin(v); i < adj.End(v); ++i)
+  {
+    const Id t = adj.Triangles[i];
+    const Id* tri = mesh.Triangle(t);
+    Quadric plane;
+    double normal[3];
+    if (!TriangleQuadric(
+          mesh.Point(tri[0]), mesh.Point(tri[1]), mesh.Point(tri[2]), plane, normal))
+    {
+      continue; // degenerate triangle
+    }
+    if (planeWeight > 0.0)
+    {
+      // (TriangleQuadric weighs the plane by the area, half the normal's length.)
+      q.Add(plane, 2.0 * planeWeight / std::sqrt(Dot(normal, normal)));
+      surface += planeWeight;
+    }
+    else
+    {
+      q += plane;
+      surface += plane.Weight();
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+      facing[i] += normal[i] / 6.0; // a third of the area vector (normal is twice it)
+    }
+    // Boundary edges of t at v get a plane through the edge, perpendicular to t, so that
+    // the boundary resists moving sideways. (A curve where sheets meet needs none: the
+    // planes of the sheets, in different directions, hold a vertex to it; planes through
+    // its edges as well would keep it at every wiggle of the input's curve: on a smoothed
+    // segmentation, 1.7 times the RMS distance at the coarse levels.)
+    const int c = CornerOf(tri, v);
+    for (const int e : { c, (c + 2) % 3 })
+    {
+      if (topology.EdgeNeighbors[3 * static_cast<std::size_t>(t) + e] == BoundaryEdge)
+      {
+        Quadric side;
+        BoundaryEdgeQuadric(mesh.Point(tri[e]), mesh.Point(tri[(e + 1) % 3]), normal,
+          boundaryWeight, side, boundaryScale);
+        q += side;
+      }
+    }
+  }
+  this->Quadrics[v] = q;
+  this->SurfaceWeights[v] = surface;
+  for (int i = 0; i < 3; ++i)
+  {
+    this->Facing[3 * static_cast<std::size_t>(v) + i] = static_cast<float>(facing[i] * areaUnit);
+  }
 }
 
 //------------------------------------------------------------------------------

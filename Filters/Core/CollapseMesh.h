@@ -348,6 +348,11 @@ private:
   /// to them become keeps a triangle, and no two ring triangles become one; with `alongCurve`,
   /// no apex is joined to both members by edges of more than two triangles.
   bool MergeKeepsLinks(const Star& star, bool alongCurve) const;
+  /// Initialize's sums at vertex v: the quadric of the planes of its triangles (and of their
+  /// boundary edges at v), the surface they stand for and which way they face (in units of
+  /// areaUnit), into Quadrics, SurfaceWeights and Facing.
+  void SumPlanes(Id v, const TriangleTopology& topology, double boundaryWeight,
+    double boundaryScale, double planeWeight, double areaUnit);
   /// Every vertex's chain back to its own row alone.
   void ResetChains();
   /// `parent` as a union-find forest (FindRoot) joining the corners of every live triangle,

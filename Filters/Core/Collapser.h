@@ -22,6 +22,8 @@
 namespace meshlod
 {
 struct CellGrid;           // PartitionedGreedy.cxx
+struct CellRound;          // PartitionedGreedy.cxx
+struct CellScratch;        // PartitionedGreedy.cxx
 struct IndependentSetPass; // IndependentSetSchedule.cxx
 
 constexpr double InfiniteCost = std::numeric_limits<double>::infinity();
@@ -203,11 +205,94 @@ private:
   // Greedy collapses, cheapest first, until at most `until` triangles are alive (levels are
   // emitted on the way).
   StepsEnd GreedySteps(std::int64_t until);
+  // The greedy loop's heap: every live, unparked triangle with a finite cost.
+  void BuildGreedyHeap(IndexedHeap& heap);
+  // The greedy loop's check of the parking lot: the refused triangles whose neighbourhood
+  // changed go back into the heap, and the next check is due at nextRelease. With the heap
+  // still empty, a stalled run relaxes its rules (RelaxForStall); false when that leaves it
+  // empty: the run is stuck.
+  bool ReleaseParked(IndexedHeap& heap, std::int64_t& nextRelease);
+  // A new cost for triangle s in the greedy loop's heap; a triangle that cannot collapse any
+  // more leaves the heap. (This and DeferInHeap are defined here so that the loop's calls to
+  // them inline: defined in the .cxx, they were calls through the library's PLT, and the loop
+  // ran 1% more instructions.)
+  void ReweighInHeap(Id s, IndexedHeap& heap, CostScratch& scratch)
+  {
+    this->Reweigh(s, scratch);
+    if (this->Costs[s] < InfiniteCost)
+    {
+      heap.Update(s);
+    }
+    else
+    {
+      heap.Remove(s);
+    }
+  }
+  // Curvature method: triangle s, one ring out from a collapse, is marked stale in the greedy
+  // loop's heap (MarkStale), or re-weighed now when it has no finite cost to lower.
+  // The curvature method's triangles one ring out are re-weighted lazily (each re-weighting is
+  // a fit, a dozen per collapse): marked stale, they wait in the heap at StaleCostFactor times
+  // their old cost and are re-weighted when they come to its top. Many are marked again, or
+  // die, before they do. A stale triangle whose new cost is at least that fraction of its old
+  // one comes up no later than it would have with its new cost, so wherever no cost falls
+  // below half, the order is exactly that of re-weighting at once (ranked by the fit's
+  // deviation, the 154k metaballs and a smooth sphere give the same levels), in about half the
+  // time.
+  void DeferInHeap(Id s, IndexedHeap& heap, CostScratch& scratch)
+  {
+    if (this->MarkStale(s))
+    {
+      heap.Update(s);
+    }
+    else
+    {
+      this->ReweighInHeap(s, heap, scratch);
+    }
+  }
+  // New costs around a collapse's survivor: its neighbours' valences and its position changed,
+  // which the parking lot takes note of at `now`. Each triangle around it goes to reweigh(s),
+  // or to defer(s) around a hub (DefersAroundHub); the solutions of the edges from the
+  // survivor are kept meanwhile and reused (CostScratch::BeginSpokes).
+  template <typename ReweighF, typename DeferF>
+  void ReweighAroundSurvivor(
+    Id survivor, std::int64_t now, CostScratch& scratch, ReweighF&& reweigh, DeferF&& defer)
+  {
+    scratch.BeginSpokes(survivor, this->State.TriangleCount(survivor));
+    const bool lazy = this->DefersAroundHub(survivor);
+    this->State.ForEachTriangle(survivor, [&](Id s) {
+      this->Lot.Touch(this->State.Mesh.Triangle(s), now);
+      if (lazy)
+      {
+        defer(s);
+      }
+      else
+      {
+        reweigh(s);
+      }
+    });
+    scratch.EndSpokes();
+  }
 
   // Partitioned greedy: one round of greedy collapses inside the cells of a grid, in
   // parallel, removing at most `budget` triangles (and 3 more per cell, or up to 11 for a
   // vanishing piece); returns how many it removed.
   std::int64_t BlockRound(std::int64_t budget, int round, bool& errorLimited);
+  // Busy cell b of a round (round.Busy[b]): its candidates in the thread's heap, its own
+  // vertices the only ones its checks and fits may reach (in a parallel round), how new costs
+  // reach the heap, then its greedy loop (CellSteps).
+  void RunCell(CellRound& round, Id b, CellScratch& mine);
+  // The greedy loop of busy cell b, cheapest candidate first, until its heap is empty or it
+  // removed its `quota` of triangles (what it did: round.Outcomes[b]). reweigh(s) gives
+  // triangle s a new cost and defer(s) takes a triangle one ring out from a collapse (see
+  // RunCell). (Defined and instantiated in PartitionedGreedy.cxx.)
+  template <typename ReweighF, typename DeferF>
+  void CellSteps(CellRound& round, Id b, std::int64_t quota, CellScratch& mine,
+    ReweighF&& reweigh, DeferF&& defer);
+  // After the cells' loops: the curvature method's triangles between cells that collapses
+  // reached are marked stale, the cells' counts and parked triangles summed up in cell order,
+  // the clock and the collapse numbers moved past the round. Returns the triangles removed;
+  // errorLimited is set when MaximumError stopped a cell.
+  std::int64_t EndRound(CellRound& round, bool& errorLimited);
   // The cost below which about `count` of the live, unparked triangles are (sampled);
   // -infinity when none has a finite cost.
   double CostQuantile(double count);
@@ -254,7 +339,7 @@ private:
   bool HandLevelToGreedy(IndependentSetPass& pass);
 
   // The curvature method re-weights the triangles one ring out from a collapse lazily (see
-  // GreedySteps): MarkStale lowers the cost of triangle s once to StaleCostFactor times its
+  // DeferInHeap): MarkStale lowers the cost of triangle s once to StaleCostFactor times its
   // old cost and marks it for re-weighting when it comes to the top of a queue; false, with
   // nothing marked, when s has no finite cost to lower (re-weigh it now).
   bool MarkStale(Id s);

@@ -12,7 +12,7 @@ constexpr std::int64_t ParkedRetryCollapses = 256;
 // ... or after one collapse per this many waiting triangles, if that is later.
 constexpr std::size_t ParkedRetryShare = 4;
 // A triangle whose cost awaits re-evaluation waits in the heap at this fraction of its old cost
-// (see GreedySteps). (0.7: about 10% faster on the 154k metaballs, same levels, but on a noisy
+// (see DeferInHeap). (0.7: about 10% faster on the 154k metaballs, same levels, but on a noisy
 // sphere at 1% the paper's weight went from 2.1x to 8x vtkQuadricDecimation's Hausdorff
 // distance.)
 constexpr double StaleCostFactor = 0.5;
@@ -58,15 +58,8 @@ void Collapser::Reweigh(Id s, CostScratch& scratch)
 //------------------------------------------------------------------------------
 Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
 {
-  // The heap's positions are the parallel rounds' (PartitionedGreedy.cxx), which hold no heap
-  // now: the curvature method lands every level here, and a second array of a position per
-  // triangle alive with the first was 4 bytes per input triangle of its peak memory.
-  ResizeFresh(this->HeapPositions, this->InitialTriangles, InvalidId);
   IndexedHeap heap;
-  heap.Attach(&this->Costs, &this->Spreads, this->HeapPositions.data());
-  heap.Build([&](Id t) {
-    return this->State.IsAlive(t) && this->Costs[t] < InfiniteCost && !this->Lot.IsParked(t);
-  });
+  this->BuildGreedyHeap(heap);
 
   Star star;
   CostScratch scratch;
@@ -74,37 +67,8 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
   const std::int64_t progressEvery = std::max<std::int64_t>(1000, this->InitialTriangles / 200);
   const bool widen = this->RefitsLazily();
   std::vector<Id> touched;
-  auto release = [&](Id s) { heap.Update(s); };
-  // A new cost for triangle s; a triangle that cannot collapse any more leaves the heap.
-  auto reweigh = [&](Id s) {
-    this->Reweigh(s, scratch);
-    if (this->Costs[s] < InfiniteCost)
-    {
-      heap.Update(s);
-    }
-    else
-    {
-      heap.Remove(s);
-    }
-  };
-  // The curvature method's triangles one ring out are re-weighted lazily (each re-weighting is
-  // a fit, a dozen per collapse): marked stale, they wait in the heap at StaleCostFactor times
-  // their old cost and are re-weighted when they come to its top. Many are marked again, or
-  // die, before they do. A stale triangle whose new cost is at least that fraction of its old
-  // one comes up no later than it would have with its new cost, so wherever no cost falls
-  // below half, the order is exactly that of re-weighting at once (ranked by the fit's
-  // deviation, the 154k metaballs and a smooth sphere give the same levels), in about half the
-  // time.
-  auto defer = [&](Id s) {
-    if (this->MarkStale(s))
-    {
-      heap.Update(s);
-    }
-    else
-    {
-      reweigh(s);
-    }
-  };
+  auto reweigh = [&](Id s) { this->ReweighInHeap(s, heap, scratch); };
+  auto defer = [&](Id s) { this->DeferInHeap(s, heap, scratch); };
   if (widen)
   {
     this->Stale.resize(this->InitialTriangles, 0);
@@ -112,18 +76,9 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
   std::int64_t nextRelease = this->Clock + ParkedRetryCollapses;
   while (this->State.AliveTriangles > until)
   {
-    if (heap.Empty() || this->Clock >= nextRelease)
+    if ((heap.Empty() || this->Clock >= nextRelease) && !this->ReleaseParked(heap, nextRelease))
     {
-      this->Lot.Release(this->State, release);
-      // A check costs time in proportion to the waiting triangles: space the checks so that
-      // they cost a bounded amount per collapse however many triangles wait.
-      nextRelease = this->Clock +
-        std::max<std::int64_t>(ParkedRetryCollapses,
-          static_cast<std::int64_t>(this->Lot.GetNumberOfWaiting() / ParkedRetryShare));
-      if (heap.Empty() && !(this->RelaxForStall(release) && !heap.Empty()))
-      {
-        return StepsEnd::Stuck;
-      }
+      return StepsEnd::Stuck;
     }
     const Id t = heap.Pop();
     if (widen && this->Stale[t])
@@ -162,20 +117,7 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
     // New costs around the survivor; its neighbours' valences and its position changed, which
     // the parking lot takes note of. For the curvature method the triangles one ring further
     // out are re-weighted too: their stencils moved.
-    scratch.BeginSpokes(survivor, this->State.TriangleCount(survivor));
-    const bool lazy = this->DefersAroundHub(survivor);
-    this->State.ForEachTriangle(survivor, [&](Id s) {
-      this->Lot.Touch(this->State.Mesh.Triangle(s), this->Clock);
-      if (lazy)
-      {
-        defer(s);
-      }
-      else
-      {
-        reweigh(s);
-      }
-    });
-    scratch.EndSpokes();
+    this->ReweighAroundSurvivor(survivor, this->Clock, scratch, reweigh, defer);
     upcoming.Prefetch(3);
     if (widen)
     {
@@ -189,6 +131,36 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
     }
   }
   return StepsEnd::Reached;
+}
+
+//------------------------------------------------------------------------------
+void Collapser::BuildGreedyHeap(IndexedHeap& heap)
+{
+  // The heap's positions are the parallel rounds' (PartitionedGreedy.cxx), which hold no heap
+  // now: the curvature method lands every level here, and a second array of a position per
+  // triangle alive with the first was 4 bytes per input triangle of its peak memory.
+  ResizeFresh(this->HeapPositions, this->InitialTriangles, InvalidId);
+  heap.Attach(&this->Costs, &this->Spreads, this->HeapPositions.data());
+  heap.Build([&](Id t) {
+    return this->State.IsAlive(t) && this->Costs[t] < InfiniteCost && !this->Lot.IsParked(t);
+  });
+}
+
+//------------------------------------------------------------------------------
+bool Collapser::ReleaseParked(IndexedHeap& heap, std::int64_t& nextRelease)
+{
+  auto release = [&](Id s) { heap.Update(s); };
+  this->Lot.Release(this->State, release);
+  // A check costs time in proportion to the waiting triangles: space the checks so that
+  // they cost a bounded amount per collapse however many triangles wait.
+  nextRelease = this->Clock +
+    std::max<std::int64_t>(ParkedRetryCollapses,
+      static_cast<std::int64_t>(this->Lot.GetNumberOfWaiting() / ParkedRetryShare));
+  if (heap.Empty() && !(this->RelaxForStall(release) && !heap.Empty()))
+  {
+    return false; // stuck
+  }
+  return true;
 }
 
 } // namespace meshlod

@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace meshlod
 {
@@ -75,6 +76,7 @@ std::int64_t CellsFor(std::int64_t alive)
   return std::max(
     std::min(MinimumCells, alive / MinimumTrianglesPerCell), alive / TrianglesPerCell);
 }
+} // namespace
 
 // Per-thread scratch of the cells' greedy loops.
 struct CellScratch
@@ -98,7 +100,21 @@ struct CellOutcome
   bool ErrorLimited = false;
   std::vector<Id> Parked;
 };
-} // namespace
+
+// One round of BlockRound: what its cells share (read only while they run), the per-thread
+// scratch of their greedy loops and what each did.
+struct CellRound
+{
+  std::vector<std::uint32_t> Busy; // cells with candidates, in increasing order
+  double Threshold = 0.0;          // no candidate costs more
+  std::int64_t Budget = 0;         // of the whole round
+  Id Candidates = 0;               // in all its cells
+  bool Parallel = false;
+  bool Widen = false;                   // RefitsLazily(): the curvature method
+  std::int64_t Clock = 0, Sequence = 0; // the collapser's at the start of the round
+  std::vector<CellOutcome> Outcomes;    // per busy cell
+  vtkSMPThreadLocal<CellScratch> Scratch;
+};
 
 // A uniform grid over a box; cell ids are x + nx (y + ny z).
 struct CellGrid
@@ -403,131 +419,150 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
     this->State.FreezePieceCounts(); // (see CollapseMesh::SmallPiece)
   }
   const Id cellsBusy = static_cast<Id>(busy.size());
-  std::vector<CellOutcome> outcomes(cellsBusy);
-  vtkSMPThreadLocal<CellScratch> scratch;
-  const std::int64_t clock = this->Clock;
-  const std::int64_t sequence = this->Sequence;
-  const bool widen = this->RefitsLazily();
+  CellRound work;
+  work.Busy = std::move(busy);
+  work.Outcomes.resize(cellsBusy);
+  work.Threshold = threshold;
+  work.Budget = budget;
+  work.Candidates = candidates;
+  work.Parallel = parallel;
+  work.Widen = this->RefitsLazily();
+  work.Clock = this->Clock;
+  work.Sequence = this->Sequence;
   vtkSMPTools::For(0, cellsBusy, 1, [&](Id begin, Id end) {
-    CellScratch& mine = scratch.Local();
+    CellScratch& mine = work.Scratch.Local();
     for (Id b = begin; b < end; ++b)
     {
-      const std::uint32_t cell = busy[b];
-      const Id first = this->CellFirst[cell];
-      const Id count = this->CellFirst[cell + 1] - first;
-      const std::int64_t quota = budget * count / candidates;
-      CellOutcome& out = outcomes[b];
-      IndexedHeap& heap = mine.Heap;
-      Star& star = mine.Stars;
-      CollapseCandidate& c = mine.Candidate;
-      heap.Attach(&this->Costs, &this->Spreads, this->HeapPositions.data());
-      heap.Build(this->Candidates.data() + first, static_cast<std::size_t>(count));
-      star.Owner = parallel ? this->Owner.data() : nullptr;
-      star.Block = cell;
-      mine.Cost.Owner = star.Owner;
-      mine.Cost.Block = cell;
-      // A new cost for triangle s, which stays a candidate while it is below the threshold.
-      const auto reweigh = [&](Id s) {
-        this->Reweigh(s, mine.Cost);
-        if (this->Costs[s] <= threshold)
-        {
-          heap.Update(s);
-        }
-        else
-        {
-          heap.Remove(s);
-        }
-      };
-      // Curvature method: a triangle one ring out from a collapse. Only this cell changes the
-      // triangles whose corners are all its own; the others wait for the end of the round.
-      const auto defer = [&](Id s) {
-        const Id* tri = this->State.Mesh.Triangle(s);
-        if (parallel && !CornersOwnedBy(this->Owner.data(), tri, cell))
-        {
-          mine.Shared.push_back(s);
-        }
-        else if (!this->MarkStale(s))
-        {
-          reweigh(s);
-        }
-        else if (this->Costs[s] <= threshold)
-        {
-          heap.Update(s);
-        }
-      };
-      while (!heap.Empty() && out.Removed < quota)
-      {
-        const Id t = heap.Pop();
-        if (widen && this->Stale[t])
-        {
-          reweigh(t);
-          continue;
-        }
-        const UpcomingCandidates upcoming(heap, this->State);
-        upcoming.Prefetch(0);
-        const Legality legality = this->Check(t, star, c, mine.Cost);
-        upcoming.Prefetch(1);
-        if (legality == Legality::Foreign)
-        {
-          continue; // for a later round
-        }
-        const std::int64_t now = clock + out.Collapses;
-        if (legality != Legality::Legal)
-        {
-          this->Lot.Park(t, now, &out.Parked);
-          continue;
-        }
-        if (!parallel)
-        {
-          this->LandOnTarget(t, quota - out.Removed, star, c); // the serial round's quota is the gap
-        }
-        if (!this->ErrorAllows(c.Error))
-        {
-          out.ErrorLimited = true;
-          break;
-        }
-        const Id survivor = star.Members[0];
-        // Collapse numbers interleave the cells, cheapest first in each.
-        out.Removed += this->Collapse(star, c, sequence + out.Collapses * cellsBusy + b);
-        upcoming.Prefetch(2);
-        out.Swaps += c.Swapped ? 1 : 0;
-        ++out.Collapses;
-        for (const Id d : star.Dying)
-        {
-          heap.Remove(d);
-        }
-        mine.Cost.BeginSpokes(survivor, this->State.TriangleCount(survivor));
-        const bool lazy = this->DefersAroundHub(survivor);
-        this->State.ForEachTriangle(survivor, [&](Id s) {
-          this->Lot.Touch(this->State.Mesh.Triangle(s), now + 1);
-          if (lazy)
-          {
-            defer(s);
-          }
-          else
-          {
-            reweigh(s);
-          }
-        });
-        mine.Cost.EndSpokes();
-        upcoming.Prefetch(3);
-        if (widen)
-        {
-          this->ForEachTriangleOneRingOut(survivor, mine.Touched, defer);
-        }
-      }
-      heap.Clear();
-      star.Owner = nullptr;
-      mine.Cost.Owner = nullptr;
+      this->RunCell(work, b, mine);
     }
   });
 
   // 4. Sum up in cell order; the curvature method's triangles between cells that collapses
   // reached become stale now (in id order: the same for any number of threads).
-  if (widen)
+  return this->EndRound(work, errorLimited);
+}
+
+//------------------------------------------------------------------------------
+void Collapser::RunCell(CellRound& round, Id b, CellScratch& mine)
+{
+  const std::uint32_t cell = round.Busy[b];
+  const Id first = this->CellFirst[cell];
+  const Id count = this->CellFirst[cell + 1] - first;
+  const std::int64_t quota = round.Budget * count / round.Candidates;
+  const double threshold = round.Threshold;
+  const bool parallel = round.Parallel;
+  IndexedHeap& heap = mine.Heap;
+  Star& star = mine.Stars;
+  heap.Attach(&this->Costs, &this->Spreads, this->HeapPositions.data());
+  heap.Build(this->Candidates.data() + first, static_cast<std::size_t>(count));
+  star.Owner = parallel ? this->Owner.data() : nullptr;
+  star.Block = cell;
+  mine.Cost.Owner = star.Owner;
+  mine.Cost.Block = cell;
+  // A new cost for triangle s, which stays a candidate while it is below the threshold.
+  const auto reweigh = [&](Id s) {
+    this->Reweigh(s, mine.Cost);
+    if (this->Costs[s] <= threshold)
+    {
+      heap.Update(s);
+    }
+    else
+    {
+      heap.Remove(s);
+    }
+  };
+  // Curvature method: a triangle one ring out from a collapse. Only this cell changes the
+  // triangles whose corners are all its own; the others wait for the end of the round.
+  const auto defer = [&](Id s) {
+    const Id* tri = this->State.Mesh.Triangle(s);
+    if (parallel && !CornersOwnedBy(this->Owner.data(), tri, cell))
+    {
+      mine.Shared.push_back(s);
+    }
+    else if (!this->MarkStale(s))
+    {
+      reweigh(s);
+    }
+    else if (this->Costs[s] <= threshold)
+    {
+      heap.Update(s);
+    }
+  };
+  this->CellSteps(round, b, quota, mine, reweigh, defer);
+  heap.Clear();
+  star.Owner = nullptr;
+  mine.Cost.Owner = nullptr;
+}
+
+//------------------------------------------------------------------------------
+template <typename ReweighF, typename DeferF>
+void Collapser::CellSteps(CellRound& round, Id b, std::int64_t quota, CellScratch& mine,
+  ReweighF&& reweigh, DeferF&& defer)
+{
+  const bool parallel = round.Parallel;
+  const bool widen = round.Widen;
+  const Id cellsBusy = static_cast<Id>(round.Busy.size());
+  CellOutcome& out = round.Outcomes[b];
+  IndexedHeap& heap = mine.Heap;
+  Star& star = mine.Stars;
+  CollapseCandidate& c = mine.Candidate;
+  while (!heap.Empty() && out.Removed < quota)
+  {
+    const Id t = heap.Pop();
+    if (widen && this->Stale[t])
+    {
+      reweigh(t);
+      continue;
+    }
+    const UpcomingCandidates upcoming(heap, this->State);
+    upcoming.Prefetch(0);
+    const Legality legality = this->Check(t, star, c, mine.Cost);
+    upcoming.Prefetch(1);
+    if (legality == Legality::Foreign)
+    {
+      continue; // for a later round
+    }
+    const std::int64_t now = round.Clock + out.Collapses;
+    if (legality != Legality::Legal)
+    {
+      this->Lot.Park(t, now, &out.Parked);
+      continue;
+    }
+    if (!parallel)
+    {
+      this->LandOnTarget(t, quota - out.Removed, star, c); // the serial round's quota is the gap
+    }
+    if (!this->ErrorAllows(c.Error))
+    {
+      out.ErrorLimited = true;
+      break;
+    }
+    const Id survivor = star.Members[0];
+    // Collapse numbers interleave the cells, cheapest first in each.
+    out.Removed += this->Collapse(star, c, round.Sequence + out.Collapses * cellsBusy + b);
+    upcoming.Prefetch(2);
+    out.Swaps += c.Swapped ? 1 : 0;
+    ++out.Collapses;
+    for (const Id d : star.Dying)
+    {
+      heap.Remove(d);
+    }
+    this->ReweighAroundSurvivor(survivor, now + 1, mine.Cost, reweigh, defer);
+    upcoming.Prefetch(3);
+    if (widen)
+    {
+      this->ForEachTriangleOneRingOut(survivor, mine.Touched, defer);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+std::int64_t Collapser::EndRound(CellRound& round, bool& errorLimited)
+{
+  if (round.Widen)
   {
     std::vector<Id> shared;
-    for (CellScratch& mine : scratch)
+    for (CellScratch& mine : round.Scratch)
     {
       shared.insert(shared.end(), mine.Shared.begin(), mine.Shared.end());
       mine.Shared.clear();
@@ -544,7 +579,7 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
     }
   }
   std::int64_t removed = 0, longest = 0;
-  for (const CellOutcome& out : outcomes)
+  for (const CellOutcome& out : round.Outcomes)
   {
     removed += out.Removed;
     this->Result.Collapses += out.Collapses;
@@ -553,10 +588,11 @@ std::int64_t Collapser::BlockRound(std::int64_t budget, int round, bool& errorLi
     longest = std::max(longest, out.Collapses);
     this->Lot.Adopt(out.Parked);
   }
-  if (parallel && !this->Options.PreserveTopology)
+  if (round.Parallel && !this->Options.PreserveTopology)
   {
     this->WakePiecesTurnedSmall();
   }
+  const Id cellsBusy = static_cast<Id>(round.Busy.size());
   this->State.AliveTriangles -= static_cast<Id>(removed);
   this->Clock += longest + 1;
   this->Sequence += (longest + 1) * cellsBusy;
