@@ -69,6 +69,7 @@ set(meshlod_sources
   Filters/Core/OctreeClustering.cxx
   Filters/Core/OctreeCuts.cxx
   Filters/Core/OctreeNodes.cxx
+  Filters/Core/OctreeRepairs.cxx
   Filters/Core/OctreeSynthesis.cxx
   Filters/Core/OctreeVanishing.cxx
   Filters/Core/PartitionedGreedy.cxx

@@ -1,7 +1,10 @@
 // Private to the octree clustering (OctreeClustering.h): the state shared by its sources,
 // - OctreeNodes.cxx: evaluating a node (representative, error, admissibility; paper 001 §2-3);
 // - OctreeCuts.cxx: the cut of the cluster tree at an epsilon and the search for an epsilon;
-// - OctreeSynthesis.cxx: a level from a cut (re-indexed triangles, folds and pinches fixed);
+// - OctreeSynthesis.cxx: a level from a cut (re-indexed triangles, the trial made again until
+//   no repair is needed, the level's arrays);
+// - OctreeRepairs.cxx: the repairs of a trial level (folds, fins, breaks, pinched edges and
+//   vertices: the clusters of the triangles concerned marked to split);
 // - OctreeVanishing.cxx: what a level would make vanish: small closed pieces far from its
 //   surface, holes closed up;
 // - OctreeClustering.cxx: the public class.
