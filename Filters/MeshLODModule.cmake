@@ -53,6 +53,7 @@ set(meshlod_private_headers
 
 set(meshlod_sources
   Filters/Core/ClusterTree.cxx
+  Filters/Core/ClusterTreeBuild.cxx
   Filters/Core/CollapseCosts.cxx
   Filters/Core/CollapseMesh.cxx
   Filters/Core/CollapseSchedule.cxx
