@@ -55,6 +55,7 @@ set(meshlod_sources
   Filters/Core/ClusterTree.cxx
   Filters/Core/ClusterTreeBuild.cxx
   Filters/Core/CollapseCosts.cxx
+  Filters/Core/CollapseLegality.cxx
   Filters/Core/CollapseMesh.cxx
   Filters/Core/CollapseSchedule.cxx
   Filters/Core/CollapseScheduleFans.cxx
