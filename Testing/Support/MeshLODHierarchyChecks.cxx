@@ -345,6 +345,23 @@ std::vector<TriangleIds> Triangles(vtkPolyData* mesh)
 }
 
 //------------------------------------------------------------------------------
+std::int64_t CountRepeatedPointTriangles(vtkMultiBlockDataSet* hierarchy)
+{
+  std::int64_t count = 0;
+  for (unsigned int i = 0; i < hierarchy->GetNumberOfBlocks(); ++i)
+  {
+    std::set<TriangleIds> seen;
+    for (TriangleIds t : Triangles(Level(hierarchy, i)))
+    {
+      count += (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) ? 1 : 0;
+      std::sort(t.begin(), t.end());
+      count += seen.insert(t).second ? 0 : 1;
+    }
+  }
+  return count;
+}
+
+//------------------------------------------------------------------------------
 std::map<EdgeIds, int> EdgeTriangleCounts(vtkPolyData* mesh)
 {
   std::map<EdgeIds, int> counts;

@@ -70,6 +70,10 @@ std::int64_t CountLevelsChangedByUnusedNaNPoint(
 using TriangleIds = std::array<vtkIdType, 3>;
 std::vector<TriangleIds> Triangles(vtkPolyData* mesh);
 
+/// Triangles of every level of `hierarchy` with a point twice, and triangles on the same three
+/// points as another of their level (in any order).
+std::int64_t CountRepeatedPointTriangles(vtkMultiBlockDataSet* hierarchy);
+
 /// The number of triangles on each edge of a mesh (edge as its two point ids, smaller first).
 using EdgeIds = std::pair<vtkIdType, vtkIdType>;
 std::map<EdgeIds, int> EdgeTriangleCounts(vtkPolyData* mesh);
