@@ -111,7 +111,7 @@ CollapseScheduleBuilder::CollapseScheduleBuilder(CollapseSchedule& schedule, con
       {
         this->SettledOn[t] = p;
       }
-      this->Parent[FindClass(this->Parent, p)] = FindClass(this->Parent, this->SettledOn[t]);
+      this->Parent[FindRoot(this->Parent, p)] = FindRoot(this->Parent, this->SettledOn[t]);
     }
   }
   this->SheetsOf.assign(this->NumberOfTargets, 0);
@@ -169,9 +169,9 @@ void CollapseScheduleBuilder::Record(Id p, Id t, bool ok)
   }
   else if (t == this->Tracked)
   {
-    this->Join(p, FindClass(this->Parent, this->SettledOn[t]), nullptr);
+    this->Join(p, FindRoot(this->Parent, this->SettledOn[t]), nullptr);
   }
-  this->Parent[FindClass(this->Parent, p)] = FindClass(this->Parent, this->SettledOn[t]);
+  this->Parent[FindRoot(this->Parent, p)] = FindRoot(this->Parent, this->SettledOn[t]);
   std::vector<Id>& broken = this->Broken;
   if (!ok && std::find(broken.begin(), broken.end(), t) == broken.end())
   {
@@ -351,7 +351,7 @@ bool CollapseScheduleBuilder::WholeIsValid(size_t c)
   {
     this->SettledOn[t] = this->Moving[begin];
   }
-  const Id root = FindClass(this->Parent, this->SettledOn[t]);
+  const Id root = FindRoot(this->Parent, this->SettledOn[t]);
   for (size_t i = begin; i < end; ++i)
   {
     this->Step[this->Moving[i]] = CollapseSchedule::Never; // settled, for the test

@@ -131,7 +131,7 @@ private:
   std::vector<Id> TargetOffsets, TargetPoints; // the points of each target, in increasing id
   VertexTriangleAdjacency Adjacency;
   std::vector<Id> Moving; // the points that move, sorted by collapse (SortMovingPoints)
-  std::vector<Id> Parent; // the union-find
+  std::vector<Id> Parent; // the union-find (FindRoot)
   std::vector<Id> SettledOn; // a settled point of each target
 
   // Per target, the sheets meeting at the one of its points on a curve where more than two

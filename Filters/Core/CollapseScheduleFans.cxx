@@ -104,8 +104,8 @@ bool CollapseScheduleBuilder::ValidInNextLevel(Id t)
 bool CollapseScheduleBuilder::LinkEdge(Id tri, Id root, Id& from, Id& to)
 {
   const Id* v = this->Triangle(tri);
-  const Id c[3] = { FindClass(this->Parent, v[0]), FindClass(this->Parent, v[1]),
-    FindClass(this->Parent, v[2]) };
+  const Id c[3] = { FindRoot(this->Parent, v[0]), FindRoot(this->Parent, v[1]),
+    FindRoot(this->Parent, v[2]) };
   if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
   {
     return false;
@@ -134,7 +134,7 @@ void CollapseScheduleBuilder::Track(Id t)
   {
     return;
   }
-  const Id root = FindClass(this->Parent, this->SettledOn[t]);
+  const Id root = FindRoot(this->Parent, this->SettledOn[t]);
   for (Id i = this->TargetOffsets[t]; i < this->TargetOffsets[t + 1]; ++i)
   {
     const Id q = this->TargetPoints[i];
@@ -261,14 +261,14 @@ bool CollapseScheduleBuilder::TargetHasOneFan(Id t, Id extra)
     else
     {
       this->Undo.clear();
-      this->Join(extra, FindClass(this->Parent, this->SettledOn[t]), &this->Undo);
+      this->Join(extra, FindRoot(this->Parent, this->SettledOn[t]), &this->Undo);
       valid = this->TrackedFanIsValid(t, extra);
       this->Leave(extra, this->Undo);
     }
     return valid || !this->ValidInNextLevel(t);
   }
   this->ListMembers(t, extra);
-  return this->FanIsValid(this->Parent, t, FindClass(this->Parent, this->SettledOn[t])) ||
+  return this->FanIsValid(this->Parent, t, FindRoot(this->Parent, this->SettledOn[t])) ||
     !this->ValidInNextLevel(t);
 }
 
@@ -281,7 +281,7 @@ bool CollapseScheduleBuilder::ValidWith(Id p)
     return true; // the first point of its target only moves
   }
   const Id saved = this->Parent[p];
-  this->Parent[p] = FindClass(this->Parent, this->SettledOn[t]);
+  this->Parent[p] = FindRoot(this->Parent, this->SettledOn[t]);
   const bool valid = this->TargetHasOneFan(t, p);
   this->Parent[p] = saved;
   return valid;

@@ -208,8 +208,8 @@ bool HasOneFan(const Id* triangles, const VertexTriangleAdjacency& adjacency,
     for (Id i = adjacency.Begin(m); i < adjacency.End(m); ++i)
     {
       const Id* tri = triangles + 3 * static_cast<size_t>(adjacency.Triangles[i]);
-      const Id c[3] = { FindClass(parent, tri[0]), FindClass(parent, tri[1]),
-        FindClass(parent, tri[2]) };
+      const Id c[3] = { FindRoot(parent, tri[0]), FindRoot(parent, tri[1]),
+        FindRoot(parent, tri[2]) };
       if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
       {
         continue; // gone

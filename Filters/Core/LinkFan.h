@@ -15,17 +15,6 @@
 
 namespace meshlod
 {
-// Union-find over points, for the points settled on one target (they are one vertex then).
-inline Id FindClass(std::vector<Id>& parent, Id p)
-{
-  while (parent[p] != p)
-  {
-    parent[p] = parent[parent[p]];
-    p = parent[p];
-  }
-  return p;
-}
-
 // Calls f(length) for each run of equal values in the sorted `values`.
 template <typename F>
 void ForEachRun(const std::vector<Id>& values, F&& f)
