@@ -60,6 +60,18 @@ void Renormalize(Iterator v, vtkIdType begin, vtkIdType end)
   }
 }
 
+// (1 - w) a + w b. Where that is NaN from infinite values (inf - inf, 0 * inf) rather than a NaN
+// value, the nearer end's value.
+inline double Mix(double a, double b, double w)
+{
+  const double mixed = (1.0 - w) * a + w * b;
+  if (std::isnan(mixed) && !std::isnan(a) && !std::isnan(b))
+  {
+    return w < 0.5 ? a : b;
+  }
+  return mixed;
+}
+
 // Three components (points, normals, vectors). With `renormalize`, each block of blended tuples
 // is renormalised while it is still in cache.
 template <typename RowsT, typename ARange, typename BRange, typename OutRange>
@@ -79,8 +91,8 @@ void Blend3(const RowsT& rows, const ARange& a, const BRange& b, OutRange& out, 
         const double w = rows.W(q);
         for (vtkIdType c = 0; c < 3; ++c)
         {
-          out[3 * q + c] = static_cast<OutT>((1.0 - w) * static_cast<double>(a[3 * ia + c]) +
-            w * static_cast<double>(b[3 * ib + c]));
+          out[3 * q + c] = static_cast<OutT>(
+            Mix(static_cast<double>(a[3 * ia + c]), static_cast<double>(b[3 * ib + c]), w));
         }
       }
       if (renormalize)
@@ -105,8 +117,8 @@ void BlendN(
       const double w = rows.W(q);
       for (int c = 0; c < nc; ++c)
       {
-        out[q * nc + c] = static_cast<OutT>((1.0 - w) * static_cast<double>(a[ia * nc + c]) +
-          w * static_cast<double>(b[ib * nc + c]));
+        out[q * nc + c] = static_cast<OutT>(
+          Mix(static_cast<double>(a[ia * nc + c]), static_cast<double>(b[ib * nc + c]), w));
       }
     }
   });
@@ -153,7 +165,7 @@ struct BlendWorker
         for (vtkIdType v = begin; v < end; ++v)
         {
           outr[v] = static_cast<OutT>(
-            (1.0 - w) * static_cast<double>(ar[v]) + w * static_cast<double>(br[v]));
+            Mix(static_cast<double>(ar[v]), static_cast<double>(br[v]), w));
         }
       });
       return;

@@ -391,13 +391,18 @@ std::string vtkLODGeomorph::Internals::Prepare(
     for (vtkCellArray* cells :
       { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
     {
-      const vtkIdType bad = meshlod::FirstCellWithBadId(cells, points);
-      if (bad >= 0)
+      const bool badOffsets = meshlod::FirstCellWithBadOffset(cells) >= 0;
+      if (badOffsets || meshlod::FirstCellWithBadId(cells, points) >= 0)
       {
         this->Levels.clear();
         std::ostringstream problem;
-        problem << "level " << i << " has a cell that refers to a point id outside [0, " << points
-                << ")";
+        problem << "level " << i << " has a cell array with invalid offsets";
+        if (!badOffsets)
+        {
+          problem.str("");
+          problem << "level " << i << " has a cell that refers to a point id outside [0, "
+                  << points << ")";
+        }
         return problem.str();
       }
     }

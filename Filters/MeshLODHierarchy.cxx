@@ -43,6 +43,22 @@ bool IsCategorical(vtkAbstractArray* array)
   return data == nullptr || !(array->GetDataType() == VTK_FLOAT || array->GetDataType() == VTK_DOUBLE);
 }
 
+// The parent with the largest weight (the first one on ties).
+Id DominantParent(const PointSources& s, vtkIdType p)
+{
+  Id best = s.Parents[s.Offsets[p]];
+  float bestWeight = s.Weights[s.Offsets[p]];
+  for (Id i = s.Offsets[p] + 1; i < s.Offsets[p + 1]; ++i)
+  {
+    if (s.Weights[i] > bestWeight)
+    {
+      best = s.Parents[i];
+      bestWeight = s.Weights[i];
+    }
+  }
+  return best;
+}
+
 // Point data of the new level: floating arrays interpolated with the sources' weights.
 struct InterpolateWorker
 {
@@ -84,6 +100,11 @@ struct InterpolateWorker
             {
               value += s.Weights[i] * static_cast<double>(src[s.Parents[i]][c]);
             }
+            if (std::isnan(value))
+            {
+              // Infinities of both signs have no mean: the value of the heaviest parent.
+              value = static_cast<double>(src[DominantParent(s, p)][c]);
+            }
           }
           dst[p][c] = static_cast<typename decltype(dst[p])::value_type>(value);
         }
@@ -91,22 +112,6 @@ struct InterpolateWorker
     });
   }
 };
-
-// The parent with the largest weight (the first one on ties).
-Id DominantParent(const PointSources& s, vtkIdType p)
-{
-  Id best = s.Parents[s.Offsets[p]];
-  float bestWeight = s.Weights[s.Offsets[p]];
-  for (Id i = s.Offsets[p] + 1; i < s.Offsets[p + 1]; ++i)
-  {
-    if (s.Weights[i] > bestWeight)
-    {
-      best = s.Parents[i];
-      bestWeight = s.Weights[i];
-    }
-  }
-  return best;
-}
 
 void InterpolatePointData(vtkPointData* from, const PointSources& sources, vtkIdType count,
   vtkPointData* to, const char* const* skipNames, int skipCount)

@@ -467,6 +467,35 @@ bool CheckInputDiagonal(double diagonal, vtkAlgorithm* caller, const char* what)
   return false;
 }
 
+vtkIdType FirstCellWithBadOffset(vtkCellArray* cells)
+{
+  // Offsets from 0 to the connectivity's end, never decreasing: else cells would be read past
+  // its end (the cell that ends at the first bad offset is reported).
+  auto scan = [](auto* offsets, auto* connectivity)
+  {
+    const auto starts = vtk::DataArrayValueRange<1>(offsets);
+    const vtkIdType size = connectivity->GetNumberOfValues();
+    for (vtkIdType c = 0; c < starts.size(); ++c)
+    {
+      const vtkIdType start = static_cast<vtkIdType>(starts[c]);
+      const vtkIdType before = c > 0 ? static_cast<vtkIdType>(starts[c - 1]) : 0;
+      if (start < before || start > size || (c == 0 && start != 0) ||
+        (c == starts.size() - 1 && start != size))
+      {
+        return std::max(vtkIdType(0), c - 1);
+      }
+    }
+    return vtkIdType(-1);
+  };
+  if (cells == nullptr)
+  {
+    return -1;
+  }
+  return cells->IsStorage64Bit()
+    ? scan(cells->GetOffsetsArray64(), cells->GetConnectivityArray64())
+    : scan(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
+}
+
 vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
 {
   if (cells == nullptr || cells->GetNumberOfCells() == 0)
@@ -476,6 +505,7 @@ vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
   vtkIdType bad = -1; // the first bad entry of the connectivity
   auto scan = [&](auto* offsets, auto* connectivity)
   {
+    const auto starts = vtk::DataArrayValueRange<1>(offsets);
     const auto ids = vtk::DataArrayValueRange<1>(connectivity);
     for (vtkIdType i = 0; i < ids.size() && bad < 0; ++i)
     {
@@ -486,7 +516,6 @@ vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
       return vtkIdType(-1);
     }
     // The cell holding that entry: the last whose offset is at most its index.
-    const auto starts = vtk::DataArrayValueRange<1>(offsets);
     const auto after = std::upper_bound(starts.begin(), starts.end(), bad);
     return static_cast<vtkIdType>(after - starts.begin()) - 1;
   };
@@ -574,17 +603,26 @@ bool SurfaceInput(vtkInformationVector* port, vtkAlgorithm* caller, vtkPolyData*
 //------------------------------------------------------------------------------
 namespace
 {
-// Whether every point id of the polygons and strips is in range (a bad id would read and write
-// past the end of every array); an error names the first cell with one.
+// Whether the polygons' and strips' offsets are valid and every point id is in range (a bad id
+// would read and write past the end of every array); an error names the first bad cell.
 bool PointIdsInRange(vtkPolyData* input, vtkAlgorithm* caller)
 {
   const vtkIdType numberOfInputPoints = input->GetNumberOfPoints();
   for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
   {
+    const char* kind = cells == input->GetPolys() ? "Polygon " : "Triangle strip ";
+    const vtkIdType badOffset = FirstCellWithBadOffset(cells);
+    if (badOffset >= 0)
+    {
+      vtkErrorWithObjectMacro(caller,
+        << kind << badOffset
+          << " has an invalid offset: a cell array's offsets run from 0 to the end of its "
+             "connectivity and never decrease (vtkCellArray::IsValid); no output is produced.");
+      return false;
+    }
     const vtkIdType badCell = FirstCellWithBadId(cells, numberOfInputPoints);
     if (badCell >= 0)
     {
-      const char* kind = cells == input->GetPolys() ? "Polygon " : "Triangle strip ";
       vtkErrorWithObjectMacro(caller,
         << kind << badCell << " refers to a point id outside [0, " << numberOfInputPoints
           << "); no output is produced.");
@@ -592,6 +630,82 @@ bool PointIdsInRange(vtkPolyData* input, vtkAlgorithm* caller)
     }
   }
   return true;
+}
+
+void ReportNonFinitePoint(vtkAlgorithm* caller, vtkIdType id, const double* x)
+{
+  vtkErrorWithObjectMacro(caller,
+    "Point " << id << " has a NaN or infinite coordinate (" << x[0] << ", " << x[1] << ", "
+             << x[2] << "); no output is produced. Remove or fix such points first.");
+}
+
+// The first point with a NaN or infinite coordinate that a polygon or strip uses, or -1 (checked
+// before triangulating: vtkTriangleFilter drops polygons it cannot triangulate, and with them the
+// use of such a point).
+vtkIdType FirstNonFiniteCellPoint(vtkPolyData* input)
+{
+  const auto xyz = vtk::DataArrayTupleRange<3>(input->GetPoints()->GetData());
+  std::vector<bool> bad;
+  for (vtkIdType p = 0; p < xyz.size(); ++p)
+  {
+    if (!std::isfinite(static_cast<double>(xyz[p][0])) ||
+      !std::isfinite(static_cast<double>(xyz[p][1])) ||
+      !std::isfinite(static_cast<double>(xyz[p][2])))
+    {
+      bad.resize(xyz.size(), false);
+      bad[p] = true;
+    }
+  }
+  if (bad.empty())
+  {
+    return -1;
+  }
+  vtkIdType first = -1;
+  for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
+  {
+    auto scan = [&](auto* connectivity)
+    {
+      for (const auto id : vtk::DataArrayValueRange<1>(connectivity))
+      {
+        if (bad[static_cast<size_t>(id)] && (first < 0 || id < first))
+        {
+          first = static_cast<vtkIdType>(id);
+        }
+      }
+    };
+    if (cells->IsStorage64Bit())
+    {
+      scan(cells->GetConnectivityArray64());
+    }
+    else
+    {
+      scan(cells->GetConnectivityArray32());
+    }
+  }
+  return first;
+}
+
+// The triangles polygons and strips make when every one triangulates: n - 2 for n points.
+vtkIdType TrianglesOfCells(vtkCellArray* cells)
+{
+  vtkIdType count = 0;
+  auto sum = [&](auto* offsets)
+  {
+    const auto starts = vtk::DataArrayValueRange<1>(offsets);
+    for (vtkIdType c = 0; c + 1 < starts.size(); ++c)
+    {
+      count += std::max(vtkIdType(0), static_cast<vtkIdType>(starts[c + 1] - starts[c]) - 2);
+    }
+  };
+  if (cells->IsStorage64Bit())
+  {
+    sum(cells->GetOffsetsArray64());
+  }
+  else
+  {
+    sum(cells->GetOffsetsArray32());
+  }
+  return count;
 }
 
 // The input's polygons and strips as triangles, with their point data and the cell data of
@@ -639,10 +753,7 @@ bool CopySourceMesh(InputMesh& result, vtkAlgorithm* caller)
     const vtkIdType bad = SettleUnusedNonFinitePoints(mesh);
     if (bad >= 0)
     {
-      vtkErrorWithObjectMacro(caller,
-        "Point " << bad << " has a NaN or infinite coordinate (" << mesh.Points[3 * bad] << ", "
-                 << mesh.Points[3 * bad + 1] << ", " << mesh.Points[3 * bad + 2]
-                 << "); no output is produced. Remove or fix such points first.");
+      ReportNonFinitePoint(caller, bad, &mesh.Points[3 * bad]);
       result = InputMesh();
       return false;
     }
@@ -787,8 +898,25 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
   result.Source = input;
   if (input->GetNumberOfStrips() > 0 || input->GetPolys()->IsHomogeneous() != 3)
   {
+    const vtkIdType bad = FirstNonFiniteCellPoint(input);
+    if (bad >= 0)
+    {
+      ReportNonFinitePoint(caller, bad, input->GetPoint(bad));
+      return InputStatus::Invalid;
+    }
     result.Source = Triangulate(input, firstPolyCellId);
     firstPolyCellId = 0;
+    const vtkIdType lost = TrianglesOfCells(input->GetPolys()) +
+      TrianglesOfCells(input->GetStrips()) - result.Source->GetNumberOfPolys();
+    if (lost > 0)
+    {
+      vtkWarningWithObjectMacro(caller,
+        "Triangulating the input's polygons made "
+          << lost
+          << " triangles fewer than their points allow: vtkTriangleFilter drops a polygon it "
+             "cannot triangulate (one that crosses itself or has no area), so the surface has "
+             "a hole in its place on every level.");
+    }
   }
   const vtkIdType numberOfTriangles = result.Source->GetPolys()->GetNumberOfCells();
   if (numberOfTriangles > MaximumCount)

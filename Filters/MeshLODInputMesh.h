@@ -106,6 +106,11 @@ VTKFILTERSMESHLOD_EXPORT bool SurfaceInput(
 VTKFILTERSMESHLOD_EXPORT InputStatus ReadInputMesh(
   vtkPolyData* input, vtkAlgorithm* caller, InputMesh& result);
 
+/// The first cell of `cells` (may be null) whose offsets break vtkCellArray's layout (offsets
+/// from 0 to the connectivity's size, never decreasing), or -1. Check it before anything reads
+/// the cells.
+VTKFILTERSMESHLOD_EXPORT vtkIdType FirstCellWithBadOffset(vtkCellArray* cells);
+
 /// The first cell of `cells` (may be null) that refers to a point id outside
 /// [0, numberOfPoints), or -1. Every id is read (a data array's cached range can miss values
 /// edited in place).

@@ -141,6 +141,18 @@ bool TextureBaker::SetSurface(vtkPolyData* surface, std::string& error)
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// Integer colours count 0-255 (unsigned char, or any integer type: an int RGB array holds the
+// same numbers), floating ones 0-1.
+double ColorScale(vtkDataArray* colors)
+{
+  const int type = colors->GetDataType();
+  return type == VTK_FLOAT || type == VTK_DOUBLE ? 255.0 : 1.0;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 bool TextureBaker::InitializeFromColors(vtkPolyData* surface,
   vtkDataArray* colors,
   std::string& error)
@@ -152,8 +164,7 @@ bool TextureBaker::InitializeFromColors(vtkPolyData* surface,
     error = "the colour array must be a point array with 3 (RGB) or 4 (RGBA) components";
     return false;
   }
-  const bool bytes = colors->GetDataType() == VTK_UNSIGNED_CHAR;
-  const double scale = bytes ? 1.0 : 255.0;
+  const double scale = ColorScale(colors);
   const vtkIdType np = colors->GetNumberOfTuples();
   Internals& impl = *this->Impl;
   impl.Colors.resize(4 * static_cast<size_t>(np));
@@ -181,10 +192,29 @@ bool TextureBaker::InitializeFromTexture(vtkPolyData* surface,
   {
     texture->GetDimensions(dims);
   }
+  // The image's points run along x, then y, then z: whichever two axes a 2D image spans (XY, XZ
+  // or YZ), its texels lie row after row, the first of those axes along a row.
+  int size[2] = { 1, 1 };
+  int spanned = 0;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (dims[axis] > 1 && spanned < 2)
+    {
+      size[spanned] = dims[axis];
+    }
+    spanned += dims[axis] > 1 ? 1 : 0;
+  }
   if (scalars == nullptr || scalars->GetNumberOfComponents() > 4 || dims[0] < 1 || dims[1] < 1 ||
-    dims[2] != 1)
+    dims[2] < 1 || spanned > 2)
   {
     error = "the texture must be a 2D vtkImageData with 1 to 4 component scalars";
+    return false;
+  }
+  const vtkIdType texels = static_cast<vtkIdType>(size[0]) * size[1];
+  if (scalars->GetNumberOfTuples() != texels)
+  {
+    error = "the texture's scalars have " + std::to_string(scalars->GetNumberOfTuples()) +
+      " tuples, not one for each of its " + std::to_string(texels) + " points";
     return false;
   }
   if (tcoords == nullptr || tcoords->GetNumberOfComponents() < 2 ||
@@ -194,12 +224,10 @@ bool TextureBaker::InitializeFromTexture(vtkPolyData* surface,
     return false;
   }
   Internals& impl = *this->Impl;
-  impl.TextureWidth = dims[0];
-  impl.TextureHeight = dims[1];
+  impl.TextureWidth = size[0];
+  impl.TextureHeight = size[1];
   const int nc = scalars->GetNumberOfComponents();
-  const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
-  const double scale = bytes ? 1.0 : 255.0;
-  const vtkIdType texels = static_cast<vtkIdType>(dims[0]) * dims[1];
+  const double scale = ColorScale(scalars);
   impl.Texture.resize(4 * static_cast<size_t>(texels));
   for (vtkIdType i = 0; i < texels; ++i)
   {

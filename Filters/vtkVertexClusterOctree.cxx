@@ -636,6 +636,25 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
   vtkDataArray* inputTCoords = this->InputTCoords;
   const std::string tcoordsName =
     inputTCoords && inputTCoords->GetName() ? inputTCoords->GetName() : "TCoords";
+  // An input array that is not the attribute but has the name the new one gets is replaced.
+  const struct
+  {
+    bool Made;
+    const std::string& Name;
+    vtkAbstractArray* Attribute;
+  } madeArrays[] = { { self->ComputeNormals, normalsName, inputNormals },
+    { self->BakeTexture, tcoordsName, inputTCoords } };
+  for (const auto& made : madeArrays)
+  {
+    vtkAbstractArray* same = in.Source->GetPointData()->GetAbstractArray(made.Name.c_str());
+    if (made.Made && same != nullptr && same != made.Attribute)
+    {
+      vtkWarningWithObjectMacro(self,
+        "The input's point-data array \"" << made.Name
+                                          << "\" is replaced on the simplified levels by the "
+                                             "new one of that name; rename it to keep it.");
+    }
+  }
   meshlod::LevelCentering centering;
   std::vector<double> levelZeroPoints; // only if its points are neither float nor double
   if (self->CenterOnInput)
@@ -797,12 +816,17 @@ SplitMap vtkVertexClusterOctree::LevelMaker::BuildAtlas(
 {
   const vtkVertexClusterOctree* self = this->Self;
   meshlod::BuildTextureAtlas(level.Mesh, self->TextureResolution, atlas);
-  if (atlas.Resolution > self->TextureResolution)
+  int asked = 16; // TextureResolution rounded up to a power of two, as documented
+  while (asked < self->TextureResolution)
+  {
+    asked *= 2;
+  }
+  if (atlas.Resolution > asked)
   {
     vtkWarningWithObjectMacro(self,
       "Level " << i + 1 << " has " << level.Mesh.GetNumberOfTriangles()
-               << " triangles, too many for a " << self->TextureResolution
-               << "^2 texture; its texture has " << atlas.Resolution << "^2 texels.");
+               << " triangles, too many for a " << asked << "^2 texture; its texture has "
+               << atlas.Resolution << "^2 texels.");
   }
   SplitMap split;
   split.SplitToPoint = atlas.SplitPoints;

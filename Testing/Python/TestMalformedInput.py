@@ -1,0 +1,286 @@
+"""Malformed or unusual input that once crashed a filter, or passed through it wrongly.
+
+Each case states what a user gets: an error naming the problem (and no levels), a warning
+(and levels that are still right), or levels without NaN. Checked for
+vtkTriangleCollapseDecimation, vtkVertexClusterOctree and vtkLODGeomorph:
+
+- a cell array whose offsets run past its connectivity: an error, not a read past the end;
+- a NaN point used only by a quad: the error a NaN point of a triangle gets (the triangulation
+  used to drop the quad, leaving a hole);
+- a quad that crosses itself, which vtkTriangleFilter cannot triangulate: a warning with the
+  number of triangles missing;
+- a point array with +inf and -inf: no level and no geomorph output holds a NaN;
+- a texture whose scalars are shorter than its points: an error; a texture in the XZ plane is
+  baked like one in the XY plane; int colours count 0-255 like unsigned char ones;
+- input arrays named like the arrays the octree makes (Normals, TCoords): a warning;
+- a TextureResolution that is not a power of two: no warning about its rounding up.
+"""
+
+import math
+import sys
+
+from vtkmodules.vtkCommonCore import (
+    vtkDoubleArray,
+    vtkFloatArray,
+    vtkIdTypeArray,
+    vtkIntArray,
+    vtkLogger,
+    vtkOutputWindow,
+    vtkStringOutputWindow,
+    vtkUnsignedCharArray,
+)
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkTriangleFilter
+from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
+from vtkmodules.vtkFiltersTexture import vtkTextureMapToSphere
+
+import meshlod
+
+failures = []
+checks = [0]
+FILTERS = ("vtkTriangleCollapseDecimation", "vtkVertexClusterOctree")
+
+
+def check(condition, what):
+    checks[0] += 1
+    if not condition:
+        failures.append(what)
+        print("CHECK failed:", what)
+
+
+MESSAGES = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(MESSAGES)
+vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_OFF)
+
+
+def run(algorithm):
+    """Update `algorithm`; the errors and warnings it printed."""
+    before = len(MESSAGES.GetOutput())
+    algorithm.Update()
+    return MESSAGES.GetOutput()[before:]
+
+
+def sphere(resolution=16):
+    source = vtkSphereSource()
+    source.SetThetaResolution(resolution)
+    source.SetPhiResolution(resolution)
+    source.Update()
+    return source.GetOutput()
+
+
+def quad_grid():
+    plane = vtkPlaneSource()
+    plane.SetResolution(10, 10)
+    plane.Update()
+    mesh = vtkPolyData()
+    mesh.DeepCopy(plane.GetOutput())
+    return mesh
+
+
+def levels_of(algorithm):
+    hierarchy = algorithm.GetHierarchy()
+    return [] if hierarchy is None else [hierarchy.GetBlock(i)
+                                         for i in range(hierarchy.GetNumberOfBlocks())]
+
+
+def has_nan(array):
+    return any(math.isnan(array.GetComponent(t, c))
+               for t in range(array.GetNumberOfTuples())
+               for c in range(array.GetNumberOfComponents()))
+
+
+# Offsets past the end of the connectivity (vtkCellArray::IsValid is false).
+for name in FILTERS:
+    mesh = vtkPolyData()
+    mesh.DeepCopy(sphere(8))
+    cells = vtkCellArray()
+    offsets = vtkIdTypeArray()
+    connectivity = vtkIdTypeArray()
+    for value in (0, 3, 6, 900):
+        offsets.InsertNextValue(value)
+    for value in range(9):
+        connectivity.InsertNextValue(value)
+    cells.SetData(offsets, connectivity)
+    mesh.SetPolys(cells)
+    algorithm = getattr(meshlod, name)()
+    algorithm.SetInputData(mesh)
+    text = run(algorithm)
+    check("Polygon 2 has an invalid offset" in text,
+          "%s: bad offsets: no error naming them (%r)" % (name, text[:300]))
+    check(not levels_of(algorithm), "%s: bad offsets gave levels" % name)
+
+    # The geomorph refuses a level with such cells too.
+    good = getattr(meshlod, name)()
+    good.SetInputData(sphere(12))
+    good.Update()
+    hierarchy = good.GetHierarchy().NewInstance()
+    hierarchy.DeepCopy(good.GetHierarchy())
+    hierarchy.GetBlock(1).SetPolys(cells)
+    geomorph = meshlod.vtkLODGeomorph()
+    geomorph.SetInputData(hierarchy)
+    geomorph.UsePipelineTimeOff()
+    geomorph.SetLevelOfDetail(0.5)
+    text = run(geomorph)
+    check("level 1 has a cell array with invalid offsets" in text,
+          "%s: geomorph: bad offsets not reported (%r)" % (name, text[:300]))
+    check(geomorph.GetOutput().GetNumberOfPoints() == 0,
+          "%s: geomorph: bad offsets gave an output" % name)
+
+# A NaN point that only quads use.
+for name in FILTERS:
+    mesh = quad_grid()
+    mesh.GetPoints().SetPoint(60, float("nan"), 0.1, 0.0)
+    algorithm = getattr(meshlod, name)()
+    algorithm.SetInputData(mesh)
+    text = run(algorithm)
+    check("Point 60 has a NaN or infinite coordinate" in text,
+          "%s: NaN point of a quad: no error (%r)" % (name, text[:300]))
+    check(not levels_of(algorithm), "%s: NaN point of a quad gave levels" % name)
+
+# A quad crossing itself: vtkTriangleFilter drops it, and the filters say so.
+for name in FILTERS:
+    mesh = quad_grid()
+    polys = mesh.GetPolys()
+    ids = [polys.GetConnectivityArray().GetValue(k) for k in range(4 * 55, 4 * 55 + 4)]
+    for k, value in enumerate((ids[0], ids[2], ids[1], ids[3])):
+        polys.GetConnectivityArray().SetValue(4 * 55 + k, value)
+    mesh.Modified()
+    algorithm = getattr(meshlod, name)()
+    algorithm.SetInputData(mesh)
+    text = run(algorithm)
+    check("made 2 triangles fewer than their points allow" in text,
+          "%s: dropped bow-tie quad not reported (%r)" % (name, text[:300]))
+    levels = levels_of(algorithm)
+    check(levels and levels[0].GetNumberOfPolys() == 198,
+          "%s: level 0 of the grid with a bow-tie quad" % name)
+
+# +inf and -inf in one array: a point merging both has no mean, but never a NaN.
+for name in FILTERS:
+    mesh = vtkPolyData()
+    mesh.DeepCopy(sphere(20))
+    values = vtkDoubleArray()
+    values.SetName("Values")
+    for p in range(mesh.GetNumberOfPoints()):
+        values.InsertNextValue(float(p))
+    values.SetValue(17, float("inf"))
+    values.SetValue(18, float("-inf"))
+    mesh.GetPointData().AddArray(values)
+    algorithm = getattr(meshlod, name)()
+    algorithm.SetInputData(mesh)
+    run(algorithm)
+    levels = levels_of(algorithm)
+    check(len(levels) > 2, "%s: infinite values: %d levels" % (name, len(levels)))
+    for i, level in enumerate(levels):
+        check(not has_nan(level.GetPointData().GetArray("Values")),
+              "%s: level %d has NaN values from +inf and -inf" % (name, i))
+    geomorph = meshlod.vtkLODGeomorph()
+    geomorph.SetInputConnection(algorithm.GetOutputPort())
+    geomorph.UsePipelineTimeOff()
+    for lod in (0.25, 0.5, 1.0, 1.5, 2.999):
+        geomorph.SetLevelOfDetail(lod)
+        geomorph.Update()
+        check(not has_nan(geomorph.GetOutput().GetPointData().GetArray("Values")),
+              "%s: geomorph at %g has NaN values" % (name, lod))
+
+
+# Textures.
+def textured_sphere():
+    mapper = vtkTextureMapToSphere()
+    mapper.SetInputData(sphere(24))
+    mapper.PreventSeamOff()
+    mapper.Update()
+    return mapper.GetOutput()
+
+
+def texture(dimensions, tuples, rgb):
+    image = vtkImageData()
+    image.SetDimensions(*dimensions)
+    scalars = vtkUnsignedCharArray()
+    scalars.SetNumberOfComponents(3)
+    scalars.SetNumberOfTuples(tuples)
+    for t in range(tuples):
+        scalars.SetTuple3(t, *rgb)
+    image.GetPointData().SetScalars(scalars)
+    return image
+
+
+def baker(mesh, image=None):
+    octree = meshlod.vtkVertexClusterOctree()
+    octree.SetInputData(mesh)
+    if image is not None:
+        octree.SetTextureData(image)
+    octree.BakeTextureOn()
+    octree.SetTextureResolution(64)
+    octree.SetNumberOfLevels(2)
+    return octree
+
+
+def mean_texel(octree, level):
+    scalars = octree.GetTextures().GetBlock(level).GetPointData().GetScalars()
+    n = scalars.GetNumberOfTuples()
+    return [sum(scalars.GetComponent(t, c) for t in range(n)) / n for c in range(3)]
+
+
+octree = baker(textured_sphere(), texture((512, 512, 1), 10, (128, 128, 128)))
+text = run(octree)
+check("the texture's scalars have 10 tuples, not one for each of its 262144 points" in text,
+      "short texture scalars: no error (%r)" % text[:300])
+check(not levels_of(octree), "short texture scalars gave levels")
+
+octree = baker(textured_sphere(), texture((16, 1, 16), 256, (10, 200, 30)))
+text = run(octree)
+check("ERR" not in text and "rror" not in text, "XZ texture refused (%r)" % text[:300])
+levels = levels_of(octree)
+check(len(levels) == 3, "XZ texture: %d levels" % len(levels))
+if len(levels) == 3:
+    check(all(abs(a - b) < 1.0 for a, b in zip(mean_texel(octree, 2), (10, 200, 30))),
+          "XZ texture: baked colour %s, not (10, 200, 30)" % mean_texel(octree, 2))
+
+mesh = vtkPolyData()
+mesh.DeepCopy(sphere(24))
+colours = vtkIntArray()
+colours.SetName("Colour")
+colours.SetNumberOfComponents(3)
+for p in range(mesh.GetNumberOfPoints()):
+    colours.InsertNextTuple3(255, 0, 128)
+mesh.GetPointData().AddArray(colours)
+octree = baker(mesh)
+octree.SetColorArrayName("Colour")
+run(octree)
+if len(levels_of(octree)) == 3:
+    baked = mean_texel(octree, 2)
+    check(all(abs(a - b) < 1.0 for a, b in zip(baked, (255, 0, 128))),
+          "int colours (255, 0, 128) baked as %s" % baked)
+else:
+    check(False, "int colours: no levels")
+
+# Input arrays named like the ones the octree makes.
+mesh = vtkPolyData()
+mesh.DeepCopy(textured_sphere())
+mesh.GetPointData().SetNormals(None)
+for array_name in ("Normals", "TCoords"):
+    clash = vtkFloatArray()
+    clash.SetName(array_name)
+    clash.SetNumberOfTuples(mesh.GetNumberOfPoints())
+    clash.Fill(1.0)
+    mesh.GetPointData().AddArray(clash)
+colours = vtkUnsignedCharArray()
+colours.SetName("Colour")
+colours.SetNumberOfComponents(3)
+for p in range(mesh.GetNumberOfPoints()):
+    colours.InsertNextTuple3(255, 0, 128)
+mesh.GetPointData().AddArray(colours)
+mesh.GetPointData().SetTCoords(None)
+octree = baker(mesh)
+octree.SetColorArrayName("Colour")
+octree.ComputeNormalsOn()
+octree.SetTextureResolution(100)
+text = run(octree)
+for array_name in ("Normals", "TCoords"):
+    check('array "%s" is replaced on the simplified levels' % array_name in text,
+          "no warning about replacing the input's %s array (%r)" % (array_name, text[:400]))
+check("too many for a" not in text,
+      "TextureResolution 100 drew a warning about its rounding (%r)" % text[:400])
+
+print("%d of %d checks failed" % (len(failures), checks[0]))
+sys.exit(1 if failures else 0)
