@@ -1,6 +1,5 @@
 #include "MeshLODNearestCorrespondence.h"
 
-#include "vtkIdList.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -9,6 +8,7 @@
 #include "vtkStaticPointLocator.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace meshlod
 {
@@ -35,6 +35,164 @@ double Distance2(vtkPoints* a, vtkIdType i, vtkPoints* b, vtkIdType j)
   b->GetPoint(j, y);
   return vtkMath::Distance2BetweenPoints(x, y);
 }
+
+// The points not taken yet, for "the nearest free point" queries that take what they find: a
+// k-d tree whose nodes count their free points, so that the search skips the parts where all are
+// taken. (Asking a locator for ever more nearest points until a free one turns up took time
+// cubic in the point count when most of the near points were taken: levels that do not
+// overlap, or a coarse level listed first.)
+class FreePointTree
+{
+public:
+  FreePointTree(vtkPoints* points, const std::vector<Id>& owner)
+  {
+    const Id n = static_cast<Id>(points->GetNumberOfPoints());
+    this->Xyz.resize(3 * static_cast<size_t>(n));
+    for (Id p = 0; p < n; ++p)
+    {
+      points->GetPoint(p, &this->Xyz[3 * static_cast<size_t>(p)]);
+    }
+    this->Taken.resize(n);
+    this->Order.resize(n);
+    this->LeafOf.resize(n);
+    for (Id p = 0; p < n; ++p)
+    {
+      this->Taken[p] = owner[p] != InvalidId;
+      this->Order[p] = p;
+    }
+    this->Nodes.resize(1);
+    this->Build(0, 0, n, -1);
+  }
+
+  // The free point nearest to x (the lowest id among equally near ones), now taken; InvalidId
+  // when none is free.
+  Id TakeNearest(const double x[3])
+  {
+    double best = std::numeric_limits<double>::infinity();
+    Id bestPoint = InvalidId;
+    std::vector<Id>& stack = this->Stack;
+    stack.assign(1, 0);
+    while (!stack.empty())
+    {
+      const Node& node = this->Nodes[stack.back()];
+      stack.pop_back();
+      if (node.Free == 0 || BoxDistance2(node, x) > best)
+      {
+        continue;
+      }
+      if (node.Left < 0)
+      {
+        for (Id i = node.Begin; i < node.End; ++i)
+        {
+          const Id p = this->Order[i];
+          const double d = vtkMath::Distance2BetweenPoints(x, &this->Xyz[3 * size_t(p)]);
+          if (!this->Taken[p] && (d < best || (d == best && p < bestPoint)))
+          {
+            best = d;
+            bestPoint = p;
+          }
+        }
+        continue;
+      }
+      // The nearer child is searched first (pushed last).
+      const Id left = node.Left;
+      const bool leftNearer = BoxDistance2(this->Nodes[left], x) <=
+        BoxDistance2(this->Nodes[left + 1], x);
+      stack.push_back(leftNearer ? left + 1 : left);
+      stack.push_back(leftNearer ? left : left + 1);
+    }
+    if (bestPoint != InvalidId)
+    {
+      this->Taken[bestPoint] = true;
+      for (Id node = this->LeafOf[bestPoint]; node >= 0; node = this->Nodes[node].Parent)
+      {
+        --this->Nodes[node].Free;
+      }
+    }
+    return bestPoint;
+  }
+
+private:
+  struct Node
+  {
+    double Low[3];
+    double High[3];
+    Id Begin, End; // the node's points: Order[Begin, End)
+    Id Free;       // how many of them are not taken
+    Id Parent;     // -1 at the root
+    Id Left;       // the children are Left and Left + 1; -1 for a leaf
+  };
+  static constexpr Id LeafSize = 8;
+
+  static double BoxDistance2(const Node& node, const double x[3])
+  {
+    double d = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double gap = std::max({ node.Low[k] - x[k], 0.0, x[k] - node.High[k] });
+      d += gap * gap;
+    }
+    return d;
+  }
+
+  // Nodes[index] (allocated already) over Order[begin, end), split at the median of its longest
+  // side; its children go next to each other at the end of Nodes.
+  void Build(Id index, Id begin, Id end, Id parent)
+  {
+    Node node{};
+    node.Begin = begin;
+    node.End = end;
+    node.Parent = parent;
+    node.Left = -1;
+    for (int k = 0; k < 3; ++k)
+    {
+      node.Low[k] = std::numeric_limits<double>::infinity();
+      node.High[k] = -std::numeric_limits<double>::infinity();
+    }
+    for (Id i = begin; i < end; ++i)
+    {
+      const double* x = &this->Xyz[3 * size_t(this->Order[i])];
+      node.Free += this->Taken[this->Order[i]] ? 0 : 1;
+      for (int k = 0; k < 3; ++k)
+      {
+        node.Low[k] = std::min(node.Low[k], x[k]);
+        node.High[k] = std::max(node.High[k], x[k]);
+      }
+    }
+    if (end - begin <= LeafSize)
+    {
+      for (Id i = begin; i < end; ++i)
+      {
+        this->LeafOf[this->Order[i]] = index;
+      }
+      this->Nodes[index] = node;
+      return;
+    }
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+    {
+      axis = node.High[k] - node.Low[k] > node.High[axis] - node.Low[axis] ? k : axis;
+    }
+    const Id middle = begin + (end - begin) / 2;
+    std::nth_element(this->Order.begin() + begin, this->Order.begin() + middle,
+      this->Order.begin() + end, [&](Id a, Id b) {
+        const double xa = this->Xyz[3 * size_t(a) + axis], xb = this->Xyz[3 * size_t(b) + axis];
+        return xa < xb || (xa == xb && a < b);
+      });
+    node.Left = static_cast<Id>(this->Nodes.size());
+    this->Nodes.resize(this->Nodes.size() + 2);
+    this->Nodes[index] = node;
+    this->Build(node.Left, begin, middle, index);
+    this->Build(node.Left + 1, middle, end, index);
+  }
+
+  std::vector<double> Xyz;
+  std::vector<bool> Taken;
+  std::vector<Id> Order;
+  std::vector<Id> LeafOf;
+  std::vector<Node> Nodes;
+  std::vector<Id> Stack;
+};
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -83,31 +241,21 @@ void NearestVertexCorrespondence(vtkPoints* fine, vtkPoints* coarse, std::vector
         losers.push_back(static_cast<Id>(c));
       }
     }
-    // The others take their nearest free fine point, searching ever more neighbours.
+    // The others take their nearest free fine point.
     std::sort(losers.begin(), losers.end());
-    vtkNew<vtkIdList> nearest;
-    for (const Id c : losers)
+    if (!losers.empty())
     {
-      double x[3];
-      coarse->GetPoint(c, x);
-      bool placed = false;
-      for (vtkIdType n = 8; !placed; n *= 2)
+      FreePointTree freePoints(fine, owner);
+      for (const Id c : losers)
       {
-        const vtkIdType asked = std::min(n, nf);
-        fineSearch.Locator->FindClosestNPoints(static_cast<int>(asked), x, nearest);
-        for (vtkIdType i = 0; i < nearest->GetNumberOfIds() && !placed; ++i)
-        {
-          const vtkIdType f = nearest->GetId(i);
-          if (owner[f] == InvalidId)
-          {
-            owner[f] = c;
-            placed = true;
-          }
-        }
-        if (asked == nf)
+        double x[3];
+        coarse->GetPoint(c, x);
+        const Id f = freePoints.TakeNearest(x);
+        if (f == InvalidId)
         {
           break; // every fine point is taken
         }
+        owner[f] = c;
       }
     }
   }

@@ -17,12 +17,13 @@ namespace meshlod
 /// For every point of `fine`, its partner point in `coarse`:
 /// 1. every coarse point takes its nearest fine point. When several coarse points pick the same
 ///    fine point, the nearest keeps it (the lowest id on ties) and the others, in increasing id,
-///    take their nearest fine point not taken yet, so that every coarse point is reached at
-///    t = 1 whenever the fine model has at least as many points (the paper leaves such
-///    conflicts open);
+///    take their nearest fine point not taken yet (the lowest id among equally near ones), so
+///    that every coarse point is reached at t = 1 whenever the fine model has at least as many
+///    points (the paper leaves such conflicts open);
 /// 2. every fine point left without a partner takes its nearest coarse point.
-/// Nearest-point queries run on vtkStaticPointLocator, in parallel; the result does not depend
-/// on the number of threads.
+/// Nearest-point queries run on vtkStaticPointLocator, in parallel, and on a k-d tree of the free
+/// fine points for the coarse points of step 1 that lost their pick (O(log n) each where free
+/// points are near); the result does not depend on the number of threads.
 VTKFILTERSMESHLOD_EXPORT void NearestVertexCorrespondence(
   vtkPoints* fine, vtkPoints* coarse, std::vector<Id>& partner);
 

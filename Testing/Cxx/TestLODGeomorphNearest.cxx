@@ -15,6 +15,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkIntArray.h"
 #include "vtkMath.h"
+#include "vtkMinimalStandardRandomSequence.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -25,6 +26,7 @@
 #include "vtkStaticPointLocator.h"
 #include "vtkTestErrorObserver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -103,6 +105,116 @@ void TestSmallCorrespondence()
   MESHLOD_CHECK_EQ(partner[5], 2);
   MESHLOD_CHECK_EQ(partner[1], 1);
   MESHLOD_CHECK_EQ(partner[0], 0);
+}
+
+// The correspondence as its documentation states it, by comparing every pair of points.
+std::vector<Id> BruteForceCorrespondence(vtkPoints* fine, vtkPoints* coarse)
+{
+  const vtkIdType nf = fine->GetNumberOfPoints(), nc = coarse->GetNumberOfPoints();
+  auto d2 = [&](vtkIdType c, vtkIdType f) {
+    double x[3], y[3];
+    coarse->GetPoint(c, x);
+    fine->GetPoint(f, y);
+    return vtkMath::Distance2BetweenPoints(x, y);
+  };
+  // The nearest fine point to coarse point c (a free one with `freeOnly`), the lowest id on
+  // ties; -1 if none.
+  auto nearest = [&](vtkIdType c, const std::vector<Id>& owner, bool freeOnly) {
+    vtkIdType best = -1;
+    for (vtkIdType f = 0; f < nf; ++f)
+    {
+      if ((!freeOnly || owner[f] == InvalidId) && (best < 0 || d2(c, f) < d2(c, best)))
+      {
+        best = f;
+      }
+    }
+    return best;
+  };
+  std::vector<Id> owner(nf, InvalidId), losers;
+  for (vtkIdType c = 0; c < nc; ++c)
+  {
+    const vtkIdType f = nearest(c, owner, false);
+    if (owner[f] == InvalidId || d2(c, f) < d2(owner[f], f))
+    {
+      if (owner[f] != InvalidId)
+      {
+        losers.push_back(owner[f]);
+      }
+      owner[f] = static_cast<Id>(c);
+    }
+    else
+    {
+      losers.push_back(static_cast<Id>(c));
+    }
+  }
+  std::sort(losers.begin(), losers.end());
+  for (const Id c : losers)
+  {
+    const vtkIdType f = nearest(c, owner, true);
+    if (f >= 0)
+    {
+      owner[f] = c;
+    }
+  }
+  for (vtkIdType f = 0; f < nf; ++f)
+  {
+    if (owner[f] == InvalidId)
+    {
+      vtkIdType best = 0;
+      for (vtkIdType c = 1; c < nc; ++c)
+      {
+        best = d2(c, f) < d2(best, f) ? c : best;
+      }
+      owner[f] = static_cast<Id>(best);
+    }
+  }
+  return owner;
+}
+
+// Random clouds where most coarse points lose their first pick: the coarse cloud far from the
+// fine one (all pick the same few fine points), larger than it (some reach no fine point), and
+// mixed in. The correspondence must be the documented one (the free fine points of the losers
+// come from a k-d tree; asking a locator for ever more points took minutes at a few thousand).
+void TestCorrespondenceAgainstBruteForce()
+{
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(11);
+  auto cloud = [&](vtkIdType n, double shift) {
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    for (vtkIdType p = 0; p < n; ++p)
+    {
+      double x[3];
+      for (double& v : x)
+      {
+        v = random->GetNextRangeValue(-1.0, 1.0);
+      }
+      x[0] += shift;
+      points->InsertNextPoint(x);
+    }
+    return vtkSmartPointer<vtkPoints>(points);
+  };
+  struct Case
+  {
+    vtkIdType Fine, Coarse;
+    double Shift;
+  };
+  for (const Case& c : { Case{ 600, 300, 10.0 }, Case{ 300, 600, 0.0 }, Case{ 500, 400, 0.0 },
+         Case{ 400, 400, 1.5 }, Case{ 700, 50, 3.0 } })
+  {
+    vtkSmartPointer<vtkPoints> fine = cloud(c.Fine, 0.0);
+    vtkSmartPointer<vtkPoints> coarse = cloud(c.Coarse, c.Shift);
+    std::vector<Id> partner;
+    NearestVertexCorrespondence(fine, coarse, partner);
+    MESHLOD_CHECK(partner == BruteForceCorrespondence(fine, coarse));
+    // Every coarse point is reached when the fine cloud has at least as many points.
+    std::vector<bool> reached(c.Coarse, false);
+    for (const Id q : partner)
+    {
+      reached[q] = true;
+    }
+    MESHLOD_CHECK_EQ(std::count(reached.begin(), reached.end(), true), std::min(c.Fine, c.Coarse));
+  }
 }
 
 // Two decimations of an isosurface, with point data.
@@ -267,6 +379,7 @@ void TestForcedNearest()
 int TestLODGeomorphNearest(int, char*[])
 {
   TestSmallCorrespondence();
+  TestCorrespondenceAgainstBruteForce();
   TestDecimatedPair();
   TestForcedNearest();
   return testing::Result();
