@@ -887,7 +887,7 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
   vtkLODGeomorph* self, vtkIdType count, double fraction, vtkPolyData* output, double& lod)
 {
   int level = -1;
-  if (this->ProduceWholeLevelFor(self, count, output, lod, level))
+  if (this->ProduceWholeLevelFor(self, count, fraction, output, lod, level))
   {
     return true;
   }
@@ -931,11 +931,12 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
 }
 
 // The coarsest level with at least `count` triangles, into `level`. Where a whole level is the
-// answer (that level has exactly `count`, or it is the finest or the coarsest and `count` lies
-// beyond, or there are no collapse ranks to go part of the way), it is produced, with a warning
-// where its count is not `count`, and true is returned.
-bool vtkLODGeomorph::Internals::ProduceWholeLevelFor(
-  vtkLODGeomorph* self, vtkIdType count, vtkPolyData* output, double& lod, int& level)
+// answer (that level has exactly `count` and no `fraction` of its next collapse is asked, or it
+// is the finest or the coarsest and `count` lies beyond, or there are no collapse ranks to go
+// part of the way), it is produced, with a warning where its count is not `count`, and true is
+// returned.
+bool vtkLODGeomorph::Internals::ProduceWholeLevelFor(vtkLODGeomorph* self, vtkIdType count,
+  double fraction, vtkPolyData* output, double& lod, int& level)
 {
   const int n = static_cast<int>(this->Levels.size());
   auto trianglesOf = [&](int i) { return this->Levels[i].Poly->GetNumberOfPolys(); };
@@ -955,7 +956,10 @@ bool vtkLODGeomorph::Internals::ProduceWholeLevelFor(
                                  << "producing the finest level.");
     level = 0;
   }
-  if (trianglesOf(level) == count || trianglesOf(level) < count)
+  // A level's own count with a fraction moves the points of its first collapse: else raising
+  // the fraction to 1 there and then lowering the count would jump.
+  const bool partWay = fraction > 0.0 && level < n - 1 && this->Mode == MORPH_ARRAYS;
+  if (trianglesOf(level) < count || (trianglesOf(level) == count && !partWay))
   {
     lod = level;
     this->ProduceLevel(level, output);

@@ -115,8 +115,8 @@ struct vtkLODGeomorph::Internals
   bool ProduceExactCount(
     vtkLODGeomorph* self, vtkIdType count, double fraction, vtkPolyData* output, double& lod);
   // ProduceExactCount's and ProduceNearestBlend's steps (MeshLODGeomorphInternals.cxx).
-  bool ProduceWholeLevelFor(
-    vtkLODGeomorph* self, vtkIdType count, vtkPolyData* output, double& lod, int& level);
+  bool ProduceWholeLevelFor(vtkLODGeomorph* self, vtkIdType count, double fraction,
+    vtkPolyData* output, double& lod, int& level);
   void ProduceSteps(
     int level, meshlod::Id steps, meshlod::Id nextStep, double fraction, vtkPolyData* output);
   void MergeShortEdges(vtkLODGeomorph* self, int level, std::vector<std::uint8_t>& shortEdge);

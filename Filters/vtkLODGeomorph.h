@@ -92,7 +92,7 @@
  * above the finest level's or below the coarsest level's are clamped to them, with a warning.
  * CollapseFraction geomorphs the next collapse: the points of the next step that removes
  * triangles (with the steps before it that remove none) are moved that fraction of the way to
- * their targets, so that raising CollapseFraction from 0 to 1 and then lowering the count
+ * their targets (at a level's own count, the first collapse after it), so that raising CollapseFraction from 0 to 1 and then lowering the count
  * moves continuously. The output has the triangle count asked for whatever the fraction.
  * The first count asked on a transition builds its order, once (kept until the input
  * changes): 0.7 s for the first level of vtkTriangleCollapseDecimation's defaults on 672,716

@@ -149,6 +149,19 @@ void TestFraction(vtkMultiBlockDataSet* h)
   MESHLOD_CHECK_EQ(filter->GetActualNumberOfTriangles(), count);
   MESHLOD_CHECK(arrived == Positions(Run(filter, count - 2, 0.0)));
 
+  // At a level's own count the fraction moves that level's first collapse: from a level's
+  // count with fraction 1 to the count below with 0 nothing jumps (level 0 and level 1).
+  for (int i = 0; i < 2; ++i)
+  {
+    const vtkIdType own = Level(h, i)->GetNumberOfPolys();
+    MESHLOD_CHECK(Positions(Run(filter, own, 0.0)) == Positions(Level(h, i)));
+    const std::vector<std::array<double, 3>> full = Positions(Run(filter, own, 1.0));
+    MESHLOD_CHECK_EQ(filter->GetActualNumberOfTriangles(), own);
+    MESHLOD_CHECK_GT(filter->GetActualLevelOfDetail(), static_cast<double>(i));
+    MESHLOD_CHECK(full != Positions(Level(h, i)));
+    MESHLOD_CHECK(full == Positions(Run(filter, own - 2, 0.0)));
+  }
+
   // The last two triangles of the transition 0 -> 1, fully moved: every point is at its
   // target, i.e. the positions are level 1's.
   const vtkIdType nextLevel = Level(h, 1)->GetNumberOfPolys();
