@@ -15,6 +15,7 @@
 // Usage: GeomorphBenchmark [vertices (default 1000000)] [frames (default 41)]
 #include "vtkLODGeomorph.h"
 
+#include "BenchmarkArguments.h"
 #include "MeshLODTestHierarchies.h"
 #include "MeshLODTestMeshes.h"
 
@@ -166,6 +167,12 @@ std::vector<Row> Measure(vtkMultiBlockDataSet* withNormals, vtkMultiBlockDataSet
 
 int main(int argc, char* argv[])
 {
+  int exitCode = 0;
+  if (!meshlod::benchmark::NumberArguments(argc, argv, 2, false,
+        "[vertices (default 1000000)] [frames (default 41)]", exitCode))
+  {
+    return exitCode;
+  }
   const double vertices = argc > 1 ? std::atof(argv[1]) : 1e6;
   const int frames = argc > 2 ? std::atoi(argv[2]) : 41;
   const meshlod::testing::Field field = meshlod::testing::Field::Metaballs;

@@ -13,6 +13,7 @@
 //
 //   OtherMeshesBenchmark [samples]   (surface samples per side for the distances, default 100000)
 #include "BenchmarkMethods.h"
+#include "BenchmarkArguments.h"
 #include "MeshLODHierarchyChecks.h"
 #include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestMeshes.h"
@@ -390,6 +391,12 @@ std::string QuadricDecimationRows(const TestMesh& test, vtkPolyData* mesh,
 
 int main(int argc, char* argv[])
 {
+  int exitCode = 0;
+  if (!meshlod::benchmark::NumberArguments(argc, argv, 1, false,
+        "[samples (surface samples per side for the distances, default 100000)]", exitCode))
+  {
+    return exitCode;
+  }
   meshlod::SurfaceDistanceOptions options;
   options.SamplesPerSurface = argc > 1 ? std::atoll(argv[1]) : 100000;
   options.MaximumVertexSamples = options.SamplesPerSurface;

@@ -15,6 +15,7 @@
 // metaballs:150000, gyroid:600000 and gyroid:2300000 (about ten minutes in all on two cores, eight
 // of them for the largest).
 #include "BenchmarkMethods.h"
+#include "BenchmarkArguments.h"
 #include "MeshLODSurfaceDistance.h"
 
 #include "vtkPolyData.h"
@@ -48,6 +49,14 @@ std::string MinMedianMax(std::vector<double> values)
 
 int main(int argc, char* argv[])
 {
+  int exitCode = 0;
+  if (!meshlod::benchmark::NumberArguments(argc, argv, 2, true,
+        "[samples [draws [field:triangles ...]]] (defaults 100000, 9 and the three isosurfaces "
+        "of the main benchmark)",
+        exitCode))
+  {
+    return exitCode;
+  }
   meshlod::SurfaceDistanceOptions yardstick;
   if (argc > 1)
   {

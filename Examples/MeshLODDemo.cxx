@@ -33,6 +33,7 @@
 #include "vtkCamera.h"
 #include "vtkCoordinate.h"
 #include "vtkDataArray.h"
+#include "vtkErrorCode.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkMultiBlockDataSet.h"
@@ -208,6 +209,12 @@ void PrintTable(const HierarchyProducer& producer, vtkMultiBlockDataSet* levels,
 }
 
 //--------------------------------------------------------------------------------------------------
+/// vtkXMLWriter::Write returns 1 even where it could not write the file; its error code tells.
+bool WriteSucceeded(vtkXMLWriter* writer)
+{
+  return writer->Write() == 1 && writer->GetErrorCode() == vtkErrorCode::NoError;
+}
+
 bool WriteHierarchy(vtkMultiBlockDataSet* levels, const fs::path& path)
 {
   vtkNew<vtkXMLMultiBlockDataWriter> writer;
@@ -218,7 +225,11 @@ bool WriteHierarchy(vtkMultiBlockDataSet* levels, const fs::path& path)
   // files about as small as the default level's, in half the time.
   writer->SetIdTypeToInt32();
   writer->SetCompressionLevel(1);
-  return writer->Write() == 1;
+  // The writer puts the levels into <name>/ beside <name>.vtm and says nothing through its
+  // error code when it cannot (a file of that name, say): the folder is made here first.
+  std::error_code error;
+  fs::create_directories(path.parent_path() / path.stem(), error);
+  return !error && WriteSucceeded(writer);
 }
 
 /// Removes <folder>/frame_*.vtp: frames left over from an earlier, longer run would confuse a
@@ -256,7 +267,12 @@ int WriteGeomorphFrames(vtkMultiBlockDataSet* levels, const fs::path& directory,
   const std::vector<double> levelTimes(steps, steps + info->Length(SDDP::TIME_STEPS()));
 
   const fs::path folder = directory / (name + "_frames");
-  fs::create_directories(folder);
+  std::error_code error;
+  fs::create_directories(folder, error);
+  if (error)
+  {
+    return -1;
+  }
   RemoveOldFrames(folder);
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputConnection(geomorph->GetOutputPort());
@@ -275,7 +291,7 @@ int WriteGeomorphFrames(vtkMultiBlockDataSet* levels, const fs::path& directory,
     std::snprintf(file, sizeof(file), "frame_%03zu.vtp", k);
     geomorph->UpdateTimeStep(times[k]);
     writer->SetFileName((folder / file).string().c_str());
-    if (writer->Write() != 1)
+    if (!WriteSucceeded(writer))
     {
       return -1;
     }
