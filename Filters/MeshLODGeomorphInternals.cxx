@@ -417,6 +417,25 @@ std::string vtkLODGeomorph::Internals::Prepare(
       return problem.str();
     }
     vtkSmartPointer<vtkPolyData> checked = meshlod::DropMismatchedArrays(poly, self);
+    vtkPoints* given = checked->GetPoints();
+    if (given && given->GetDataType() != VTK_FLOAT && given->GetDataType() != VTK_DOUBLE)
+    {
+      // Integer points would blend in integers (truncated): such a level is read in double, as
+      // the filters read an input.
+      vtkNew<vtkPoints> real;
+      real->SetDataTypeToDouble();
+      real->SetNumberOfPoints(given->GetNumberOfPoints());
+      for (vtkIdType p = 0; p < given->GetNumberOfPoints(); ++p)
+      {
+        real->SetPoint(p, given->GetPoint(p));
+      }
+      if (checked == poly)
+      {
+        checked = vtkSmartPointer<vtkPolyData>::New();
+        checked->ShallowCopy(poly);
+      }
+      checked->SetPoints(real);
+    }
     if (checked != poly)
     {
       this->Levels[i].Checked = checked;
@@ -886,6 +905,17 @@ void vtkLODGeomorph::Internals::BuildExactTopology(int level, Id steps, Id nextS
 bool vtkLODGeomorph::Internals::ProduceExactCount(
   vtkLODGeomorph* self, vtkIdType count, double fraction, vtkPolyData* output, double& lod)
 {
+  // Levels are told apart by their triangle counts: a level with strips, vertices or lines would
+  // be miscounted (a level of strips has no polygons at all).
+  for (int i = 0; i < static_cast<int>(this->Levels.size()); ++i)
+  {
+    vtkPolyData* poly = this->Levels[i].Poly;
+    if (poly->GetNumberOfCells() != poly->GetNumberOfPolys() &&
+      !this->EnsureTriangles(self, i, "TargetNumberOfTriangles"))
+    {
+      return false;
+    }
+  }
   int level = -1;
   if (this->ProduceWholeLevelFor(self, count, fraction, output, lod, level))
   {

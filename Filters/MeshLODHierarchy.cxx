@@ -593,12 +593,14 @@ std::string CheckHierarchyLayout(vtkMultiBlockDataSet* hierarchy, bool requireMo
     vtkDataArray* target = pd->GetArray(names::MorphTarget);
     vtkDataArray* rank = pd->GetArray(names::CollapseRank);
     if (!targetId || !target || !rank || target->GetNumberOfComponents() != 3 ||
+      targetId->GetNumberOfComponents() != 1 || rank->GetNumberOfComponents() != 1 ||
       targetId->GetNumberOfTuples() != level->GetNumberOfPoints() ||
       target->GetNumberOfTuples() != level->GetNumberOfPoints() ||
       rank->GetNumberOfTuples() != level->GetNumberOfPoints())
     {
       problem << "level " << i << " lacks complete " << names::MorphTarget << ", "
-              << names::MorphTargetId << " and " << names::CollapseRank << " point arrays";
+              << names::MorphTargetId << " and " << names::CollapseRank
+              << " point arrays (3, 1 and 1 components, one tuple per point)";
       return problem.str();
     }
     // Scan the values (not GetRange(): its cached range misses in-place edits).
@@ -615,16 +617,19 @@ std::string CheckHierarchyLayout(vtkMultiBlockDataSet* hierarchy, bool requireMo
               << next->GetNumberOfPoints() << ") or not integers";
       return problem.str();
     }
+    // A rank orders the level's collapses: there are fewer of them than points.
     bool ranked = true;
+    const double ranks = static_cast<double>(level->GetNumberOfPoints());
     for (vtkIdType p = 0; p < rank->GetNumberOfTuples() && ranked; ++p)
     {
       const double r = rank->GetTuple1(p);
-      ranked = r >= -1.0 && r == std::floor(r);
+      ranked = r >= -1.0 && r < ranks && r == std::floor(r);
     }
     if (!ranked)
     {
       problem << "level " << i << " has " << names::CollapseRank
-              << " values that are neither -1 nor a rank (an integer from 0)";
+              << " values that are neither -1 nor a rank (an integer from 0 below the level's "
+              << level->GetNumberOfPoints() << " points)";
       return problem.str();
     }
     // MorphTarget is where the point MorphTargetId names is (the blends end on the one, the

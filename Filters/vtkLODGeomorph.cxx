@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 vtkStandardNewMacro(vtkLODGeomorph);
 
@@ -73,6 +75,26 @@ int vtkLODGeomorph::FillInputPortInformation(int vtkNotUsed(port), vtkInformatio
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// With pipeline time the time is the level of detail, not a request for the hierarchy: an
+// upstream with time steps of its own is asked for the first, whatever time was asked of it
+// before (without this, a time asked while UsePipelineTime was off stayed in its request).
+void AskForFirstTimeStep(vtkInformation* upstream)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (upstream->Has(SDDP::TIME_STEPS()) && upstream->Length(SDDP::TIME_STEPS()) > 0)
+  {
+    upstream->Set(SDDP::UPDATE_TIME_STEP(), upstream->Get(SDDP::TIME_STEPS())[0]);
+  }
+  else
+  {
+    upstream->Remove(SDDP::UPDATE_TIME_STEP());
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 int vtkLODGeomorph::RequestInformation(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** vtkNotUsed(inputVector), vtkInformationVector* outputVector)
 {
@@ -94,6 +116,8 @@ int vtkLODGeomorph::RequestInformation(vtkInformation* vtkNotUsed(request),
   int producerPort = 0;
   if (vtkAlgorithm* producer = this->GetInputAlgorithm(0, 0, producerPort))
   {
+    producer->UpdateInformation();
+    AskForFirstTimeStep(producer->GetOutputInformation(producerPort));
     producer->Update(producerPort);
   }
   auto* input = vtkMultiBlockDataSet::SafeDownCast(this->GetInputDataObject(0, 0));
@@ -118,8 +142,8 @@ int vtkLODGeomorph::RequestUpdateExtent(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* vtkNotUsed(outputVector))
 {
   // The blend needs the whole hierarchy, whatever piece is asked for (the piece is produced
-  // whole or empty in RequestData). With pipeline time, the time is the level of detail, not a
-  // request for the hierarchy: do not pass it upstream.
+  // whole or empty in RequestData). With pipeline time, the time is the level of detail and is
+  // not passed upstream.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   if (inInfo)
   {
@@ -127,7 +151,7 @@ int vtkLODGeomorph::RequestUpdateExtent(vtkInformation* vtkNotUsed(request),
   }
   if (this->UsePipelineTime && inInfo)
   {
-    inInfo->Remove(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+    AskForFirstTimeStep(inInfo);
   }
   return 1;
 }
@@ -196,7 +220,10 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
   }
   else if (lod > n - 1)
   {
-    vtkWarningMacro("LevelOfDetail " << lod << " is beyond the coarsest level " << n - 1
+    // All the digits: 4.000000000000001 must not read "4 is beyond the coarsest level 4".
+    std::ostringstream asked;
+    asked << std::setprecision(17) << lod;
+    vtkWarningMacro("LevelOfDetail " << asked.str() << " is beyond the coarsest level " << n - 1
                                      << "; producing level " << n - 1 << ".");
     lod = n - 1;
   }

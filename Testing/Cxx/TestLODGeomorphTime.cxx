@@ -213,7 +213,7 @@ int TestLODGeomorphTime(int, char*[])
   MESHLOD_CHECK_EQ(source->Executions, 2);
 
   // An upstream with time steps of its own. With pipeline time, the levels are the time steps
-  // and the upstream gets no time request; without, the filter is transparent to time.
+  // and the upstream is asked for its first; without, the filter is transparent to time.
   vtkNew<HierarchySource> temporal;
   temporal->Hierarchy = source->Hierarchy;
   temporal->TimeSteps = { 10.0, 20.0, 30.0 };
@@ -221,7 +221,7 @@ int TestLODGeomorphTime(int, char*[])
   transparent->SetInputConnection(temporal->GetOutputPort());
   transparent->UpdateTimeStep(1.0);
   MESHLOD_CHECK_EQ(transparent->GetOutputInformation(0)->Length(SDDP::TIME_STEPS()), 2);
-  MESHLOD_CHECK_EQ(temporal->RequestedTime, -1.0);
+  MESHLOD_CHECK_EQ(temporal->RequestedTime, 10.0);
   transparent->UsePipelineTimeOff();
   transparent->SetLevelOfDetail(0.25);
   transparent->UpdateTimeStep(20.0);
@@ -230,5 +230,10 @@ int TestLODGeomorphTime(int, char*[])
   MESHLOD_CHECK_EQ(transparent->GetActualLevelOfDetail(), 0.25);
   MESHLOD_CHECK_EQ(
     transparent->GetOutput()->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()), 20.0);
+  // Back to pipeline time: the first time step again, not the 20 asked while it was off.
+  transparent->UsePipelineTimeOn();
+  transparent->UpdateTimeStep(0.5);
+  MESHLOD_CHECK_EQ(temporal->RequestedTime, 10.0);
+  MESHLOD_CHECK_EQ(transparent->GetActualLevelOfDetail(), 0.5);
   return testing::Result();
 }

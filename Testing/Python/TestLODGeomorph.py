@@ -1,12 +1,14 @@
 """vtkLODGeomorph from Python: a hand-made two-level hierarchy with morph arrays and a pair of
 vtkQuadricDecimation outputs without them; the time-driven update must give the same mesh as
-the explicit LevelOfDetail. Exact counts on an extruded vector text, whose large flat faces make
-clusters that are valid only together."""
+the explicit LevelOfDetail, and an upstream with time steps of its own is asked for its first.
+Exact counts on an extruded vector text, whose large flat faces make clusters that are valid
+only together."""
 
 import os
 import sys
 import tempfile
 
+from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIdTypeArray, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkMultiBlockDataSet, vtkPolyData
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
@@ -279,7 +281,58 @@ def test_saved_hierarchy_in_pieces():
               "saved hierarchy: the pieces hold %d triangles, level 2 has %d" % (total, expected))
 
 
+class TimeSphere(VTKPythonAlgorithmBase):
+    """A source with time steps 0, 1, 2: a sphere of radius 1 + t (1 when no time is asked)."""
+
+    def __init__(self):
+        VTKPythonAlgorithmBase.__init__(self, nInputPorts=0, nOutputPorts=1,
+                                        outputType="vtkPolyData")
+        self.times = []
+
+    def RequestInformation(self, request, in_info, out_info):
+        info = out_info.GetInformationObject(0)
+        info.Set(vtkStreamingDemandDrivenPipeline.TIME_STEPS(), [0.0, 1.0, 2.0], 3)
+        info.Set(vtkStreamingDemandDrivenPipeline.TIME_RANGE(), [0.0, 2.0], 2)
+        return 1
+
+    def RequestData(self, request, in_info, out_info):
+        info = out_info.GetInformationObject(0)
+        key = vtkStreamingDemandDrivenPipeline.UPDATE_TIME_STEP()
+        time = info.Get(key) if info.Has(key) else None
+        self.times.append(time)
+        sphere = vtkSphereSource()
+        sphere.SetRadius(1.0 + (time or 0.0))
+        sphere.SetThetaResolution(20)
+        sphere.SetPhiResolution(20)
+        sphere.Update()
+        vtkPolyData.GetData(out_info).ShallowCopy(sphere.GetOutput())
+        return 1
+
+
+def test_time_aware_upstream():
+    """With pipeline time, an upstream with time steps gives its first, whatever time was asked
+    of it while UsePipelineTime was off; without, the time goes upstream."""
+    source = TimeSphere()
+    levels = meshlod.vtkTriangleCollapseDecimation()
+    levels.SetInputConnection(source.GetOutputPort())
+    levels.SetNumberOfLevels(2)
+    geomorph = meshlod.vtkLODGeomorph()
+    geomorph.SetInputConnection(levels.GetOutputPort())
+    geomorph.UsePipelineTimeOff()
+    geomorph.UpdateTimeStep(2.0)
+    radius = geomorph.GetOutput().GetBounds()[1]
+    check(abs(radius - 3.0) < 0.05, "time off at t = 2: radius %g, expected 3" % radius)
+    geomorph.UsePipelineTimeOn()
+    geomorph.UpdateTimeStep(0.5)
+    radius = geomorph.GetOutput().GetBounds()[1]
+    check(abs(radius - 1.0) < 0.05,
+          "time on after t = 2 off: radius %g, expected 1 (upstream asked for %s)"
+          % (radius, source.times))
+    check(source.times[-1] == 0.0, "time on: the upstream was last asked for %s" % source.times)
+
+
 test_morph()
+test_time_aware_upstream()
 test_nearest()
 test_clusters_valid_together()
 test_strokes_merged_interleaved()

@@ -13,7 +13,10 @@ vtkTriangleCollapseDecimation, vtkVertexClusterOctree and vtkLODGeomorph:
 - a texture whose scalars are shorter than its points: an error; a texture in the XZ plane is
   baked like one in the XY plane; int colours count 0-255 like unsigned char ones;
 - input arrays named like the arrays the octree makes (Normals, TCoords): a warning;
-- a TextureResolution that is not a power of two: no warning about its rounding up.
+- a TextureResolution that is not a power of two: no warning about its rounding up;
+- vtkLODGeomorph on levels with integer points: blended in double, not truncated;
+- a two-component MorphTargetId, or a CollapseRank beyond the level's points: one error;
+- an exact count on a level of triangle strips: the error for levels that are not triangles.
 """
 
 import math
@@ -26,11 +29,17 @@ from vtkmodules.vtkCommonCore import (
     vtkIntArray,
     vtkLogger,
     vtkOutputWindow,
+    vtkPoints,
     vtkStringOutputWindow,
     vtkUnsignedCharArray,
 )
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
-from vtkmodules.vtkFiltersCore import vtkTriangleFilter
+from vtkmodules.vtkCommonDataModel import (
+    vtkCellArray,
+    vtkImageData,
+    vtkMultiBlockDataSet,
+    vtkPolyData,
+)
+from vtkmodules.vtkFiltersCore import vtkQuadricDecimation, vtkStripper
 from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
 from vtkmodules.vtkFiltersTexture import vtkTextureMapToSphere
 
@@ -281,6 +290,89 @@ for array_name in ("Normals", "TCoords"):
           "no warning about replacing the input's %s array (%r)" % (array_name, text[:400]))
 check("too many for a" not in text,
       "TextureResolution 100 drew a warning about its rounding (%r)" % text[:400])
+
+
+
+# The geomorph on user-made levels.
+def quadric_levels(integer_points):
+    source = vtkSphereSource()
+    source.SetRadius(50.0)
+    source.SetThetaResolution(40)
+    source.SetPhiResolution(40)
+    levels = vtkMultiBlockDataSet()
+    for i, reduction in enumerate((0.5, 0.9)):
+        decimate = vtkQuadricDecimation()
+        decimate.SetInputConnection(source.GetOutputPort())
+        decimate.SetTargetReduction(reduction)
+        decimate.Update()
+        level = vtkPolyData()
+        level.DeepCopy(decimate.GetOutput())
+        if integer_points:
+            points = vtkPoints()
+            points.SetDataTypeToInt()
+            points.SetNumberOfPoints(level.GetNumberOfPoints())
+            for p in range(level.GetNumberOfPoints()):
+                points.SetPoint(p, [round(v) for v in level.GetPoint(p)])
+            level.SetPoints(points)
+        levels.SetBlock(i, level)
+    return levels
+
+
+geomorph = meshlod.vtkLODGeomorph()
+geomorph.SetInputData(quadric_levels(True))
+geomorph.UsePipelineTimeOff()
+geomorph.SetLevelOfDetail(0.3)
+run(geomorph)
+out = geomorph.GetOutput()
+fractional = sum(1 for p in range(out.GetNumberOfPoints())
+                 if any(abs(v - round(v)) > 1e-6 for v in out.GetPoint(p)))
+check(out.GetNumberOfPoints() > 700 and fractional > out.GetNumberOfPoints() // 2,
+      "integer points blended to %d of %d non-integer points"
+      % (fractional, out.GetNumberOfPoints()))
+
+decimation = meshlod.vtkTriangleCollapseDecimation()
+decimation.SetInputData(sphere(20))
+decimation.SetNumberOfLevels(2)
+decimation.Update()
+for array_name, problem in (("MorphTargetId", "two components"),
+                            ("CollapseRank", "a rank past the points")):
+    hierarchy = decimation.GetHierarchy().NewInstance()
+    hierarchy.DeepCopy(decimation.GetHierarchy())
+    level = hierarchy.GetBlock(0)
+    given = level.GetPointData().GetArray(array_name)
+    bad = vtkIntArray()
+    bad.SetName(array_name)
+    if problem == "two components":
+        bad.SetNumberOfComponents(2)
+        for p in range(given.GetNumberOfTuples()):
+            bad.InsertNextTuple2(given.GetTuple1(p), 0)
+    else:
+        for p in range(given.GetNumberOfTuples()):
+            bad.InsertNextValue(int(given.GetTuple1(p)))
+        bad.SetValue(0, level.GetNumberOfPoints())
+    level.GetPointData().AddArray(bad)
+    geomorph = meshlod.vtkLODGeomorph()
+    geomorph.SetInputData(hierarchy)
+    geomorph.UsePipelineTimeOff()
+    geomorph.SetLevelOfDetail(0.5)
+    text = run(geomorph)
+    check(text.count("ERR|") + text.count("ERROR") >= 1 and len(text) < 5000,
+          "%s with %s: not one clear error (%d characters)" % (array_name, problem, len(text)))
+    check(geomorph.GetOutput().GetNumberOfPoints() == 0,
+          "%s with %s gave an output" % (array_name, problem))
+
+hierarchy = quadric_levels(False)
+stripper = vtkStripper()
+stripper.SetInputData(hierarchy.GetBlock(0))
+stripper.Update()
+hierarchy.SetBlock(0, stripper.GetOutput())
+geomorph = meshlod.vtkLODGeomorph()
+geomorph.SetInputData(hierarchy)
+geomorph.UsePipelineTimeOff()
+geomorph.SetTargetNumberOfTriangles(500)
+text = run(geomorph)
+check("Level 0 has cells other than triangles" in text,
+      "exact count on a level of strips: no error (%r)" % text[:300])
 
 print("%d of %d checks failed" % (len(failures), checks[0]))
 sys.exit(1 if failures else 0)
