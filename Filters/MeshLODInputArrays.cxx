@@ -5,6 +5,7 @@
 #include "vtkDataArray.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkVariant.h"
 
 #include <cmath>
 #include <sstream>
@@ -91,10 +92,15 @@ void PointDataAgreement::Prepare() const
   vtkPointData* pointData = this->PointData;
   for (int i = 0; i < pointData->GetNumberOfArrays(); ++i)
   {
+    vtkAbstractArray* any = pointData->GetAbstractArray(i);
     vtkDataArray* array = pointData->GetArray(i);
-    if (array == nullptr || array == pointData->GetGlobalIds() ||
-      array == pointData->GetPedigreeIds())
+    if (any == nullptr || any == pointData->GetGlobalIds() || any == pointData->GetPedigreeIds())
     {
+      continue;
+    }
+    if (array == nullptr)
+    {
+      this->Others.push_back(any); // strings, variants: equal values agree
       continue;
     }
     this->Arrays.push_back(array);
@@ -123,6 +129,17 @@ bool PointDataAgreement::operator()(Id a, Id b) const
       const double difference = array->GetComponent(a, c) - array->GetComponent(b, c);
       // Written so that NaN values (which never agree with anything) keep the points apart.
       if (!(std::abs(difference) <= this->Tolerances[k]))
+      {
+        return false;
+      }
+    }
+  }
+  for (vtkAbstractArray* array : this->Others)
+  {
+    const int nc = array->GetNumberOfComponents();
+    for (int c = 0; c < nc; ++c)
+    {
+      if (!(array->GetVariantValue(a * nc + c) == array->GetVariantValue(b * nc + c)))
       {
         return false;
       }

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+class vtkAbstractArray;
 class vtkAlgorithm;
 class vtkDataArray;
 class vtkPointData;
@@ -21,7 +22,7 @@ vtkSmartPointer<vtkPolyData> DropMismatchedArrays(vtkPolyData* input, vtkAlgorit
 
 /// Whether points id `a` and `b` carry the same point data: every array but the global and
 /// pedigree ids (twins differ there by construction), each component within 1e-6 of its range
-/// (exact for integers in practice). Coincident points whose data differ are an attribute seam
+/// (exact for integers in practice), equal values for strings and variants. Coincident points whose data differ are an attribute seam
 /// (a cube's split normals, a texture's wrap): merging them would lose it.
 class PointDataAgreement
 {
@@ -40,6 +41,7 @@ private:
   mutable bool Prepared = false;
   mutable std::vector<vtkDataArray*> Arrays;
   mutable std::vector<double> Tolerances; // per array, per component
+  mutable std::vector<vtkAbstractArray*> Others; // arrays of strings or variants
 };
 
 } // namespace meshlod

@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 
@@ -171,15 +172,16 @@ vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdT
 // apart, or SeamRoundingUnits double-precision epsilons of the largest coordinate where that is
 // more) among the vertices of boundary and non-manifold edges: a triangle soup (an STL file)
 // or a duplicated seam (a parametric surface whose seam points differ in the last bits and are
-// joined by zero-area triangles) becomes one surface. Near-equal points are found as neighbours
-// in three lexicographic orders (x y z, y z x, z x y), which catches every pair that differs in
-// one coordinate only, as rounding makes them. Returns the number of points merged away;
-// triangles are re-indexed to the lowest id of each group. Points whose point data differ
-// (`agree` is false) stay apart; `keptApart` counts the points that coincide with a point of
-// other data and agree with none.
+// joined by zero-area triangles) becomes one surface. Near-equal points are found in a grid of
+// cells twice the tolerance wide, so every pair within the tolerance is compared, whichever
+// coordinates differ. Returns the number of points merged away; triangles are re-indexed to the
+// lowest id of each group. Points whose point data differ (`agree` is false) stay apart;
+// `keptApart` counts the points left apart from a point they coincide with.
 constexpr double SeamTolerance = 1e-12;
 constexpr double SeamRoundingUnits = 64.0; // times DBL_EPSILON times the largest coordinate
-constexpr size_t MaximumSeamGroups = 16;
+// Comparisons per point at most: many coincident points with distinct data (a pathological
+// input) would otherwise cost the square of their number.
+constexpr size_t MaximumSeamComparisons = 64;
 
 // The distance up to which seam points coincide (see MergeSeamPoints). Rounding is relative to
 // the coordinates themselves: far from the origin (a scan in georeferenced coordinates) the last
@@ -199,69 +201,80 @@ double SeamPointTolerance(const TriangleMesh& mesh, const std::vector<Id>& candi
     SeamRoundingUnits * std::numeric_limits<double>::epsilon() * largest);
 }
 
-// One run of neighbours in a sorted order (`run`, `n` points, each within the tolerance of the
-// one before). A member joins the first of the run's groups (so far) whose first member is
-// within the tolerance and carries the same point data, or starts a group: comparing neighbours
-// only would keep apart two agreeing twins sorted on either side of a third that differs. A
-// member coinciding with another group's first member is marked `apart`.
-struct SeamRun
+// The candidate points by grid cell, as (hash of the cell, point) sorted: cells that share a hash
+// share a run, which the distance test then tells apart (16 bytes a point, not a key of three
+// 64-bit integers and an index). A cell is CellTolerances tolerances wide, so that most points
+// are farther than the tolerance from every face of their cell and are compared with their own
+// cell's points only.
+struct SeamGrid
 {
-  const TriangleMesh& Mesh;
-  const PointDataAgreement& Agree;
-  double Tolerance2;
-  std::vector<Id>& Root; // union-find over the vertices; a group's root is its lowest id
-  std::vector<unsigned char>& Apart;
-  std::vector<Id> Groups;          // the first member of each group
-  std::vector<size_t> MemberGroup; // per member: its group
+  static constexpr double CellTolerances = 64.0;
+  double CellSize;
+  std::vector<std::pair<std::uint64_t, Id>> Points;
 
-  void Merge(const Id* run, size_t n)
+  SeamGrid(const TriangleMesh& mesh, const std::vector<Id>& candidates, double tolerance)
+    : CellSize(CellTolerances * tolerance)
   {
-    this->Groups.clear();
-    this->MemberGroup.clear();
-    for (size_t j = 0; j < n; ++j)
+    this->Points.reserve(candidates.size());
+    for (const Id v : candidates)
     {
-      const Id v = run[j];
-      size_t joined = this->Groups.size();
-      // A bounded number of groups per run: many coincident points with distinct data (a
-      // pathological input) would otherwise cost the square of their number.
-      const size_t first = this->Groups.size() > MaximumSeamGroups
-        ? this->Groups.size() - MaximumSeamGroups
-        : 0;
-      for (size_t g = first; g < this->Groups.size() && joined == this->Groups.size(); ++g)
-      {
-        if (this->Near(this->Groups[g], v) && this->Agree(this->Groups[g], v))
-        {
-          const Id a = FindRoot(this->Root, this->Groups[g]), b = FindRoot(this->Root, v);
-          this->Root[std::max(a, b)] = std::min(a, b);
-          joined = g;
-        }
-      }
-      if (joined == this->Groups.size())
-      {
-        this->Groups.push_back(v);
-      }
-      this->MemberGroup.push_back(joined);
+      std::int64_t cell[3];
+      this->CellOf(mesh.Point(v), cell);
+      this->Points.emplace_back(Hash(cell), v);
     }
-    for (size_t j = 0; this->Groups.size() > 1 && j < n; ++j)
+    std::sort(this->Points.begin(), this->Points.end());
+  }
+
+  void CellOf(const double* x, std::int64_t cell[3]) const
+  {
+    for (int k = 0; k < 3; ++k)
     {
-      const size_t own = this->MemberGroup[j];
-      const size_t from = own > MaximumSeamGroups ? own - MaximumSeamGroups : 0;
-      const size_t to = std::min(this->Groups.size(), own + MaximumSeamGroups + 1);
-      for (size_t g = from; g < to; ++g)
-      {
-        if (g != own && this->Near(this->Groups[g], run[j]))
-        {
-          this->Apart.resize(this->Root.size(), 0);
-          this->Apart[run[j]] = 1;
-          break;
-        }
-      }
+      cell[k] = static_cast<std::int64_t>(std::floor(x[k] / this->CellSize));
     }
   }
 
-  bool Near(Id a, Id b) const
+  static std::uint64_t Hash(const std::int64_t cell[3])
   {
-    return Distance2(this->Mesh.Point(a), this->Mesh.Point(b)) <= this->Tolerance2;
+    std::uint64_t h = static_cast<std::uint64_t>(cell[0]) * 0x9e3779b97f4a7c15ull ^
+      static_cast<std::uint64_t>(cell[1]) * 0xc2b2ae3d27d4eb4full ^
+      static_cast<std::uint64_t>(cell[2]) * 0x165667b19e3779f9ull;
+    h ^= h >> 29;
+    return h * 0xbf58476d1ce4e5b9ull;
+  }
+
+  // Calls visit(u) for the candidates of the neighbouring cells within the tolerance of x (none
+  // for most points: only where x is that near a face, edge or corner of its cell).
+  template <typename Visit>
+  void ForNeighbourCells(const double* x, Visit&& visit) const
+  {
+    std::int64_t own[3], side[3];
+    this->CellOf(x, own);
+    int nearFaces = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double within = x[k] / this->CellSize - static_cast<double>(own[k]);
+      const double margin = 1.0 / CellTolerances;
+      side[k] = within < margin ? -1 : (within > 1.0 - margin ? 1 : 0);
+      nearFaces |= side[k] != 0 ? 1 << k : 0;
+    }
+    for (int corner = 1; corner < 8; ++corner)
+    {
+      if ((corner & ~nearFaces) != 0)
+      {
+        continue; // a step along an axis whose faces are far
+      }
+      const std::int64_t cell[3] = { own[0] + ((corner & 1) ? side[0] : 0),
+        own[1] + ((corner & 2) ? side[1] : 0), own[2] + ((corner & 4) ? side[2] : 0) };
+      const std::uint64_t hash = Hash(cell);
+      auto it = std::lower_bound(this->Points.begin(), this->Points.end(),
+        std::make_pair(hash, std::numeric_limits<Id>::min()));
+      for (size_t seen = 0; it != this->Points.end() && it->first == hash &&
+           seen < MaximumSeamComparisons;
+           ++it, ++seen)
+      {
+        visit(it->second);
+      }
+    }
   }
 };
 
@@ -269,7 +282,6 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
   const PointDataAgreement& agree, vtkIdType& keptApart)
 {
   keptApart = 0;
-  std::vector<unsigned char> apart;
   const Id nv = mesh.GetNumberOfPoints();
   std::vector<Id> candidates;
   for (Id v = 0; v < nv; ++v)
@@ -285,35 +297,52 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
     return 0;
   }
   const double tolerance = SeamPointTolerance(mesh, candidates);
+  const double tolerance2 = tolerance * tolerance;
+  const SeamGrid grid(mesh, candidates, tolerance);
   std::vector<Id> root = FreshVector<Id>(nv);
   std::iota(root.begin(), root.end(), 0);
-  SeamRun runs{ mesh, agree, tolerance * tolerance, root, apart, {}, {} };
-  for (int first = 0; first < 3; ++first)
-  {
-    auto less = [&](Id a, Id b) {
-      const double* pa = mesh.Point(a);
-      const double* pb = mesh.Point(b);
-      for (int k = 0; k < 3; ++k)
-      {
-        const int i = (first + k) % 3;
-        if (pa[i] != pb[i])
-        {
-          return pa[i] < pb[i];
-        }
-      }
-      return a < b;
-    };
-    std::sort(candidates.begin(), candidates.end(), less);
-    // Runs of neighbours in this order, each within the tolerance of the one before.
-    for (size_t begin = 0; begin < candidates.size();)
+  // Each point is joined to the near points of the same data (a group's root is its lowest
+  // id); the near points of other data are noted, to count after all joins.
+  std::vector<std::pair<Id, Id>> differing;
+  auto compare = [&](Id u, Id v) {
+    if (u != v && Distance2(mesh.Point(u), mesh.Point(v)) <= tolerance2)
     {
-      size_t end = begin + 1;
-      while (end < candidates.size() && runs.Near(candidates[end - 1], candidates[end]))
+      if (agree(u, v))
       {
-        ++end;
+        const Id a = FindRoot(root, u), b = FindRoot(root, v);
+        root[std::max(a, b)] = std::min(a, b);
       }
-      runs.Merge(candidates.data() + begin, end - begin);
-      begin = end;
+      else
+      {
+        differing.emplace_back(u, v);
+      }
+    }
+  };
+  const auto& points = grid.Points;
+  for (size_t begin = 0; begin < points.size();)
+  {
+    size_t end = begin + 1;
+    while (end < points.size() && points[end].first == points[begin].first)
+    {
+      ++end;
+    }
+    for (size_t i = begin; i < end; ++i)
+    {
+      const Id v = points[i].second;
+      for (size_t j = i + 1; j < std::min(end, i + MaximumSeamComparisons); ++j)
+      {
+        compare(v, points[j].second);
+      }
+      grid.ForNeighbourCells(mesh.Point(v), [&](Id u) { compare(u, v); });
+    }
+    begin = end;
+  }
+  std::vector<unsigned char> apart(nv, 0);
+  for (const auto& pair : differing)
+  {
+    if (FindRoot(root, pair.first) != FindRoot(root, pair.second))
+    {
+      apart[pair.first] = apart[pair.second] = 1;
     }
   }
   keptApart = std::count(apart.begin(), apart.end(), 1);

@@ -1,9 +1,11 @@
 #include "vtkVertexClusterOctree.h"
 
+#include "Core/ClusterTree.h"
 #include "Core/FreshMemory.h"
 #include "Core/LevelCentering.h"
 #include "Core/OctreeClustering.h"
 #include "Core/TextureAtlas.h"
+#include "Core/Vector3.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODInputMesh.h"
 #include "MeshLODSettings.h"
@@ -28,6 +30,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkVertexClusterOctree);
 
@@ -35,6 +38,46 @@ namespace
 {
 using meshlod::Id;
 using meshlod::InvalidId;
+
+// The octree halves the input's bounding cube at most ClusterTree::AxisBits times along each
+// axis, so its finest cells are 2^-AxisBits of the cube's side. Where the input's edges are
+// mostly shorter than that (a small part beside a far outlier), many vertices share a finest
+// cell and cannot be clustered apart: nothing merges there at any epsilon. Said in a warning
+// (the median length of up to 10,000 edges, spread over the input: an outlier's long edges
+// would raise a mean).
+void WarnIfFinerThanOctree(const meshlod::TriangleMesh& mesh, vtkAlgorithm* caller)
+{
+  const Id nt = mesh.GetNumberOfTriangles();
+  if (nt == 0)
+  {
+    return;
+  }
+  double lo[3], hi[3];
+  mesh.GetBounds(lo, hi);
+  const double side = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] });
+  const double finest = std::ldexp(side, -meshlod::ClusterTree::AxisBits);
+  const Id step = std::max<Id>(1, nt / 10000);
+  std::vector<double> lengths;
+  for (Id t = 0; t < nt; t += step)
+  {
+    const Id* tri = mesh.Triangle(t);
+    lengths.push_back(std::sqrt(meshlod::Distance2(mesh.Point(tri[0]), mesh.Point(tri[1]))));
+  }
+  auto middle = lengths.begin() + lengths.size() / 2;
+  std::nth_element(lengths.begin(), middle, lengths.end());
+  const double median = *middle;
+  if (median < finest)
+  {
+    vtkWarningWithObjectMacro(caller,
+      "The input's edges (" << median << " long, the median) are shorter than the octree's finest "
+                            << "cells (" << finest << ", 2^-" << meshlod::ClusterTree::AxisBits
+                            << " of the bounding box's largest side, " << side
+                            << "): vertices that share a cell cannot be clustered apart, so "
+                               "such parts hardly simplify. A far outlier (a stray triangle) "
+                               "makes the box that large: remove it, or simplify the parts "
+                               "separately.");
+  }
+}
 
 // One level to make: by epsilon (world units) or by triangle count.
 
@@ -561,6 +604,8 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   {
     return 0;
   }
+
+  WarnIfFinerThanOctree(in.Mesh, this);
 
   meshlod::TextureBaker baker;
   vtkDataArray* inputTCoords = in.Source->GetPointData()->GetTCoords();

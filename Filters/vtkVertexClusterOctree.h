@@ -107,7 +107,10 @@
  * input's bounding-box diagonal, otherwise world units. Levels nest: every cluster of a coarser
  * level is a union of clusters of the finer one (a coarser level cuts the same cluster tree
  * higher up), so MorphTargetId is exact and a geomorph between levels does not pop. A level
- * that would keep no triangle ends the hierarchy (with a warning).
+ * that would keep no triangle ends the hierarchy (with a warning). The octree halves the input's
+ * bounding cube at most 20 times along each axis: where most edges are shorter than its finest
+ * cells (2^-20 of the box's largest side; a small part beside a far outlier), vertices sharing
+ * a cell cannot be clustered apart and those parts hardly simplify, with a warning.
  *
  * Synthesis. Triangles are re-indexed to the representatives, degenerate and duplicate
  * triangles removed (of two with the same three points in the same order, the first is kept),

@@ -138,7 +138,12 @@ struct OctreeClustering::Internals::KeptSurfaceGrid
 // lies farther from the input everywhere, may let the piece go).
 Id OctreeClustering::Internals::MarkFarVanishing(Synthesis& s, double epsilon)
 {
-  if (this->PreviousPieces <= 1)
+  // A single piece can only vanish with the whole level: then it is as far from the (empty)
+  // level as can be, and is kept too (a thin closed cone, whose cross-section fits in one
+  // cluster, kept nothing and ended the hierarchy at level 0).
+  const bool keepsTriangles =
+    std::find(s.Duplicate.begin(), s.Duplicate.end(), 0) != s.Duplicate.end();
+  if (this->PreviousPieces == 0 || (this->PreviousPieces == 1 && keepsTriangles))
   {
     return 0;
   }

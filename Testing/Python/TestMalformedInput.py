@@ -16,10 +16,19 @@ vtkTriangleCollapseDecimation, vtkVertexClusterOctree and vtkLODGeomorph:
 - a TextureResolution that is not a power of two: no warning about its rounding up;
 - vtkLODGeomorph on levels with integer points: blended in double, not truncated;
 - a two-component MorphTargetId, or a CollapseRank beyond the level's points: one error;
-- an exact count on a level of triangle strips: the error for levels that are not triangles.
+- an exact count on a level of triangle strips: the error for levels that are not triangles;
+- a triangle soup whose copies of a corner differ by rounding in all three coordinates: stitched
+  into the closed surface (copies were compared in three sorted orders, which missed them), but
+  not where a string array differs;
+- a thin closed cone, whose cross-section fits in one octree cluster: the octree keeps a closed
+  surface on every level instead of ending the hierarchy at level 0;
+- a small sphere beside a triangle a million times farther away than its size: the octree's
+  finest cells hold the whole sphere, which a warning says (and no warning without the
+  outlier).
 """
 
 import math
+import random
 import sys
 
 from vtkmodules.vtkCommonCore import (
@@ -30,6 +39,7 @@ from vtkmodules.vtkCommonCore import (
     vtkLogger,
     vtkOutputWindow,
     vtkPoints,
+    vtkStringArray,
     vtkStringOutputWindow,
     vtkUnsignedCharArray,
 )
@@ -39,8 +49,8 @@ from vtkmodules.vtkCommonDataModel import (
     vtkMultiBlockDataSet,
     vtkPolyData,
 )
-from vtkmodules.vtkFiltersCore import vtkQuadricDecimation, vtkStripper
-from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
+from vtkmodules.vtkFiltersCore import vtkQuadricDecimation, vtkStripper, vtkTriangleFilter
+from vtkmodules.vtkFiltersSources import vtkConeSource, vtkPlaneSource, vtkSphereSource
 from vtkmodules.vtkFiltersTexture import vtkTextureMapToSphere
 
 import meshlod
@@ -373,6 +383,99 @@ geomorph.SetTargetNumberOfTriangles(500)
 text = run(geomorph)
 check("Level 0 has cells other than triangles" in text,
       "exact count on a level of strips: no error (%r)" % text[:300])
+
+
+def jittered_soup(labels):
+    """A 16 x 16 UV sphere (226 points) as a soup of triangles, each corner moved by up to 1e-15
+    in x, y and z; with `labels`, a string array naming each point's triangle."""
+    source = sphere(16)
+    rnd = random.Random(1)
+    points = vtkPoints()
+    points.SetDataTypeToDouble()
+    cells = vtkCellArray()
+    names = vtkStringArray()
+    names.SetName("Label")
+    for c in range(source.GetNumberOfCells()):
+        corners = source.GetCell(c).GetPointIds()
+        ids = []
+        for k in range(3):
+            x = source.GetPoint(corners.GetId(k))
+            ids.append(points.InsertNextPoint([v + rnd.uniform(-1e-15, 1e-15) for v in x]))
+            names.InsertNextValue("triangle %d" % c)
+        cells.InsertNextCell(3, ids)
+    soup = vtkPolyData()
+    soup.SetPoints(points)
+    soup.SetPolys(cells)
+    if labels:
+        soup.GetPointData().AddArray(names)
+    return soup
+
+
+for name in FILTERS:
+    algorithm = getattr(meshlod, name)()
+    algorithm.SetInputData(jittered_soup(False))
+    run(algorithm)
+    levels = levels_of(algorithm)
+    check(levels and levels[0].GetNumberOfPoints() == 226,
+          "%s: jittered soup: level 0 has %s points, 226 when stitched"
+          % (name, levels[0].GetNumberOfPoints() if levels else None))
+    check(len(levels) > 2 and levels[-1].GetNumberOfPolys() < 100,
+          "%s: jittered soup did not simplify: %s"
+          % (name, [level.GetNumberOfPolys() for level in levels]))
+    algorithm.SetInputData(jittered_soup(True))
+    text = run(algorithm)
+    levels = levels_of(algorithm)
+    check(levels and levels[0].GetNumberOfPoints() == 3 * 448,
+          "%s: soup with a label per triangle was stitched (%s points)"
+          % (name, levels[0].GetNumberOfPoints() if levels else None))
+    check("Did not stitch" in text, "%s: labelled soup: no warning about the seam" % name)
+
+
+def edge_uses(mesh):
+    uses = {}
+    for c in range(mesh.GetNumberOfCells()):
+        ids = mesh.GetCell(c).GetPointIds()
+        corners = [ids.GetId(k) for k in range(3)]
+        for k in range(3):
+            edge = tuple(sorted((corners[k], corners[(k + 1) % 3])))
+            uses[edge] = uses.get(edge, 0) + 1
+    return uses
+
+
+cone = vtkConeSource()
+cone.SetResolution(64)
+cone.SetRadius(1e-3)
+cone.SetHeight(1.0)
+triangulate = vtkTriangleFilter()
+triangulate.SetInputConnection(cone.GetOutputPort())
+octree = meshlod.vtkVertexClusterOctree()
+octree.SetInputConnection(triangulate.GetOutputPort())
+run(octree)
+levels = levels_of(octree)
+check(len(levels) == 4 and all(level.GetNumberOfPolys() >= 4 for level in levels),
+      "thin cone: levels %s" % [level.GetNumberOfPolys() for level in levels])
+for i, level in enumerate(levels):
+    uses = edge_uses(level)
+    euler = level.GetNumberOfPoints() - len(uses) + level.GetNumberOfPolys()
+    check(all(n == 2 for n in uses.values()) and euler == 2,
+          "thin cone: level %d is not a closed sphere (Euler characteristic %d)" % (i, euler))
+
+
+for far in (None, 1e6):
+    mesh = vtkPolyData()
+    mesh.DeepCopy(sphere(30))
+    if far is not None:
+        points = mesh.GetPoints()
+        corners = [points.InsertNextPoint(far + dx, dy, 0.0)
+                   for dx, dy in ((0.0, 0.0), (10.0, 0.0), (0.0, 10.0))]
+        mesh.GetPolys().InsertNextCell(3, corners)
+    octree = meshlod.vtkVertexClusterOctree()
+    octree.SetInputData(mesh)
+    text = run(octree)
+    warned = "shorter than the octree's finest cells" in text
+    check(warned == (far is not None),
+          "sphere %s: warning about the octree's finest cells %s"
+          % ("with a far outlier" if far else "alone", "given" if warned else "missing"))
 
 print("%d of %d checks failed" % (len(failures), checks[0]))
 sys.exit(1 if failures else 0)
