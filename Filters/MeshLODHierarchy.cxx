@@ -546,10 +546,10 @@ void HierarchyBuilder::Finish(vtkMultiBlockDataSet* output)
     for (int a = 0; passed && a < passed->GetNumberOfArrays(); ++a)
     {
       vtkAbstractArray* array = passed->GetAbstractArray(a);
-      if (array && array->GetName() && !IsLevelFieldName(array->GetName()) &&
-        !fd->GetAbstractArray(array->GetName()))
+      const char* name = array ? array->GetName() : nullptr;
+      if (array && (!name || (!IsLevelFieldName(name) && !fd->GetAbstractArray(name))))
       {
-        fd->AddArray(array);
+        fd->AddArray(array); // unnamed arrays too: no name to clash with
       }
     }
     output->SetBlock(static_cast<unsigned int>(i), this->Impl->Levels[i]);

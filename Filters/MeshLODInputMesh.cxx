@@ -884,6 +884,12 @@ InputStatus CompactInput(InputMesh& result, vtkIdType numberOfPoints, bool chang
 InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& result)
 {
   result = InputMesh();
+  // Cells without points to refer to are checked like any others (their ids are out of range).
+  if (input != nullptr && input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0 &&
+    !PointIdsInRange(input, caller))
+  {
+    return InputStatus::Invalid;
+  }
   if (input == nullptr || input->GetNumberOfPoints() == 0 ||
     input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
   {
@@ -895,10 +901,6 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
                          << " lines but no polygons: there is nothing to simplify.");
     }
     return InputStatus::Empty;
-  }
-  if (!PointIdsInRange(input, caller))
-  {
-    return InputStatus::Invalid;
   }
   // Arrays with the wrong number of tuples are left out (see DropMismatchedArrays); from here
   // on `input` is the checked dataset, `original` the one given.

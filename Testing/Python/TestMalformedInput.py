@@ -24,7 +24,9 @@ vtkTriangleCollapseDecimation, vtkVertexClusterOctree and vtkLODGeomorph:
   surface on every level instead of ending the hierarchy at level 0;
 - a small sphere beside a triangle a million times farther away than its size: the octree's
   finest cells hold the whole sphere, which a warning says (and no warning without the
-  outlier).
+  outlier);
+- polygons whose point ids refer to an input without points: the out-of-range error; an
+  unnamed field-data array of the input: on every level.
 """
 
 import math
@@ -476,6 +478,33 @@ for far in (None, 1e6):
     check(warned == (far is not None),
           "sphere %s: warning about the octree's finest cells %s"
           % ("with a far outlier" if far else "alone", "given" if warned else "missing"))
+
+
+for name in FILTERS:
+    mesh = vtkPolyData()
+    cells = vtkCellArray()
+    cells.InsertNextCell(3, [0, 1, 2])
+    mesh.SetPolys(cells)
+    algorithm = getattr(meshlod, name)()
+    algorithm.SetInputData(mesh)
+    text = run(algorithm)
+    check("Polygon 0 refers to a point id outside [0, 0)" in text,
+          "%s: polygon without points: no error (%r)" % (name, text[:300]))
+
+    mesh = vtkPolyData()
+    mesh.DeepCopy(sphere(16))
+    unnamed = vtkIntArray()
+    unnamed.InsertNextValue(7)
+    mesh.GetFieldData().AddArray(unnamed)
+    algorithm.SetInputData(mesh)
+    run(algorithm)
+    levels = levels_of(algorithm)
+    for i, level in enumerate(levels):
+        fd = level.GetFieldData()
+        kept = [fd.GetAbstractArray(a) for a in range(fd.GetNumberOfArrays())
+                if fd.GetAbstractArray(a).GetName() is None]
+        check(len(kept) == 1 and kept[0].GetVariantValue(0).ToInt() == 7,
+              "%s: level %d lost the unnamed field-data array" % (name, i))
 
 print("%d of %d checks failed" % (len(failures), checks[0]))
 sys.exit(1 if failures else 0)
