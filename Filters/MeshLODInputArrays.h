@@ -20,10 +20,11 @@ namespace meshlod
 /// their end would give garbage), with a warning naming them.
 vtkSmartPointer<vtkPolyData> DropMismatchedArrays(vtkPolyData* input, vtkAlgorithm* caller);
 
-/// Whether points id `a` and `b` carry the same point data: every array but the global and
-/// pedigree ids (twins differ there by construction), each component within 1e-6 of its range
-/// (exact for integers in practice), equal values for strings and variants. Coincident points whose data differ are an attribute seam
-/// (a cube's split normals, a texture's wrap): merging them would lose it.
+/// Whether points id `a` and `b` carry the same point data: every array but the global and pedigree
+/// ids (twins differ there by construction), each component within 1e-6 of its range (exact for
+/// integers in practice), equal values for strings and variants. Coincident points whose data
+/// differ are an attribute seam (a cube's split normals, a texture's wrap): merging them would lose
+/// it.
 class PointDataAgreement
 {
 public:

@@ -122,9 +122,15 @@ int vtkLODGeomorph::RequestInformation(vtkInformation* vtkNotUsed(request),
   }
   auto* input = vtkMultiBlockDataSet::SafeDownCast(this->GetInputDataObject(0, 0));
   const int levels = input ? static_cast<int>(input->GetNumberOfBlocks()) : 0;
-  if (levels == 0 || std::isnan(this->TimeScale))
+  bool allLevels = levels > 0;
+  for (int i = 0; i < levels && allLevels; ++i)
   {
-    return 1; // no time steps (RequestData reports a NaN TimeScale)
+    allLevels = vtkPolyData::SafeDownCast(input->GetBlock(static_cast<unsigned int>(i))) != nullptr;
+  }
+  if (!allLevels || std::isnan(this->TimeScale))
+  {
+    return 1; // no time steps for what RequestData refuses (and reports: a block that is not a
+              // level, a NaN TimeScale)
   }
   std::vector<double> times(levels);
   for (int i = 0; i < levels; ++i)

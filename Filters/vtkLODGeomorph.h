@@ -90,10 +90,11 @@
  * levels of 986 and 496 triangles were reached within one triangle, the step of a closed
  * surface; welded, all of them). Counts
  * above the finest level's or below the coarsest level's are clamped to them, with a warning.
- * CollapseFraction geomorphs the next collapse: the points of the next step that removes
- * triangles (with the steps before it that remove none) are moved that fraction of the way to
- * their targets (at a level's own count, the first collapse after it), so that raising CollapseFraction from 0 to 1 and then lowering the count
- * moves continuously. The output has the triangle count asked for whatever the fraction.
+ * CollapseFraction geomorphs the next collapse: the points of the next step that removes triangles
+ * (with the steps before it that remove none) are moved that fraction of the way to their targets
+ * (at a level's own count, the first collapse after it), so that raising CollapseFraction from 0 to
+ * 1 and then lowering the count moves continuously. The output has the triangle count asked for
+ * whatever the fraction.
  * The first count asked on a transition builds its order, once (kept until the input
  * changes): 0.7 s for the first level of vtkTriangleCollapseDecimation's defaults on 672,716
  * triangles, 1.3 s from vtkVertexClusterOctree's first default level of the same mesh (16,719

@@ -461,9 +461,10 @@ public:
 
   ///@{
   /**
-   * Point array holding the colours to bake: 3 or 4 components, unsigned char or another
-   * integer type (0-255) or floating point (0-1); values outside are clamped. Default none: the active scalars when they are such an array. Ignored
-   * when a texture is connected to port 1 and the input has texture coordinates.
+   * Point array holding the colours to bake: 3 or 4 components, unsigned char or another integer
+   * type (0-255) or floating point (0-1); values outside are clamped. Default none: the active
+   * scalars when they are such an array. Ignored when a texture is connected to port 1 and the
+   * input has texture coordinates.
    */
   vtkSetStringMacro(ColorArrayName);
   vtkGetStringMacro(ColorArrayName);
