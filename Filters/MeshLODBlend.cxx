@@ -60,21 +60,40 @@ void Renormalize(Iterator v, vtkIdType begin, vtkIdType end)
   }
 }
 
-// (1 - w) a + w b. Where that is NaN from infinite values (inf - inf, 0 * inf) rather than a NaN
-// value, the nearer end's value.
+// (1 - w) a + w b. With `Careful`, where that is NaN from infinite values (inf - inf, 0 * inf)
+// rather than a NaN value, the nearer end's value. Only arrays holding an infinity are blended
+// carefully: the test in every step kept the loops from being vectorised (a frame of 200,000
+// points and normals took 1.6 times as long).
+template <bool Careful>
 inline double Mix(double a, double b, double w)
 {
   const double mixed = (1.0 - w) * a + w * b;
-  if (std::isnan(mixed) && !std::isnan(a) && !std::isnan(b))
+  if (Careful && std::isnan(mixed) && !std::isnan(a) && !std::isnan(b))
   {
     return w < 0.5 ? a : b;
   }
   return mixed;
 }
 
+// Whether any value of `array` is infinite (its ranges are cached by the array until it
+// changes, so a level's arrays are scanned once, not per frame).
+bool HoldsInfinity(vtkDataArray* array)
+{
+  for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+  {
+    double range[2];
+    array->GetRange(range, c);
+    if (std::isinf(range[0]) || std::isinf(range[1]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 // Three components (points, normals, vectors). With `renormalize`, each block of blended tuples
 // is renormalised while it is still in cache.
-template <typename RowsT, typename ARange, typename BRange, typename OutRange>
+template <bool Careful, typename RowsT, typename ARange, typename BRange, typename OutRange>
 void Blend3(const RowsT& rows, const ARange& a, const BRange& b, OutRange& out, vtkIdType count,
   bool renormalize)
 {
@@ -91,8 +110,8 @@ void Blend3(const RowsT& rows, const ARange& a, const BRange& b, OutRange& out, 
         const double w = rows.W(q);
         for (vtkIdType c = 0; c < 3; ++c)
         {
-          out[3 * q + c] = static_cast<OutT>(
-            Mix(static_cast<double>(a[3 * ia + c]), static_cast<double>(b[3 * ib + c]), w));
+          out[3 * q + c] = static_cast<OutT>(Mix<Careful>(
+            static_cast<double>(a[3 * ia + c]), static_cast<double>(b[3 * ib + c]), w));
         }
       }
       if (renormalize)
@@ -104,7 +123,7 @@ void Blend3(const RowsT& rows, const ARange& a, const BRange& b, OutRange& out, 
 }
 
 // Any number of components.
-template <typename RowsT, typename ARange, typename BRange, typename OutRange>
+template <bool Careful, typename RowsT, typename ARange, typename BRange, typename OutRange>
 void BlendN(
   const RowsT& rows, const ARange& a, const BRange& b, OutRange& out, vtkIdType count, int nc)
 {
@@ -117,26 +136,26 @@ void BlendN(
       const double w = rows.W(q);
       for (int c = 0; c < nc; ++c)
       {
-        out[q * nc + c] = static_cast<OutT>(
-          Mix(static_cast<double>(a[ia * nc + c]), static_cast<double>(b[ib * nc + c]), w));
+        out[q * nc + c] = static_cast<OutT>(Mix<Careful>(
+          static_cast<double>(a[ia * nc + c]), static_cast<double>(b[ib * nc + c]), w));
       }
     }
   });
 }
 
-template <bool HasSource, bool HasMap, bool HasWeights, typename ARange, typename BRange,
-  typename OutRange>
+template <bool Careful, bool HasSource, bool HasMap, bool HasWeights, typename ARange,
+  typename BRange, typename OutRange>
 void BlendRows(
   const BlendPlan& plan, const ARange& a, const BRange& b, OutRange& out, int nc, bool renormalize)
 {
   const Rows<HasSource, HasMap, HasWeights> rows{ plan };
   if (nc == 3)
   {
-    Blend3(rows, a, b, out, plan.NumberOfPoints, renormalize);
+    Blend3<Careful>(rows, a, b, out, plan.NumberOfPoints, renormalize);
   }
   else
   {
-    BlendN(rows, a, b, out, plan.NumberOfPoints, nc);
+    BlendN<Careful>(rows, a, b, out, plan.NumberOfPoints, nc);
   }
 }
 
@@ -148,6 +167,19 @@ struct BlendWorker
 
   template <typename AArray, typename BArray>
   void operator()(AArray* a, BArray* b) const
+  {
+    if (HoldsInfinity(a) || HoldsInfinity(b))
+    {
+      this->Blend<true>(a, b);
+    }
+    else
+    {
+      this->Blend<false>(a, b);
+    }
+  }
+
+  template <bool Careful, typename AArray, typename BArray>
+  void Blend(AArray* a, BArray* b) const
   {
     const auto ar = vtk::DataArrayValueRange(a);
     const auto br = vtk::DataArrayValueRange(b);
@@ -164,8 +196,8 @@ struct BlendWorker
       vtkSMPTools::For(0, p.NumberOfPoints * nc, [&](vtkIdType begin, vtkIdType end) {
         for (vtkIdType v = begin; v < end; ++v)
         {
-          outr[v] = static_cast<OutT>(
-            Mix(static_cast<double>(ar[v]), static_cast<double>(br[v]), w));
+          outr[v] =
+            static_cast<OutT>(Mix<Careful>(static_cast<double>(ar[v]), static_cast<double>(br[v]), w));
         }
       });
       return;
@@ -173,28 +205,28 @@ struct BlendWorker
     switch ((p.Source ? 4 : 0) + (p.Map ? 2 : 0) + (p.Weights ? 1 : 0))
     {
       case 0:
-        BlendRows<false, false, false>(p, ar, br, outr, nc, renormalize);
+        BlendRows<Careful, false, false, false>(p, ar, br, outr, nc, renormalize);
         break;
       case 1:
-        BlendRows<false, false, true>(p, ar, br, outr, nc, renormalize);
+        BlendRows<Careful, false, false, true>(p, ar, br, outr, nc, renormalize);
         break;
       case 2:
-        BlendRows<false, true, false>(p, ar, br, outr, nc, renormalize);
+        BlendRows<Careful, false, true, false>(p, ar, br, outr, nc, renormalize);
         break;
       case 3:
-        BlendRows<false, true, true>(p, ar, br, outr, nc, renormalize);
+        BlendRows<Careful, false, true, true>(p, ar, br, outr, nc, renormalize);
         break;
       case 4:
-        BlendRows<true, false, false>(p, ar, br, outr, nc, renormalize);
+        BlendRows<Careful, true, false, false>(p, ar, br, outr, nc, renormalize);
         break;
       case 5:
-        BlendRows<true, false, true>(p, ar, br, outr, nc, renormalize);
+        BlendRows<Careful, true, false, true>(p, ar, br, outr, nc, renormalize);
         break;
       case 6:
-        BlendRows<true, true, false>(p, ar, br, outr, nc, renormalize);
+        BlendRows<Careful, true, true, false>(p, ar, br, outr, nc, renormalize);
         break;
       default:
-        BlendRows<true, true, true>(p, ar, br, outr, nc, renormalize);
+        BlendRows<Careful, true, true, true>(p, ar, br, outr, nc, renormalize);
         break;
     }
   }
