@@ -1,5 +1,6 @@
 #include "MeshLODNearestCorrespondence.h"
 
+#include "vtkIdList.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 
 namespace meshlod
 {
@@ -34,6 +36,39 @@ double Distance2(vtkPoints* a, vtkIdType i, vtkPoints* b, vtkIdType j)
   a->GetPoint(i, x);
   b->GetPoint(j, y);
   return vtkMath::Distance2BetweenPoints(x, y);
+}
+
+// The nearest fine point to x that `owner` leaves free (the lowest id among equally near ones),
+// if it is among the ClosestAsked nearest fine points and no point beyond them could tie with it;
+// else InvalidId.
+constexpr int ClosestAsked = 16;
+Id NearestFreeAmongClosest(
+  const PointSearch& search, const double x[3], const std::vector<Id>& owner, vtkIdList* nearest)
+{
+  vtkPoints* points = search.Cloud->GetPoints();
+  const vtkIdType n = points->GetNumberOfPoints();
+  search.Locator->FindClosestNPoints(static_cast<int>(std::min<vtkIdType>(ClosestAsked, n)), x,
+    nearest);
+  Id best = InvalidId;
+  double bestDistance2 = 0.0;
+  for (vtkIdType i = 0; i < nearest->GetNumberOfIds(); ++i)
+  {
+    const vtkIdType f = nearest->GetId(i);
+    double y[3];
+    points->GetPoint(f, y);
+    const double d2 = vtkMath::Distance2BetweenPoints(x, y);
+    if (best != InvalidId && d2 > bestDistance2)
+    {
+      return best; // the points are in order of distance: nothing nearer follows
+    }
+    if (owner[f] == InvalidId && (best == InvalidId || f < best))
+    {
+      best = static_cast<Id>(f);
+      bestDistance2 = d2;
+    }
+  }
+  // The last point may tie with one not asked for (unless all were asked).
+  return nearest->GetNumberOfIds() == n ? best : InvalidId;
 }
 
 // The points not taken yet, for "the nearest free point" queries that take what they find: a
@@ -76,7 +111,7 @@ public:
     {
       const Node& node = this->Nodes[stack.back()];
       stack.pop_back();
-      if (node.Free == 0 || BoxDistance2(node, x) > best)
+      if (node.Free == 0 || (bestPoint != InvalidId && BoxDistance2(node, x) > best))
       {
         continue;
       }
@@ -86,7 +121,10 @@ public:
         {
           const Id p = this->Order[i];
           const double d = vtkMath::Distance2BetweenPoints(x, &this->Xyz[3 * size_t(p)]);
-          if (!this->Taken[p] && (d < best || (d == best && p < bestPoint)))
+          // (The first free point is taken whatever its distance: squares of coordinates beyond
+          // 1e154 overflow to infinity.)
+          const bool nearer = bestPoint == InvalidId || d < best || (d == best && p < bestPoint);
+          if (!this->Taken[p] && nearer)
           {
             best = d;
             bestPoint = p;
@@ -242,21 +280,29 @@ void NearestVertexCorrespondence(vtkPoints* fine, vtkPoints* coarse, std::vector
       }
     }
     // The others take their nearest free fine point.
+    // Most find one among their few nearest fine points, asked of the locator; the k-d tree of
+    // the free points is built (once) for the first that does not, and answers the rest.
     std::sort(losers.begin(), losers.end());
-    if (!losers.empty())
+    std::unique_ptr<FreePointTree> freePoints;
+    vtkNew<vtkIdList> nearest;
+    for (const Id c : losers)
     {
-      FreePointTree freePoints(fine, owner);
-      for (const Id c : losers)
+      double x[3];
+      coarse->GetPoint(c, x);
+      Id f = freePoints ? InvalidId : NearestFreeAmongClosest(fineSearch, x, owner, nearest);
+      if (f == InvalidId)
       {
-        double x[3];
-        coarse->GetPoint(c, x);
-        const Id f = freePoints.TakeNearest(x);
-        if (f == InvalidId)
+        if (!freePoints)
         {
-          break; // every fine point is taken
+          freePoints.reset(new FreePointTree(fine, owner));
         }
-        owner[f] = c;
+        f = freePoints->TakeNearest(x);
       }
+      if (f == InvalidId)
+      {
+        break; // every fine point is taken
+      }
+      owner[f] = c;
     }
   }
 
