@@ -1,6 +1,6 @@
 // The positional arguments of the benchmark programs that take numbers. A mistyped option would
 // otherwise be read as 0 or ignored and start a run of many minutes: --help, or an argument
-// that is not a positive number, prints the usage instead.
+// that is not a positive whole number, prints the usage instead.
 #ifndef BenchmarkArguments_h
 #define BenchmarkArguments_h
 
@@ -12,9 +12,10 @@ namespace meshlod
 {
 namespace benchmark
 {
-/// Whether argv[1 .. numbers] (those given) are positive numbers and, unless `more` is set, no
-/// argument follows them. Otherwise prints "usage: <program> <usage>" (to stdout for -h or
-/// --help, exit code 0; to stderr otherwise, exit code 2) and returns false with `exitCode`.
+/// Whether argv[1 .. numbers] (those given) are positive whole numbers in digits (what atoi and
+/// atoll read in full: not "1e5", "0.5" or "inf") and, unless `more` is set, no argument follows
+/// them. Otherwise prints "usage: <program> <usage>" (to stdout for -h or --help, exit code 0; to
+/// stderr otherwise, exit code 2) and returns false with `exitCode`.
 inline bool NumberArguments(
   int argc, char* argv[], int numbers, bool more, const char* usage, int& exitCode)
 {
@@ -23,9 +24,8 @@ inline bool NumberArguments(
   bool valid = !help && (more || argc - 1 <= numbers);
   for (int i = 1; valid && i < argc && i <= numbers; ++i)
   {
-    char* end = nullptr;
-    const double value = std::strtod(argv[i], &end);
-    valid = end != argv[i] && *end == '\0' && value > 0.0;
+    const std::size_t digits = std::strspn(argv[i], "0123456789");
+    valid = digits > 0 && digits <= 15 && argv[i][digits] == '\0' && std::atoll(argv[i]) > 0;
   }
   if (valid)
   {

@@ -100,9 +100,15 @@ struct InterpolateWorker
             {
               value += s.Weights[i] * static_cast<double>(src[s.Parents[i]][c]);
             }
-            if (std::isnan(value))
+            bool nanParent = false;
+            for (Id i = first; i < s.Offsets[p + 1]; ++i)
             {
-              // Infinities of both signs have no mean: the value of the heaviest parent.
+              nanParent = nanParent || std::isnan(static_cast<double>(src[s.Parents[i]][c]));
+            }
+            if (std::isnan(value) && !nanParent)
+            {
+              // Infinities of both signs have no mean: the value of the heaviest parent. (A NaN
+              // among the parents stays NaN, as in any mean.)
               value = static_cast<double>(src[DominantParent(s, p)][c]);
             }
           }
@@ -617,19 +623,19 @@ std::string CheckHierarchyLayout(vtkMultiBlockDataSet* hierarchy, bool requireMo
               << next->GetNumberOfPoints() << ") or not integers";
       return problem.str();
     }
-    // A rank orders the level's collapses: there are fewer of them than points.
+    // Ranks are compared as 64-bit integers: beyond 2^53 a double no longer holds every
+    // integer (and 1e30 or an infinity would not convert).
     bool ranked = true;
-    const double ranks = static_cast<double>(level->GetNumberOfPoints());
+    const double largestRank = 9007199254740992.0; // 2^53
     for (vtkIdType p = 0; p < rank->GetNumberOfTuples() && ranked; ++p)
     {
       const double r = rank->GetTuple1(p);
-      ranked = r >= -1.0 && r < ranks && r == std::floor(r);
+      ranked = r >= -1.0 && r <= largestRank && r == std::floor(r);
     }
     if (!ranked)
     {
       problem << "level " << i << " has " << names::CollapseRank
-              << " values that are neither -1 nor a rank (an integer from 0 below the level's "
-              << level->GetNumberOfPoints() << " points)";
+              << " values that are neither -1 nor a rank (an integer from 0 to 2^53)";
       return problem.str();
     }
     // MorphTarget is where the point MorphTargetId names is (the blends end on the one, the

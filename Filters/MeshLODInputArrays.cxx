@@ -136,8 +136,8 @@ bool PointDataAgreement::operator()(Id a, Id b) const
   }
   for (vtkAbstractArray* array : this->Others)
   {
-    const int nc = array->GetNumberOfComponents();
-    for (int c = 0; c < nc; ++c)
+    const vtkIdType nc = array->GetNumberOfComponents();
+    for (vtkIdType c = 0; c < nc; ++c)
     {
       if (!(array->GetVariantValue(a * nc + c) == array->GetVariantValue(b * nc + c)))
       {

@@ -173,10 +173,11 @@ vtkIdType DropDegenerateTriangles(std::vector<Id>& triangles, std::vector<vtkIdT
 // more) among the vertices of boundary and non-manifold edges: a triangle soup (an STL file)
 // or a duplicated seam (a parametric surface whose seam points differ in the last bits and are
 // joined by zero-area triangles) becomes one surface. Near-equal points are found in a grid of
-// cells twice the tolerance wide, so every pair within the tolerance is compared, whichever
-// coordinates differ. Returns the number of points merged away; triangles are re-indexed to the
-// lowest id of each group. Points whose point data differ (`agree` is false) stay apart;
-// `keptApart` counts the points left apart from a point they coincide with.
+// cells (SeamGrid), so pairs within the tolerance are compared whichever coordinates differ (up
+// to MaximumSeamComparisons a point in its own cell and in each neighbouring cell). Returns the
+// number of points merged away; triangles are re-indexed to the lowest id of each group. Points
+// whose point data differ (`agree` is false) stay apart; `keptApart` counts the points left
+// apart from a point they coincide with.
 constexpr double SeamTolerance = 1e-12;
 constexpr double SeamRoundingUnits = 64.0; // times DBL_EPSILON times the largest coordinate
 // Comparisons per point at most: many coincident points with distinct data (a pathological
@@ -213,7 +214,7 @@ struct SeamGrid
   std::vector<std::pair<std::uint64_t, Id>> Points;
 
   SeamGrid(const TriangleMesh& mesh, const std::vector<Id>& candidates, double tolerance)
-    : CellSize(CellTolerances * tolerance)
+    : CellSize(tolerance > 0.0 ? CellTolerances * tolerance : 1.0) // 0: all points at the origin
   {
     this->Points.reserve(candidates.size());
     for (const Id v : candidates)
@@ -302,48 +303,60 @@ vtkIdType MergeSeamPoints(TriangleMesh& mesh, const TriangleTopology& topology,
   std::vector<Id> root = FreshVector<Id>(nv);
   std::iota(root.begin(), root.end(), 0);
   // Each point is joined to the near points of the same data (a group's root is its lowest
-  // id); the near points of other data are noted, to count after all joins.
-  std::vector<std::pair<Id, Id>> differing;
+  // id). A second pass, only where points of other data were near, marks the points left apart
+  // from such a point (counted after all joins; not noted as pairs in the first, which took
+  // memory for every pair of a soup labelled per triangle).
+  std::vector<unsigned char> apart;
+  bool differing = false;
   auto compare = [&](Id u, Id v) {
-    if (u != v && Distance2(mesh.Point(u), mesh.Point(v)) <= tolerance2)
+    if (u == v || Distance2(mesh.Point(u), mesh.Point(v)) > tolerance2)
     {
-      if (agree(u, v))
+      return;
+    }
+    if (!apart.empty())
+    {
+      if (FindRoot(root, u) != FindRoot(root, v))
       {
-        const Id a = FindRoot(root, u), b = FindRoot(root, v);
-        root[std::max(a, b)] = std::min(a, b);
+        apart[u] = apart[v] = 1;
       }
-      else
-      {
-        differing.emplace_back(u, v);
-      }
+    }
+    else if (agree(u, v))
+    {
+      const Id a = FindRoot(root, u), b = FindRoot(root, v);
+      root[std::max(a, b)] = std::min(a, b);
+    }
+    else
+    {
+      differing = true;
     }
   };
   const auto& points = grid.Points;
-  for (size_t begin = 0; begin < points.size();)
+  auto comparePairs = [&]()
   {
-    size_t end = begin + 1;
-    while (end < points.size() && points[end].first == points[begin].first)
+    for (size_t begin = 0; begin < points.size();)
     {
-      ++end;
-    }
-    for (size_t i = begin; i < end; ++i)
-    {
-      const Id v = points[i].second;
-      for (size_t j = i + 1; j < std::min(end, i + MaximumSeamComparisons); ++j)
+      size_t end = begin + 1;
+      while (end < points.size() && points[end].first == points[begin].first)
       {
-        compare(v, points[j].second);
+        ++end;
       }
-      grid.ForNeighbourCells(mesh.Point(v), [&](Id u) { compare(u, v); });
+      for (size_t i = begin; i < end; ++i)
+      {
+        const Id v = points[i].second;
+        for (size_t j = i + 1; j < std::min(end, i + MaximumSeamComparisons); ++j)
+        {
+          compare(v, points[j].second);
+        }
+        grid.ForNeighbourCells(mesh.Point(v), [&](Id u) { compare(u, v); });
+      }
+      begin = end;
     }
-    begin = end;
-  }
-  std::vector<unsigned char> apart(nv, 0);
-  for (const auto& pair : differing)
+  };
+  comparePairs();
+  if (differing)
   {
-    if (FindRoot(root, pair.first) != FindRoot(root, pair.second))
-    {
-      apart[pair.first] = apart[pair.second] = 1;
-    }
+    apart.assign(nv, 0);
+    comparePairs();
   }
   keptApart = std::count(apart.begin(), apart.end(), 1);
   vtkIdType merged = 0;
@@ -714,25 +727,34 @@ vtkIdType FirstNonFiniteCellPoint(vtkPolyData* input)
   return first;
 }
 
-// The triangles polygons and strips make when every one triangulates: n - 2 for n points.
-vtkIdType TrianglesOfCells(vtkCellArray* cells)
+// The triangles polygons make when every one triangulates: n - 2 for n points, a point repeated
+// next to itself counted once (a triangle stored as a quad [a, b, c, c] makes one). For strips
+// (`strip`) every n - 2 triangles, degenerate ones too.
+vtkIdType TrianglesOfCells(vtkCellArray* cells, bool strip)
 {
   vtkIdType count = 0;
-  auto sum = [&](auto* offsets)
+  auto sum = [&](auto* offsets, auto* connectivity)
   {
     const auto starts = vtk::DataArrayValueRange<1>(offsets);
+    const auto ids = vtk::DataArrayValueRange<1>(connectivity);
     for (vtkIdType c = 0; c + 1 < starts.size(); ++c)
     {
-      count += std::max(vtkIdType(0), static_cast<vtkIdType>(starts[c + 1] - starts[c]) - 2);
+      const vtkIdType first = starts[c], end = starts[c + 1];
+      vtkIdType distinct = end - first;
+      for (vtkIdType i = first; !strip && i < end && end - first > 1; ++i)
+      {
+        distinct -= ids[i] == ids[i + 1 < end ? i + 1 : first] ? 1 : 0;
+      }
+      count += std::max(vtkIdType(0), distinct - 2);
     }
   };
   if (cells->IsStorage64Bit())
   {
-    sum(cells->GetOffsetsArray64());
+    sum(cells->GetOffsetsArray64(), cells->GetConnectivityArray64());
   }
   else
   {
-    sum(cells->GetOffsetsArray32());
+    sum(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
   }
   return count;
 }
@@ -937,8 +959,8 @@ InputStatus ReadInputMesh(vtkPolyData* input, vtkAlgorithm* caller, InputMesh& r
     }
     result.Source = Triangulate(input, firstPolyCellId);
     firstPolyCellId = 0;
-    const vtkIdType lost = TrianglesOfCells(input->GetPolys()) +
-      TrianglesOfCells(input->GetStrips()) - result.Source->GetNumberOfPolys();
+    const vtkIdType lost = TrianglesOfCells(input->GetPolys(), false) +
+      TrianglesOfCells(input->GetStrips(), true) - result.Source->GetNumberOfPolys();
     if (lost > 0)
     {
       vtkWarningWithObjectMacro(caller,

@@ -143,12 +143,21 @@ bool TextureBaker::SetSurface(vtkPolyData* surface, std::string& error)
 //------------------------------------------------------------------------------
 namespace
 {
-// Integer colours count 0-255 (unsigned char, or any integer type: an int RGB array holds the
-// same numbers), floating ones 0-1.
+// Colours in 0-255: floating ones count 0-1, 16-bit ones 0-65535 (a 16-bit image), the other
+// integer types 0-255 (unsigned char, or an int RGB array holding the same numbers).
 double ColorScale(vtkDataArray* colors)
 {
-  const int type = colors->GetDataType();
-  return type == VTK_FLOAT || type == VTK_DOUBLE ? 255.0 : 1.0;
+  switch (colors->GetDataType())
+  {
+    case VTK_FLOAT:
+    case VTK_DOUBLE:
+      return 255.0;
+    case VTK_UNSIGNED_SHORT:
+    case VTK_SHORT:
+      return 255.0 / 65535.0;
+    default:
+      return 1.0;
+  }
 }
 } // namespace
 

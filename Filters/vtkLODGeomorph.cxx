@@ -78,14 +78,19 @@ int vtkLODGeomorph::FillInputPortInformation(int vtkNotUsed(port), vtkInformatio
 namespace
 {
 // With pipeline time the time is the level of detail, not a request for the hierarchy: an
-// upstream with time steps of its own is asked for the first, whatever time was asked of it
-// before (without this, a time asked while UsePipelineTime was off stayed in its request).
+// upstream with time of its own is asked for its first time step (or the start of its time
+// range), whatever time was asked of it before (without this, a time asked while
+// UsePipelineTime was off stayed in its request).
 void AskForFirstTimeStep(vtkInformation* upstream)
 {
   using SDDP = vtkStreamingDemandDrivenPipeline;
   if (upstream->Has(SDDP::TIME_STEPS()) && upstream->Length(SDDP::TIME_STEPS()) > 0)
   {
     upstream->Set(SDDP::UPDATE_TIME_STEP(), upstream->Get(SDDP::TIME_STEPS())[0]);
+  }
+  else if (upstream->Has(SDDP::TIME_RANGE()) && upstream->Length(SDDP::TIME_RANGE()) > 0)
+  {
+    upstream->Set(SDDP::UPDATE_TIME_STEP(), upstream->Get(SDDP::TIME_RANGE())[0]);
   }
   else
   {

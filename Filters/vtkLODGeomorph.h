@@ -125,7 +125,7 @@
  * RequestInformation brings the input up to date first (the upstream runs then rather than in the
  * data pass). The time request is not passed upstream: the hierarchy is taken to be independent of
  * time and is never recomputed because time changes (an upstream with time steps of its own is
- * asked for its first one, whatever was asked of it before).
+ * asked for its first one, or the start of its time range, whatever was asked of it before).
  *
  * @par Pieces
  * The blend needs the whole hierarchy: the input is always asked for piece 0 of 1 without
@@ -140,7 +140,7 @@
  * An input that is not a multiblock of vtkPolyData blocks, a hierarchy without levels,
  * incomplete or out-of-range morph arrays (meshlod::CheckHierarchyLayout: MorphTarget with 3
  * components, MorphTargetId and CollapseRank with 1, MorphTargetId a point of the next level,
- * CollapseRank -1 or an integer below the level's point count), a cell array with invalid
+ * CollapseRank -1 or an integer from 0 to 2^53), a cell array with invalid
  * offsets or a cell referring to a point a level does not have, a NaN or infinite point or
  * MorphTarget, an exact count, NearestVertices or DropDegenerateTriangles on levels that are
  * not all triangles: an error and an empty output. Point or

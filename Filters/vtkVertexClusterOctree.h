@@ -164,8 +164,8 @@
  * they never move or merge.
  * Optional input (port 1): a vtkImageData texture for an input with texture coordinates: an
  * image in the XY, XZ or YZ plane (texture coordinate s along its first axis, t along its
- * second) with 1 to 4 component scalars (grey, grey-alpha, RGB, RGBA; integer types 0-255,
- * floating point 0-1), one tuple per image point.
+ * second) with 1 to 4 component scalars (grey, grey-alpha, RGB, RGBA; 16-bit integers 0-65535,
+ * other integer types 0-255, floating point 0-1), one tuple per image point.
  *
  * Output port 0: the shared MeshLOD hierarchy (see MeshLODHierarchy.h): a vtkMultiBlockDataSet
  * with block i = level i named "Level i"; every point-data array of the input is carried to
@@ -461,10 +461,10 @@ public:
 
   ///@{
   /**
-   * Point array holding the colours to bake: 3 or 4 components, unsigned char or another integer
-   * type (0-255) or floating point (0-1); values outside are clamped. Default none: the active
-   * scalars when they are such an array. Ignored when a texture is connected to port 1 and the
-   * input has texture coordinates.
+   * Point array holding the colours to bake: 3 or 4 components, 16-bit integers (0-65535), other
+   * integer types such as unsigned char (0-255) or floating point (0-1); values outside are
+   * clamped. Default none: the active scalars when they are such an array. Ignored when a
+   * texture is connected to port 1 and the input has texture coordinates.
    */
   vtkSetStringMacro(ColorArrayName);
   vtkGetStringMacro(ColorArrayName);

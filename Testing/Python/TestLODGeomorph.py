@@ -289,9 +289,12 @@ class TimeSphere(VTKPythonAlgorithmBase):
                                         outputType="vtkPolyData")
         self.times = []
 
+    continuous = False  # only a time range, no time steps
+
     def RequestInformation(self, request, in_info, out_info):
         info = out_info.GetInformationObject(0)
-        info.Set(vtkStreamingDemandDrivenPipeline.TIME_STEPS(), [0.0, 1.0, 2.0], 3)
+        if not self.continuous:
+            info.Set(vtkStreamingDemandDrivenPipeline.TIME_STEPS(), [0.0, 1.0, 2.0], 3)
         info.Set(vtkStreamingDemandDrivenPipeline.TIME_RANGE(), [0.0, 2.0], 2)
         return 1
 
@@ -309,10 +312,12 @@ class TimeSphere(VTKPythonAlgorithmBase):
         return 1
 
 
-def test_time_aware_upstream():
-    """With pipeline time, an upstream with time steps gives its first, whatever time was asked
-    of it while UsePipelineTime was off; without, the time goes upstream."""
+def test_time_aware_upstream(continuous):
+    """With pipeline time, an upstream with time steps gives its first (or the start of its time
+    range), whatever time was asked of it while UsePipelineTime was off; without, the time goes
+    upstream."""
     source = TimeSphere()
+    source.continuous = continuous
     levels = meshlod.vtkTriangleCollapseDecimation()
     levels.SetInputConnection(source.GetOutputPort())
     levels.SetNumberOfLevels(2)
@@ -332,7 +337,8 @@ def test_time_aware_upstream():
 
 
 test_morph()
-test_time_aware_upstream()
+test_time_aware_upstream(False)
+test_time_aware_upstream(True)
 test_nearest()
 test_clusters_valid_together()
 test_strokes_merged_interleaved()

@@ -8,14 +8,14 @@ vtkTriangleCollapseDecimation, vtkVertexClusterOctree and vtkLODGeomorph:
 - a NaN point used only by a quad: the error a NaN point of a triangle gets (the triangulation
   used to drop the quad, leaving a hole);
 - a quad that crosses itself, which vtkTriangleFilter cannot triangulate: a warning with the
-  number of triangles missing;
+  number of triangles missing; none for triangles stored as quads with a repeated point;
 - a point array with +inf and -inf: no level and no geomorph output holds a NaN;
 - a texture whose scalars are shorter than its points: an error; a texture in the XZ plane is
   baked like one in the XY plane; int colours count 0-255 like unsigned char ones;
 - input arrays named like the arrays the octree makes (Normals, TCoords): a warning;
 - a TextureResolution that is not a power of two: no warning about its rounding up;
 - vtkLODGeomorph on levels with integer points: blended in double, not truncated;
-- a two-component MorphTargetId, or a CollapseRank beyond the level's points: one error;
+- a two-component MorphTargetId, or a CollapseRank of 1e30: one error;
 - an exact count on a level of triangle strips: the error for levels that are not triangles;
 - a triangle soup whose copies of a corner differ by rounding in all three coordinates: stitched
   into the closed surface (copies were compared in three sorted orders, which missed them), but
@@ -26,7 +26,8 @@ vtkTriangleCollapseDecimation, vtkVertexClusterOctree and vtkLODGeomorph:
   finest cells hold the whole sphere, which a warning says (and no warning without the
   outlier);
 - polygons whose point ids refer to an input without points: the out-of-range error; an
-  unnamed field-data array of the input: on every level.
+  unnamed field-data array of the input: on every level;
+- vtkLODGeomorph on a multiblock of textures: no time steps published.
 """
 
 import math
@@ -51,6 +52,7 @@ from vtkmodules.vtkCommonDataModel import (
     vtkMultiBlockDataSet,
     vtkPolyData,
 )
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.vtkFiltersCore import vtkQuadricDecimation, vtkStripper, vtkTriangleFilter
 from vtkmodules.vtkFiltersSources import vtkConeSource, vtkPlaneSource, vtkSphereSource
 from vtkmodules.vtkFiltersTexture import vtkTextureMapToSphere
@@ -174,6 +176,29 @@ for name in FILTERS:
     levels = levels_of(algorithm)
     check(levels and levels[0].GetNumberOfPolys() == 198,
           "%s: level 0 of the grid with a bow-tie quad" % name)
+
+# Triangles stored as quads with a repeated point ([a, b, c, c]), as some exporters pad them:
+# vtkTriangleFilter makes one triangle of each, and no triangle is missing.
+for name in FILTERS:
+    mesh = quad_grid()
+    polys = vtkCellArray()
+    for c in range(mesh.GetNumberOfCells()):
+        ids = mesh.GetCell(c).GetPointIds()
+        quad = [ids.GetId(k) for k in range(4)]
+        if c == 55:
+            polys.InsertNextCell(4, [quad[0], quad[1], quad[2], quad[2]])
+            polys.InsertNextCell(4, [quad[0], quad[2], quad[3], quad[3]])
+        else:
+            polys.InsertNextCell(4, quad)
+    mesh.SetPolys(polys)
+    algorithm = getattr(meshlod, name)()
+    algorithm.SetInputData(mesh)
+    text = run(algorithm)
+    check("fewer than their points allow" not in text,
+          "%s: padded triangles drew the warning about dropped polygons" % name)
+    levels = levels_of(algorithm)
+    check(levels and levels[0].GetNumberOfPolys() == 200,
+          "%s: level 0 of the grid with padded triangles" % name)
 
 # +inf and -inf in one array: a point merging both has no mean, but never a NaN.
 for name in FILTERS:
@@ -347,12 +372,12 @@ decimation.SetInputData(sphere(20))
 decimation.SetNumberOfLevels(2)
 decimation.Update()
 for array_name, problem in (("MorphTargetId", "two components"),
-                            ("CollapseRank", "a rank past the points")):
+                            ("CollapseRank", "a rank of 1e30")):
     hierarchy = decimation.GetHierarchy().NewInstance()
     hierarchy.DeepCopy(decimation.GetHierarchy())
     level = hierarchy.GetBlock(0)
     given = level.GetPointData().GetArray(array_name)
-    bad = vtkIntArray()
+    bad = vtkDoubleArray()
     bad.SetName(array_name)
     if problem == "two components":
         bad.SetNumberOfComponents(2)
@@ -360,8 +385,8 @@ for array_name, problem in (("MorphTargetId", "two components"),
             bad.InsertNextTuple2(given.GetTuple1(p), 0)
     else:
         for p in range(given.GetNumberOfTuples()):
-            bad.InsertNextValue(int(given.GetTuple1(p)))
-        bad.SetValue(0, level.GetNumberOfPoints())
+            bad.InsertNextValue(given.GetTuple1(p))
+        bad.SetValue(0, 1e30)
     level.GetPointData().AddArray(bad)
     geomorph = meshlod.vtkLODGeomorph()
     geomorph.SetInputData(hierarchy)
@@ -505,6 +530,19 @@ for name in FILTERS:
                 if fd.GetAbstractArray(a).GetName() is None]
         check(len(kept) == 1 and kept[0].GetVariantValue(0).ToInt() == 7,
               "%s: level %d lost the unnamed field-data array" % (name, i))
+
+
+# A multiblock whose blocks are not levels: the geomorph publishes no time steps for it.
+textured = meshlod.vtkVertexClusterOctree()
+textured.SetInputData(textured_sphere())
+textured.SetTextureData(texture((16, 16, 1), 256, (10, 200, 30)))
+textured.BakeTextureOn()
+textured.SetTextureResolution(64)
+geomorph = meshlod.vtkLODGeomorph()
+geomorph.SetInputConnection(textured.GetOutputPort(1))
+geomorph.UpdateInformation()
+check(not geomorph.GetOutputInformation(0).Has(vtkStreamingDemandDrivenPipeline.TIME_STEPS()),
+      "the geomorph published time steps for a multiblock of textures")
 
 print("%d of %d checks failed" % (len(failures), checks[0]))
 sys.exit(1 if failures else 0)
