@@ -334,22 +334,25 @@ public:
 
   ///@{
   /**
-   * Keep the topology and orientation of the input on every level (default on). A trial level
-   * is cut again below the clusters that fold a triangle against the surface around it, fold a
-   * thin part onto itself, pinch an edge or a vertex, or break a connected piece, until none
-   * does: every level of a closed manifold input is a closed manifold of the same genus (up to
-   * small pieces that vanish whole near the level's surface, see above; an open input may also
-   * lose a small hole that closes near it) and faces the same way. On a rough surface (a noisy scan, the
-   * isosurface of a noisy volume) those repairs add back so many triangles that target counts
-   * are missed by far, and the search's level can then be far from the input: the isosurface
-   * of a 120^3 volume with noise of one grid step (MeshLODTestMeshes' MakeNoisyIsosurface,
-   * 103,940 triangles) asked for 10% and 1% got 15.8% and 6.0%, that last level at 2.6 times
-   * the Hausdorff distance of vtkQuadricClustering's output of the same count; with noise of
-   * 1.5 steps, 33% and 32% (measured before a vertex of a cluster could stand in for a
-   * representative that flips a triangle). Thin parts keep many triangles too: a cluster that
-   * holds a tube's whole cross-section breaks the tube, so along it the clusters stay narrower
-   * than the tube; three tubes of 24 sides whose radius is 1% of the diagonal (57,588
-   * triangles, Benchmarks/OtherMeshesBenchmark.cxx) asked for 1% keep 4,622 (8%), where
+   * Keep the topology and orientation of the input on every level (default on). A trial level is
+   * cut again below the clusters that fold a triangle against the surface around it, fold a thin
+   * part onto itself, pinch an edge or a vertex, or break a connected piece, until none does: every
+   * level of a closed manifold input is a closed manifold (up to small pieces that vanish whole
+   * near the level's surface, see above; an open input may also lose a small hole that closes near
+   * it) that faces the same way. The repairs are local and the genus is not compared: it holds at
+   * the epsilons and counts a shape allows, but a count far below them may be met by a level that
+   * lost a handle (a 3,600-triangle torus asked for 40 triangles keeps its hole; asked for 24 it
+   * becomes a sphere of 16, and a Klein bottle asked for 64 a sphere of 76). On a rough surface (a
+   * noisy scan, the isosurface of a noisy volume) those repairs add back so many triangles that
+   * target counts are missed by far, and the search's level can then be far from the input: the
+   * isosurface of a 120^3 volume with noise of one grid step (MeshLODTestMeshes'
+   * MakeNoisyIsosurface, 103,940 triangles) asked for 10% and 1% got 15.8% and 6.0%, that last
+   * level at 2.6 times the Hausdorff distance of vtkQuadricClustering's output of the same count;
+   * with noise of 1.5 steps, 33% and 32% (measured before a vertex of a cluster could stand in for
+   * a representative that flips a triangle). Thin parts keep many triangles too: a cluster that
+   * holds a tube's whole cross-section breaks the tube, so along it the clusters stay narrower than
+   * the tube; three tubes of 24 sides whose radius is 1% of the diagonal (57,588 triangles,
+   * Benchmarks/OtherMeshesBenchmark.cxx) asked for 1% keep 4,622 (8%), where
    * vtkTriangleCollapseDecimation meets the count.
    *
    * Off: the paper's conditions alone (the connected vertices of a cell, epsilon, and the flip test

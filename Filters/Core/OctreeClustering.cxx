@@ -119,9 +119,19 @@ bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLeve
       bestCount = count;
     }
   }
-  if (bestCount == 0)
+  if (bestCount == 0 || bestCount >= impl.PreviousTriangles())
   {
-    bestCount = impl.LastNonEmpty(best);
+    // None, or no fewer triangles than the level before: the trials near the aim were all
+    // refused (a Klein bottle of 9,600 triangles asked for 48 got 9,600 back, where 64 got 76).
+    // The coarsest level that keeps triangles, if nearer.
+    ClusterLevel coarsest;
+    const Id count = impl.LastNonEmpty(coarsest);
+    if (count > 0 &&
+      (bestCount == 0 || Miss(count, targetTriangles) < Miss(bestCount, targetTriangles)))
+    {
+      best = std::move(coarsest);
+      bestCount = count;
+    }
   }
   if (bestCount == 0)
   {
@@ -161,6 +171,7 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
   // the way to their input: a noisy sphere asked for 10% kept 76,388 of 78,168 triangles.)
   const Id previous = this->PreviousTriangles();
   const Id giveBack = 3 * (previous - count) / 4;
+  const Id limit = count + giveBack; // of the search's count, not of a level taken since
   const Id close = count + std::min(count / 10, giveBack);
   const Id plateau = count + std::min(count / 2, giveBack);
   const double plateauError = best.EstimatedError / 4.0;
@@ -173,7 +184,7 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
   {
     const double middle = std::sqrt(low * high);
     const Id triangles = this->TryLevel(middle, trial);
-    const bool accurate = triangles > 0 && triangles <= count + giveBack &&
+    const bool accurate = triangles > 0 && triangles <= limit &&
       accuracy(trial, triangles) < 0.1 * accuracy(best, count);
     if (triangles > 0 &&
       (triangles <= close || (triangles <= plateau && trial.EstimatedError <= plateauError) ||
