@@ -475,7 +475,11 @@ public:
    * faces); on a terrain and a sphere with holes at 1.23-1.55x and 1.06-1.35x, on the wavelet and
    * noisy isosurfaces up to 3.3x and 4.3x at 1%. Where it falls short: a very rough input with
    * high-valence poles (a UV sphere with radial noise of an edge) gets long triangles across it at
-   * coarse levels (at 1% 4x vtkQuadricDecimation's Hausdorff distance, WEIGHT 2x).
+   * coarse levels (at 1% 4x vtkQuadricDecimation's Hausdorff distance, WEIGHT 2x); so does a
+   * smooth UV sphere of long thin triangles, whose stencils fit a quadratic badly along them
+   * (at 10%, 49x vtkQuadricDecimation's Hausdorff distance on a 600 x 16 sphere and 3.2x on
+   * 200 x 30; on 600 x 8, 100-150x the quadric method's at coarse levels). The quadric method
+   * has no such weakness.
    */
   vtkSetClampMacro(CurvatureCost, int, WEIGHT, FIT_DEVIATION);
   vtkGetMacro(CurvatureCost, int);
