@@ -161,7 +161,9 @@
  * sheet or curve vanishes and no two are joined (a trial level where one would is cut again
  * below the clusters concerned, as for folds; with PreserveTopology off a curve edge may lose
  * sheets). The other non-manifold vertices, where curves meet or end and bow ties, are locked:
- * they never move or merge.
+ * they never move, and no cluster holds one with other points. (A wing of a bow tie, a triangle
+ * hanging at it, still vanishes when its other corners fall into one cluster; that cluster's
+ * points then go to the bow tie's, and the vertex is no longer a bow tie.)
  * Optional input (port 1): a vtkImageData texture for an input with texture coordinates: an
  * image in the XY, XZ or YZ plane (texture coordinate s along its first axis, t along its
  * second) with 1 to 4 component scalars (grey, grey-alpha, RGB, RGBA; 16-bit integers 0-65535,
