@@ -83,6 +83,21 @@ def run(algorithm):
     return MESSAGES.GetOutput()[before:]
 
 
+def run_filter(name, mesh):
+    """A new filter of class `name` run on `mesh`; it and the messages it printed."""
+    algorithm = getattr(meshlod, name)()
+    algorithm.SetInputData(mesh)
+    return algorithm, run(algorithm)
+
+
+def geomorph_of(hierarchy):
+    """A vtkLODGeomorph of `hierarchy` driven by its settings, not by pipeline time."""
+    geomorph = meshlod.vtkLODGeomorph()
+    geomorph.SetInputData(hierarchy)
+    geomorph.UsePipelineTimeOff()
+    return geomorph
+
+
 def sphere(resolution=16):
     source = vtkSphereSource()
     source.SetThetaResolution(resolution)
@@ -125,9 +140,7 @@ for name in FILTERS:
         connectivity.InsertNextValue(value)
     cells.SetData(offsets, connectivity)
     mesh.SetPolys(cells)
-    algorithm = getattr(meshlod, name)()
-    algorithm.SetInputData(mesh)
-    text = run(algorithm)
+    algorithm, text = run_filter(name, mesh)
     check("Polygon 2 has an invalid offset" in text,
           "%s: bad offsets: no error naming them (%r)" % (name, text[:300]))
     check(not levels_of(algorithm), "%s: bad offsets gave levels" % name)
@@ -139,9 +152,7 @@ for name in FILTERS:
     hierarchy = good.GetHierarchy().NewInstance()
     hierarchy.DeepCopy(good.GetHierarchy())
     hierarchy.GetBlock(1).SetPolys(cells)
-    geomorph = meshlod.vtkLODGeomorph()
-    geomorph.SetInputData(hierarchy)
-    geomorph.UsePipelineTimeOff()
+    geomorph = geomorph_of(hierarchy)
     geomorph.SetLevelOfDetail(0.5)
     text = run(geomorph)
     check("level 1 has a cell array with invalid offsets" in text,
@@ -153,9 +164,7 @@ for name in FILTERS:
 for name in FILTERS:
     mesh = quad_grid()
     mesh.GetPoints().SetPoint(60, float("nan"), 0.1, 0.0)
-    algorithm = getattr(meshlod, name)()
-    algorithm.SetInputData(mesh)
-    text = run(algorithm)
+    algorithm, text = run_filter(name, mesh)
     check("Point 60 has a NaN or infinite coordinate" in text,
           "%s: NaN point of a quad: no error (%r)" % (name, text[:300]))
     check(not levels_of(algorithm), "%s: NaN point of a quad gave levels" % name)
@@ -168,9 +177,7 @@ for name in FILTERS:
     for k, value in enumerate((ids[0], ids[2], ids[1], ids[3])):
         polys.GetConnectivityArray().SetValue(4 * 55 + k, value)
     mesh.Modified()
-    algorithm = getattr(meshlod, name)()
-    algorithm.SetInputData(mesh)
-    text = run(algorithm)
+    algorithm, text = run_filter(name, mesh)
     check("made 2 triangles fewer than their points allow" in text,
           "%s: dropped bow-tie quad not reported (%r)" % (name, text[:300]))
     levels = levels_of(algorithm)
@@ -191,9 +198,7 @@ for name in FILTERS:
         else:
             polys.InsertNextCell(4, quad)
     mesh.SetPolys(polys)
-    algorithm = getattr(meshlod, name)()
-    algorithm.SetInputData(mesh)
-    text = run(algorithm)
+    algorithm, text = run_filter(name, mesh)
     check("fewer than their points allow" not in text,
           "%s: padded triangles drew the warning about dropped polygons" % name)
     levels = levels_of(algorithm)
@@ -211,9 +216,7 @@ for name in FILTERS:
     values.SetValue(17, float("inf"))
     values.SetValue(18, float("-inf"))
     mesh.GetPointData().AddArray(values)
-    algorithm = getattr(meshlod, name)()
-    algorithm.SetInputData(mesh)
-    run(algorithm)
+    algorithm, _ = run_filter(name, mesh)
     levels = levels_of(algorithm)
     check(len(levels) > 2, "%s: infinite values: %d levels" % (name, len(levels)))
     for i, level in enumerate(levels):
@@ -261,6 +264,15 @@ def baker(mesh, image=None):
     return octree
 
 
+def add_colours(mesh, colours):
+    """`colours` (an empty array) filled with (255, 0, 128) at every point, added as Colour."""
+    colours.SetName("Colour")
+    colours.SetNumberOfComponents(3)
+    for p in range(mesh.GetNumberOfPoints()):
+        colours.InsertNextTuple3(255, 0, 128)
+    mesh.GetPointData().AddArray(colours)
+
+
 def mean_texel(octree, level):
     scalars = octree.GetTextures().GetBlock(level).GetPointData().GetScalars()
     n = scalars.GetNumberOfTuples()
@@ -284,12 +296,7 @@ if len(levels) == 3:
 
 mesh = vtkPolyData()
 mesh.DeepCopy(sphere(24))
-colours = vtkIntArray()
-colours.SetName("Colour")
-colours.SetNumberOfComponents(3)
-for p in range(mesh.GetNumberOfPoints()):
-    colours.InsertNextTuple3(255, 0, 128)
-mesh.GetPointData().AddArray(colours)
+add_colours(mesh, vtkIntArray())
 octree = baker(mesh)
 octree.SetColorArrayName("Colour")
 run(octree)
@@ -310,12 +317,7 @@ for array_name in ("Normals", "TCoords"):
     clash.SetNumberOfTuples(mesh.GetNumberOfPoints())
     clash.Fill(1.0)
     mesh.GetPointData().AddArray(clash)
-colours = vtkUnsignedCharArray()
-colours.SetName("Colour")
-colours.SetNumberOfComponents(3)
-for p in range(mesh.GetNumberOfPoints()):
-    colours.InsertNextTuple3(255, 0, 128)
-mesh.GetPointData().AddArray(colours)
+add_colours(mesh, vtkUnsignedCharArray())
 mesh.GetPointData().SetTCoords(None)
 octree = baker(mesh)
 octree.SetColorArrayName("Colour")
@@ -355,9 +357,7 @@ def quadric_levels(integer_points):
     return levels
 
 
-geomorph = meshlod.vtkLODGeomorph()
-geomorph.SetInputData(quadric_levels(True))
-geomorph.UsePipelineTimeOff()
+geomorph = geomorph_of(quadric_levels(True))
 geomorph.SetLevelOfDetail(0.3)
 run(geomorph)
 out = geomorph.GetOutput()
@@ -388,9 +388,7 @@ for array_name, problem in (("MorphTargetId", "two components"),
             bad.InsertNextValue(given.GetTuple1(p))
         bad.SetValue(0, 1e30)
     level.GetPointData().AddArray(bad)
-    geomorph = meshlod.vtkLODGeomorph()
-    geomorph.SetInputData(hierarchy)
-    geomorph.UsePipelineTimeOff()
+    geomorph = geomorph_of(hierarchy)
     geomorph.SetLevelOfDetail(0.5)
     text = run(geomorph)
     check(text.count("ERR|") + text.count("ERROR") >= 1 and len(text) < 5000,
@@ -403,9 +401,7 @@ stripper = vtkStripper()
 stripper.SetInputData(hierarchy.GetBlock(0))
 stripper.Update()
 hierarchy.SetBlock(0, stripper.GetOutput())
-geomorph = meshlod.vtkLODGeomorph()
-geomorph.SetInputData(hierarchy)
-geomorph.UsePipelineTimeOff()
+geomorph = geomorph_of(hierarchy)
 geomorph.SetTargetNumberOfTriangles(500)
 text = run(geomorph)
 check("Level 0 has cells other than triangles" in text,
@@ -439,9 +435,7 @@ def jittered_soup(labels):
 
 
 for name in FILTERS:
-    algorithm = getattr(meshlod, name)()
-    algorithm.SetInputData(jittered_soup(False))
-    run(algorithm)
+    algorithm, _ = run_filter(name, jittered_soup(False))
     levels = levels_of(algorithm)
     check(levels and levels[0].GetNumberOfPoints() == 226,
           "%s: jittered soup: level 0 has %s points, 226 when stitched"
@@ -510,9 +504,7 @@ for name in FILTERS:
     cells = vtkCellArray()
     cells.InsertNextCell(3, [0, 1, 2])
     mesh.SetPolys(cells)
-    algorithm = getattr(meshlod, name)()
-    algorithm.SetInputData(mesh)
-    text = run(algorithm)
+    algorithm, text = run_filter(name, mesh)
     check("Polygon 0 refers to a point id outside [0, 0)" in text,
           "%s: polygon without points: no error (%r)" % (name, text[:300]))
 
