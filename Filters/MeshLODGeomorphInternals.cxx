@@ -609,7 +609,12 @@ bool vtkLODGeomorph::Internals::EnsureCorrespondence(vtkLODGeomorph* self, int l
     return false;
   }
   vtkPolyData* coarse = this->Levels[level + 1].Poly;
-  meshlod::NearestVertexCorrespondence(cache.Poly->GetPoints(), coarse->GetPoints(), cache.Partner);
+  if (!meshlod::NearestVertexCorrespondence(cache.Poly->GetPoints(), coarse->GetPoints(),
+        cache.Partner, [self]() { return self->GetAbortExecute() != 0; }))
+  {
+    cache.Partner.clear(); // aborted: built again at the next update
+    return false;
+  }
   self->UpdateProgress(0.4);
   cache.Edges.Build(cache.Triangles.data(), static_cast<Id>(cache.Triangles.size() / 3),
     static_cast<Id>(cache.Poly->GetNumberOfPoints()));

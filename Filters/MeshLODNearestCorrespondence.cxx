@@ -234,14 +234,15 @@ private:
 } // namespace
 
 //------------------------------------------------------------------------------
-void NearestVertexCorrespondence(vtkPoints* fine, vtkPoints* coarse, std::vector<Id>& partner)
+bool NearestVertexCorrespondence(vtkPoints* fine, vtkPoints* coarse, std::vector<Id>& partner,
+  const std::function<bool()>& stop)
 {
   const vtkIdType nf = fine->GetNumberOfPoints();
   const vtkIdType nc = coarse->GetNumberOfPoints();
   partner.assign(nf, InvalidId);
   if (nf == 0 || nc == 0)
   {
-    return;
+    return true;
   }
 
   // Step 1: every coarse point picks its nearest fine point.
@@ -285,8 +286,13 @@ void NearestVertexCorrespondence(vtkPoints* fine, vtkPoints* coarse, std::vector
     std::sort(losers.begin(), losers.end());
     std::unique_ptr<FreePointTree> freePoints;
     vtkNew<vtkIdList> nearest;
-    for (const Id c : losers)
+    for (size_t i = 0; i < losers.size(); ++i)
     {
+      if (stop && i % 1024 == 1023 && stop())
+      {
+        return false;
+      }
+      const Id c = losers[i];
       double x[3];
       coarse->GetPoint(c, x);
       Id f = freePoints ? InvalidId : NearestFreeAmongClosest(fineSearch, x, owner, nearest);
@@ -319,6 +325,7 @@ void NearestVertexCorrespondence(vtkPoints* fine, vtkPoints* coarse, std::vector
       }
     }
   });
+  return true;
 }
 
 } // namespace meshlod

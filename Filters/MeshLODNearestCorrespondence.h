@@ -8,6 +8,7 @@
 #include "Core/TriangleMesh.h"
 #include "vtkFiltersMeshLODModule.h"
 
+#include <functional>
 #include <vector>
 
 class vtkPoints;
@@ -27,8 +28,11 @@ namespace meshlod
 /// of the free fine points (built once) answers it and the rest: most of the time those are
 /// near, but levels far apart (every pick lost to a few fine points) take longer, about 3 s for
 /// 100,000 and 75,000 points. The result does not depend on the number of threads.
-VTKFILTERSMESHLOD_EXPORT void NearestVertexCorrespondence(
-  vtkPoints* fine, vtkPoints* coarse, std::vector<Id>& partner);
+/// `stop` (optional) is asked every 1,024 coarse points of step 1's second part: when it says
+/// yes, the function returns false at once and `partner` is incomplete (levels far apart take
+/// seconds there; an abort must not wait for them). Returns true when complete.
+VTKFILTERSMESHLOD_EXPORT bool NearestVertexCorrespondence(vtkPoints* fine, vtkPoints* coarse,
+  std::vector<Id>& partner, const std::function<bool()>& stop = nullptr);
 
 } // namespace meshlod
 

@@ -36,7 +36,10 @@
  * are closer than MergeTolerance are merged (into the lowest id of each group, at its
  * position) and the triangles that degenerate are removed. The correspondence of a pair of
  * levels is built once and kept until the input changes (GetNumberOfCorrespondenceBuilds()
- * counts the builds); changing L only recomputes the points and the merge.
+ * counts the builds); changing L only recomputes the points and the merge. Levels far apart
+ * (each coarse point's nearest fine point taken by another) take seconds to correspond (about
+ * 3 s for 100,000 and 75,000 points); an abort stops the build, which is then made again at the
+ * next update.
  *
  * @par Texture coordinates of baked atlases
  * A level whose field data has TextureAtlasLevel (vtkVertexClusterOctree with BakeTexture) has

@@ -11,6 +11,7 @@
 #include "MeshLODTestHierarchies.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkIntArray.h"
@@ -217,6 +218,40 @@ void TestCorrespondenceAgainstBruteForce()
   }
 }
 
+// Levels far apart (every coarse point's pick lost to a few fine points): an abort requested at
+// the first progress report stops the correspondence midway. Nothing is cached then, and the
+// next update builds it whole.
+void TestAbortFarApart()
+{
+  vtkSmartPointer<vtkPolyData> fine = testing::MakeIcosphere(5);
+  vtkSmartPointer<vtkPolyData> coarse = testing::MakeIcosphere(4);
+  vtkPoints* points = coarse->GetPoints();
+  for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    points->GetPoint(p, x);
+    x[0] += 10.0;
+    points->SetPoint(p, x);
+  }
+  vtkNew<vtkLODGeomorph> filter;
+  filter->SetInputData(testing::GatherLevels({ fine, coarse }));
+  filter->UsePipelineTimeOff();
+  filter->SetLevelOfDetail(0.5);
+  vtkNew<vtkCallbackCommand> abort;
+  abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*)
+    { static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn(); });
+  const unsigned long tag = filter->AddObserver(vtkCommand::ProgressEvent, abort);
+  filter->Update();
+  MESHLOD_CHECK_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+  MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 0);
+  filter->RemoveObserver(tag);
+  filter->AbortExecuteOff();
+  filter->Modified();
+  filter->Update();
+  MESHLOD_CHECK_EQ(filter->GetOutput()->GetNumberOfPoints(), fine->GetNumberOfPoints());
+  MESHLOD_CHECK_EQ(filter->GetNumberOfCorrespondenceBuilds(), 1);
+}
+
 // Two decimations of an isosurface, with point data.
 vtkSmartPointer<vtkMultiBlockDataSet> MakeDecimatedPair(vtkPolyData* surface)
 {
@@ -380,6 +415,7 @@ int TestLODGeomorphNearest(int, char*[])
 {
   TestSmallCorrespondence();
   TestCorrespondenceAgainstBruteForce();
+  TestAbortFarApart();
   TestDecimatedPair();
   TestForcedNearest();
   return testing::Result();
