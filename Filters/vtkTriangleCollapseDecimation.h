@@ -164,7 +164,12 @@
  * What every level carries (array names in MeshLODHierarchy.h):
  * - every input point-data array; floating-point arrays interpolated with the barycentric
  *   weights of each collapse point (composed over the collapses between levels), integer
- *   arrays (ids, labels, categories) taking the value of the vertex with the largest weight;
+ *   arrays (ids, labels, categories) taking the value of the vertex with the largest weight.
+ *   The weights are those of the collapse point's projection onto the merged edge or
+ *   triangle, clamped to it: a point placed outside (a boundary point moved along the
+ *   boundary) takes the data of the nearest point of the edge, never values beyond its
+ *   vertices' (on a flat grid carrying x + 2y, such points differ from x + 2y by up to twice
+ *   the grid step at coarse levels; with Placement PAPER_CANDIDATES, not at all);
  * - the cell data of the surviving input triangles;
  * - for every level but the last: MorphTarget (where each point goes in the next level),
  *   MorphTargetId (its point id there; chaining it maps any input point to its point in any
