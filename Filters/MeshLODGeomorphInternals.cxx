@@ -396,12 +396,14 @@ std::string vtkLODGeomorph::Internals::Prepare(
       {
         this->Levels.clear();
         std::ostringstream problem;
-        problem << "level " << i << " has a cell array with invalid offsets";
-        if (!badOffsets)
+        problem << "level " << i;
+        if (badOffsets)
         {
-          problem.str("");
-          problem << "level " << i << " has a cell that refers to a point id outside [0, "
-                  << points << ")";
+          problem << " has a cell array with invalid offsets";
+        }
+        else
+        {
+          problem << " has a cell that refers to a point id outside [0, " << points << ")";
         }
         return problem.str();
       }

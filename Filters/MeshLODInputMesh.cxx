@@ -41,6 +41,16 @@ bool IsFinitePoint(const double* x)
   return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
 }
 
+// f(offsets, connectivity) on the cell array's typed arrays, whichever storage (32 or 64 bits)
+// it has.
+template <typename F>
+auto WithCellStorage(vtkCellArray* cells, F&& f)
+{
+  return cells->IsStorage64Bit()
+    ? f(cells->GetOffsetsArray64(), cells->GetConnectivityArray64())
+    : f(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
+}
+
 // Index of the first point with a NaN or infinite coordinate, or -1.
 vtkIdType FirstNonFinitePoint(const std::vector<double>& xyz)
 {
@@ -529,13 +539,7 @@ vtkIdType FirstCellWithBadOffset(vtkCellArray* cells)
     }
     return vtkIdType(-1);
   };
-  if (cells == nullptr)
-  {
-    return -1;
-  }
-  return cells->IsStorage64Bit()
-    ? scan(cells->GetOffsetsArray64(), cells->GetConnectivityArray64())
-    : scan(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
+  return cells == nullptr ? -1 : WithCellStorage(cells, scan);
 }
 
 vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
@@ -547,7 +551,6 @@ vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
   vtkIdType bad = -1; // the first bad entry of the connectivity
   auto scan = [&](auto* offsets, auto* connectivity)
   {
-    const auto starts = vtk::DataArrayValueRange<1>(offsets);
     const auto ids = vtk::DataArrayValueRange<1>(connectivity);
     for (vtkIdType i = 0; i < ids.size() && bad < 0; ++i)
     {
@@ -558,12 +561,11 @@ vtkIdType FirstCellWithBadId(vtkCellArray* cells, vtkIdType numberOfPoints)
       return vtkIdType(-1);
     }
     // The cell holding that entry: the last whose offset is at most its index.
+    const auto starts = vtk::DataArrayValueRange<1>(offsets);
     const auto after = std::upper_bound(starts.begin(), starts.end(), bad);
     return static_cast<vtkIdType>(after - starts.begin()) - 1;
   };
-  return cells->IsStorage64Bit()
-    ? scan(cells->GetOffsetsArray64(), cells->GetConnectivityArray64())
-    : scan(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
+  return WithCellStorage(cells, scan);
 }
 
 //------------------------------------------------------------------------------
@@ -690,9 +692,9 @@ vtkIdType FirstNonFiniteCellPoint(vtkPolyData* input)
   std::vector<bool> bad;
   for (vtkIdType p = 0; p < xyz.size(); ++p)
   {
-    if (!std::isfinite(static_cast<double>(xyz[p][0])) ||
-      !std::isfinite(static_cast<double>(xyz[p][1])) ||
-      !std::isfinite(static_cast<double>(xyz[p][2])))
+    const double x[3] = { static_cast<double>(xyz[p][0]), static_cast<double>(xyz[p][1]),
+      static_cast<double>(xyz[p][2]) };
+    if (!IsFinitePoint(x))
     {
       bad.resize(xyz.size(), false);
       bad[p] = true;
@@ -705,8 +707,7 @@ vtkIdType FirstNonFiniteCellPoint(vtkPolyData* input)
   vtkIdType first = -1;
   for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
   {
-    auto scan = [&](auto* connectivity)
-    {
+    WithCellStorage(cells, [&](auto*, auto* connectivity) {
       for (const auto id : vtk::DataArrayValueRange<1>(connectivity))
       {
         if (bad[static_cast<size_t>(id)] && (first < 0 || id < first))
@@ -714,15 +715,7 @@ vtkIdType FirstNonFiniteCellPoint(vtkPolyData* input)
           first = static_cast<vtkIdType>(id);
         }
       }
-    };
-    if (cells->IsStorage64Bit())
-    {
-      scan(cells->GetConnectivityArray64());
-    }
-    else
-    {
-      scan(cells->GetConnectivityArray32());
-    }
+    });
   }
   return first;
 }
@@ -748,14 +741,7 @@ vtkIdType TrianglesOfCells(vtkCellArray* cells, bool strip)
       count += std::max(vtkIdType(0), distinct - 2);
     }
   };
-  if (cells->IsStorage64Bit())
-  {
-    sum(cells->GetOffsetsArray64(), cells->GetConnectivityArray64());
-  }
-  else
-  {
-    sum(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
-  }
+  WithCellStorage(cells, sum);
   return count;
 }
 
@@ -791,14 +777,8 @@ bool CopySourceMesh(InputMesh& result, vtkAlgorithm* caller)
   TriangleMesh& mesh = result.Mesh;
   ResizeFresh(mesh.Points, 3 * static_cast<size_t>(result.Source->GetNumberOfPoints()));
   CopyPoints(result.Source->GetPoints()->GetData(), mesh.Points);
-  if (polys->IsStorage64Bit())
-  {
-    CopyTriangles(polys->GetConnectivityArray64(), mesh.Triangles);
-  }
-  else
-  {
-    CopyTriangles(polys->GetConnectivityArray32(), mesh.Triangles);
-  }
+  WithCellStorage(
+    polys, [&](auto*, auto* connectivity) { CopyTriangles(connectivity, mesh.Triangles); });
   if (FirstNonFinitePoint(mesh.Points) >= 0)
   {
     const vtkIdType bad = SettleUnusedNonFinitePoints(mesh);

@@ -861,17 +861,12 @@ SplitMap vtkVertexClusterOctree::LevelMaker::BuildAtlas(
 {
   const vtkVertexClusterOctree* self = this->Self;
   meshlod::BuildTextureAtlas(level.Mesh, self->TextureResolution, atlas);
-  int asked = 16; // TextureResolution rounded up to a power of two, as documented
-  while (asked < self->TextureResolution)
-  {
-    asked *= 2;
-  }
-  if (atlas.Resolution > asked)
+  if (atlas.Resolution > atlas.RequestedResolution)
   {
     vtkWarningWithObjectMacro(self,
       "Level " << i + 1 << " has " << level.Mesh.GetNumberOfTriangles()
-               << " triangles, too many for a " << asked << "^2 texture; its texture has "
-               << atlas.Resolution << "^2 texels.");
+               << " triangles, too many for a " << atlas.RequestedResolution
+               << "^2 texture; its texture has " << atlas.Resolution << "^2 texels.");
   }
   SplitMap split;
   split.SplitToPoint = atlas.SplitPoints;

@@ -115,11 +115,10 @@ std::vector<Unit> PairTriangles(const TriangleMesh& mesh)
 }
 
 // Block sizes at one texel density for all blocks: the largest whose power-of-two blocks fit the
-// texture. Returns the texture's side (`resolution`, or larger when there are more blocks than
-// it holds at two texels).
-Id SizeBlocks(std::vector<Unit>& units, Id resolution)
+// texture. Returns the texture's side (`side`, a power of two, or larger when there are more
+// blocks than it holds at two texels).
+Id SizeBlocks(std::vector<Unit>& units, Id side)
 {
-  Id side = NextPowerOfTwo(std::max<Id>(resolution, 2));
   const std::int64_t unitCount = static_cast<std::int64_t>(units.size());
   while (4 * unitCount > static_cast<std::int64_t>(side) * side)
   {
@@ -219,7 +218,8 @@ void BuildTextureAtlas(const TriangleMesh& mesh, Id resolution, TextureAtlas& at
   atlas = TextureAtlas();
   const Id nt = mesh.GetNumberOfTriangles();
   std::vector<Unit> units = PairTriangles(mesh);
-  atlas.Resolution = SizeBlocks(units, resolution);
+  atlas.RequestedResolution = NextPowerOfTwo(std::max<Id>(resolution, 2));
+  atlas.Resolution = SizeBlocks(units, atlas.RequestedResolution);
   atlas.TriangleBlock.assign(nt, InvalidId);
   atlas.CornerTexel.assign(6 * static_cast<size_t>(nt), 0);
   atlas.CornerPoint.assign(3 * static_cast<size_t>(nt), InvalidId);

@@ -40,6 +40,9 @@ struct VTKFILTERSMESHLOD_EXPORT TextureAtlas
   };
 
   Id Resolution = 0; // texture edge in texels (a power of two)
+  // The resolution asked for, rounded up to a power of two: Resolution is larger when the
+  // level has too many triangles for it.
+  Id RequestedResolution = 0;
   std::vector<Block> Blocks;
   std::vector<Id> TriangleBlock; // triangle -> block
   std::vector<Id> CornerTexel;   // 2 per triangle corner: texel column and row
