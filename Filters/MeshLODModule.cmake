@@ -34,6 +34,7 @@ set(meshlod_private_headers
   Filters/Core/OctreeClustering.h
   Filters/Core/OctreeClusteringInternals.h
   Filters/Core/ParallelCompact.h
+  Filters/Core/PieceGenus.h
   Filters/Core/Quadric.h
   Filters/Core/RankSelection.h
   Filters/Core/TextureAtlas.h
@@ -75,6 +76,7 @@ set(meshlod_sources
   Filters/Core/OctreeSynthesis.cxx
   Filters/Core/OctreeVanishing.cxx
   Filters/Core/PartitionedGreedy.cxx
+  Filters/Core/PieceGenus.cxx
   Filters/Core/Quadric.cxx
   Filters/Core/TextureAtlas.cxx
   Filters/Core/TriangleCollapse.cxx

@@ -402,8 +402,10 @@ void vtkVertexClusterOctree::WarnIfCountMissed(
                              << reached
                              << ": the epsilon search found none that keeps fewer ("
                              << (this->PreserveTopology
-                                    ? "clusters that would flip triangles, pinch edges or break "
-                                      "a thin part are split again, which on a rough or noisy "
+                                    ? "clusters that would flip triangles, pinch edges, break "
+                                      "a thin part or close a handle are split again, and a "
+                                      "level that still closes a handle is not taken, which on "
+                                      "a rough or noisy "
                                       "surface or along thin tubes adds many triangles back: "
                                       "vtkTriangleCollapseDecimation reaches such counts and "
                                       "keeps the topology, PreserveTopology off lifts the "
@@ -415,8 +417,9 @@ void vtkVertexClusterOctree::WarnIfCountMissed(
                                 "merge), or none that keeps fewer at an error near that of this "
                                 "count (a level a quarter or more above its target may keep up "
                                 "to a tenth more triangles than the fewest found, half more "
-                                "at under a quarter of the error, or more at under a tenth of "
-                                "the error times the square root of the count, for a smaller "
+                                "at under a quarter of the error, or up to four times as many "
+                                "at under a tenth of the error times the square root of the "
+                                "count, for a smaller "
                                 "epsilon).");
   }
 }
@@ -842,6 +845,16 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevel(meshlod::OctreeClustering& cl
   {
     self->WarnIfCountMissed(static_cast<int>(i + 1), requests[i].Count,
       static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()), previousTriangles);
+  }
+  else if (level.Epsilon < std::max(requests[i].Epsilon, self->LevelEpsilons.size() > 1
+                                          ? self->LevelEpsilons[self->LevelEpsilons.size() - 2]
+                                          : 0.0))
+  {
+    vtkWarningWithObjectMacro(self,
+      "Level " << i + 1 << ": epsilon " << requests[i].Epsilon
+               << " (in world units) closes a handle of the surface (its genus would change); "
+                  "the level is cut at epsilon "
+               << level.Epsilon << ", the largest found that keeps every handle.");
   }
   else if (static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()) == previousTriangles)
   {

@@ -44,6 +44,14 @@ OctreeClustering::~OctreeClustering()
 void OctreeClustering::BuildTree()
 {
   Internals& impl = *this->Impl;
+  // Level 0 is the input itself (empty vectors stand for it); its pieces and their handles
+  // are measured before the tree is built, so that the measuring's working memory comes and
+  // goes before the tree's.
+  impl.CurrentTriangles.clear();
+  impl.CurrentLevelZero.clear();
+  impl.PointNode.clear();
+  impl.PointVertexCount.clear();
+  impl.LabelPreviousPieces();
   ClusterTreeOptions options;
   options.BoundaryWeight = impl.Options.BoundaryWeight;
   options.PlacementTolerance = impl.Options.PlacementTolerance;
@@ -66,25 +74,31 @@ void OctreeClustering::BuildTree()
       }
     });
 
-  // Level 0 is the input itself.
-  impl.CurrentTriangles.clear();
-  impl.CurrentLevelZero.clear();
-  impl.PointNode.clear();
-  impl.PointVertexCount.clear();
   AssignFresh(impl.ClusterOfVertex, impl.NV, InvalidId);
   impl.CurrentEpsilon = 0.0;
-  impl.LabelPreviousPieces();
   impl.LabelHoles();
 }
 
 bool OctreeClustering::MakeLevel(double epsilon, ClusterLevel& level)
 {
-  epsilon = std::max(epsilon, this->Impl->CurrentEpsilon);
-  if (this->Impl->TryLevel(epsilon, level) == 0)
+  Internals& impl = *this->Impl;
+  epsilon = std::max(epsilon, impl.CurrentEpsilon);
+  const Id refusals = impl.HandleRefusals;
+  if (impl.TryLevel(epsilon, level) == 0)
   {
-    return false;
+    if (impl.HandleRefusals == refusals)
+    {
+      return false;
+    }
+    // The epsilon closes a handle: the largest smaller one that does not, else the current
+    // level again (level.Epsilon says which was taken).
+    impl.EmptyEpsilon = epsilon;
+    if (impl.LastNonEmpty(level) == 0 && impl.RepeatCurrentLevel(level) == 0)
+    {
+      return false;
+    }
   }
-  this->Impl->Commit(level);
+  impl.Commit(level);
   return true;
 }
 
@@ -94,17 +108,15 @@ bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLeve
   if (targetTriangles >= impl.PreviousTriangles())
   {
     // A level never refines: asked for at least what the current level has, it is the current
-    // level again. At the input, even epsilon 0 may merge clusters of zero error (an exactly
-    // flat region, without OrderFlatClusters): a negative epsilon merges nothing.
-    const double epsilon = impl.AtInput() ? -1.0 : impl.CurrentEpsilon;
-    if (impl.TryLevel(epsilon, level) == 0)
+    // level again.
+    if (impl.RepeatCurrentLevel(level) == 0)
     {
       return false;
     }
-    level.Epsilon = std::max(0.0, epsilon); // the next searches start from it
     impl.Commit(level);
     return true;
   }
+  const Id refusals = impl.HandleRefusals;
   ClusterLevel best;
   Id bestCount = impl.SearchLevel(targetTriangles, best);
   if (bestCount < targetTriangles / MinimumAimFraction && impl.ClearRefusals())
@@ -122,7 +134,7 @@ bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLeve
   if (bestCount == 0 || bestCount >= impl.PreviousTriangles())
   {
     // None, or no fewer triangles than the level before: the trials near the aim were all
-    // refused (a Klein bottle of 9,600 triangles asked for 48 got 9,600 back, where 64 got 76).
+    // refused (a Klein bottle of 9,600 triangles asked for 48 got 9,600 back).
     // The coarsest level that keeps triangles, if nearer.
     ClusterLevel coarsest;
     const Id count = impl.LastNonEmpty(coarsest);
@@ -132,6 +144,11 @@ bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLeve
       best = std::move(coarsest);
       bestCount = count;
     }
+  }
+  if (bestCount == 0 && impl.HandleRefusals > refusals)
+  {
+    // Every level with fewer triangles closed a handle.
+    bestCount = impl.RepeatCurrentLevel(best);
   }
   if (bestCount == 0)
   {
@@ -168,10 +185,14 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
   // follows the count, as a surface's chord error does) under a tenth. On a subdivided
   // icosahedron asked for 1%, whose clusters across its edges cut the corners, 390 triangles
   // at 8% Hausdorff distance became 864 at none. (At a half, rough surfaces went back most of
-  // the way to their input: a noisy sphere asked for 10% kept 76,388 of 78,168 triangles.)
+  // the way to their input: a noisy sphere asked for 10% kept 76,388 of 78,168 triangles.) At
+  // most four times the search's count: where every level near the count is coarse, more
+  // triangles are always far more accurate (a Klein bottle of 9,600 triangles asked for 64,
+  // whose search found 100, went back to 6,266).
   const Id previous = this->PreviousTriangles();
   const Id giveBack = 3 * (previous - count) / 4;
   const Id limit = count + giveBack; // of the search's count, not of a level taken since
+  const Id farthest = std::min(limit, 4 * count); // for an accurate level (see below)
   const Id close = count + std::min(count / 10, giveBack);
   const Id plateau = count + std::min(count / 2, giveBack);
   const double plateauError = best.EstimatedError / 4.0;
@@ -184,7 +205,7 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
   {
     const double middle = std::sqrt(low * high);
     const Id triangles = this->TryLevel(middle, trial);
-    const bool accurate = triangles > 0 && triangles <= limit &&
+    const bool accurate = triangles > 0 && triangles <= farthest &&
       accuracy(trial, triangles) < 0.1 * accuracy(best, count);
     if (triangles > 0 &&
       (triangles <= close || (triangles <= plateau && trial.EstimatedError <= plateauError) ||
@@ -215,14 +236,32 @@ Id OctreeClustering::Internals::BackOff(Id count, ClusterLevel& best)
 //------------------------------------------------------------------------------
 Id OctreeClustering::Internals::LastNonEmpty(ClusterLevel& best)
 {
-  // Bisect on a log scale between the current level's epsilon (it keeps the current level) and
-  // the smallest that kept nothing. (Asked for 50 triangles, a noisy sphere of 1,680 got no
-  // level at all while 200 gave 1,650.)
+  // Down from the smallest epsilon that kept nothing by halves to the first that keeps some,
+  // then bisect on a log scale between the two; never below the current level's epsilon (it
+  // keeps the current level), nor four decades below. (Asked for 50 triangles, a noisy sphere
+  // of 1,680 got no level at all while 200 gave 1,650.) Not a bisection from the start: the
+  // epsilons whose levels are refused for a lost handle need not be one interval, and a
+  // bisection from the middle of the range can end far below the largest that keeps them all.
   double high = std::min(this->EmptyEpsilon, 2.0 * this->Tree.Size);
-  double low = std::max(this->CurrentEpsilon, 1e-4 * high);
+  const double floor = std::max(this->CurrentEpsilon, 1e-4 * high);
+  double low = 0.0; // the largest epsilon found to keep triangles
   ClusterLevel trial;
   Id count = 0;
-  for (int step = 0; step < 12 && high > 1.02 * low; ++step)
+  while (count == 0 && high > floor)
+  {
+    const double epsilon = std::max(0.5 * high, floor);
+    count = this->TryLevel(epsilon, trial);
+    if (count > 0)
+    {
+      best = std::move(trial);
+      low = epsilon;
+    }
+    else
+    {
+      high = epsilon;
+    }
+  }
+  for (int step = 0; count > 0 && step < 6 && high > 1.02 * low; ++step)
   {
     const double middle = std::sqrt(low * high);
     const Id triangles = this->TryLevel(middle, trial);

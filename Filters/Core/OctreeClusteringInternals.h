@@ -161,6 +161,13 @@ struct OctreeClustering::Internals
   // MarkBreaks; empty when there is one piece.
   std::vector<std::uint32_t> PreviousPiece;
   std::uint32_t PreviousPieces = 0;
+  // Per piece of the current level: HandleMeasures (twice its genus where orientable), which a
+  // level made from it must keep (LosesHandle).
+  std::vector<Id> PreviousHandles;
+  // Per triangle of the current level: HandleMeasures' side flags (MarkAnnuli).
+  std::vector<unsigned char> PreviousSides;
+  // How many trial levels TryLevel refused for a lost handle (returning 0 for them).
+  Id HandleRefusals = 0;
   Id PieceOf(Id p) const { return this->PreviousPiece.empty() ? 0 : this->PreviousPiece[p]; }
 
   Internals(const TriangleMesh& mesh,
@@ -274,6 +281,7 @@ struct OctreeClustering::Internals
   Id MarkFins(octree::Synthesis& s);
   Id MarkPinches(octree::Synthesis& s);
   Id MarkBreaks(octree::Synthesis& s);
+  Id MarkAnnuli(octree::Synthesis& s);
   Id MarkFarVanishing(octree::Synthesis& s, double epsilon);
   // MarkFarVanishing's steps. `alive` flags the clusters that keep a triangle, `slot` maps a
   // previous piece to its place among the vanishing ones (InvalidId for the others); the grid
@@ -310,6 +318,12 @@ struct OctreeClustering::Internals
   void LiftRefusals(std::vector<Id>& nodes);
   bool SplitFully = false;
   Id TryLevel(double epsilon, ClusterLevel& level);
+  // With PreserveTopology: whether a finished trial level changed the genus of a piece of the
+  // previous level (closed a handle), which the local repairs cannot see: a handle can close
+  // between clusters that each keep their link. The trial is then refused as a whole.
+  bool LosesHandle(const octree::Synthesis& s) const;
+  // The current level again (for a level that cannot merge more).
+  Id RepeatCurrentLevel(ClusterLevel& level);
   // The best of a few trial levels for a target count (see MakeLevelForTriangleCount); returns
   // its count, 0 when none has a triangle.
   Id SearchLevel(Id targetTriangles, ClusterLevel& best);
@@ -317,7 +331,8 @@ struct OctreeClustering::Internals
   double EmptyEpsilon = 0.0;
   /// When every trial of the search kept no triangle (a small target on a closed surface whose
   /// folds keep many triangles below the epsilon that merges it whole): the largest epsilon
-  /// below EmptyEpsilon that keeps some, into best; returns its count (0 when none does).
+  /// below EmptyEpsilon that keeps some, into best; returns its count (0 when none does). Also
+  /// for trials refused for a lost handle (TryLevel returns 0 for those too).
   Id LastNonEmpty(ClusterLevel& best);
   /// When the search's best level keeps `count` triangles, a quarter or more above what was
   /// asked (a target the surface cannot reach): the smallest epsilon (between the current

@@ -4,6 +4,7 @@
 #include "FreshMemory.h"
 #include "GroupByKey.h"
 #include "OctreeClusteringInternals.h"
+#include "PieceGenus.h"
 
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
@@ -121,10 +122,93 @@ void OctreeClustering::Internals::LabelPreviousPieces()
     this->PreviousPiece[p] = root == p ? count++ : this->PreviousPiece[root];
   }
   this->PreviousPieces = count;
+  std::vector<Id> group(this->PreviousPiece.begin(), this->PreviousPiece.end());
+  this->PreviousHandles =
+    HandleMeasures(tri, triangles, group, count, &this->PreviousSides);
   if (count <= 1)
   {
     std::vector<std::uint32_t>().swap(this->PreviousPiece); // one piece: PieceOf says 0
   }
+}
+
+//------------------------------------------------------------------------------
+Id OctreeClustering::Internals::MarkAnnuli(Synthesis& s)
+{
+  // A cluster whose previous points, with the previous edges and triangles among them, have an
+  // Euler characteristic below 1 holds a loop of edges around no triangles of its own: around a
+  // handle, or a tube's whole cross-section (a Boy surface's stitched seam: one cluster of 223
+  // points, 506 edges and 283 triangles). Merged into one point, the loop is gone and the
+  // handle with it, though the cluster's link is whole. Twice the characteristic per cluster:
+  // two per point, two per triangle, and minus one per side inside it (two for a boundary side,
+  // which no other triangle counts). Not judged: a cluster with a side of three triangles or
+  // more inside (a curve where sheets meet), whose edges the sides do not count.
+  const Id clusters = static_cast<Id>(s.Cut.size());
+  std::vector<Id> twiceChi = FreshVector<Id>(clusters, 0);
+  std::vector<unsigned char> judged = FreshVector<unsigned char>(clusters, 1);
+  const Id previousPoints = this->PreviousPoints();
+  for (Id p = 0; p < previousPoints; ++p)
+  {
+    twiceChi[s.PointCluster[p]] += 2;
+  }
+  const Id previousTriangles = this->PreviousTriangles();
+  const Id* prev = this->PreviousTriangleData();
+  for (Id t = 0; t < previousTriangles; ++t)
+  {
+    const Id k[3] = { s.PointCluster[prev[3 * t]], s.PointCluster[prev[3 * t + 1]],
+      s.PointCluster[prev[3 * t + 2]] };
+    for (int c = 0; c < 3; ++c)
+    {
+      if (k[c] == k[(c + 1) % 3])
+      {
+        const unsigned char flags = this->PreviousSides[t];
+        twiceChi[k[c]] -= SideOnBoundary(flags, c) ? 2 : 1;
+        judged[k[c]] &= SideNonManifold(flags, c) ? 0 : 1;
+      }
+    }
+    twiceChi[k[0]] += k[0] == k[1] && k[1] == k[2] ? 2 : 0;
+  }
+  std::vector<Id> annuli;
+  for (Id k = 0; k < clusters; ++k)
+  {
+    if (judged[k] && twiceChi[k] < 2)
+    {
+      annuli.push_back(k);
+    }
+  }
+  return annuli.empty() ? 0 : this->MarkChanged(s, annuli, false);
+}
+
+//------------------------------------------------------------------------------
+bool OctreeClustering::Internals::LosesHandle(const Synthesis& s) const
+{
+  // The trial's triangles grouped by the previous piece their clusters come from (a cluster's
+  // previous points lie in one piece): each piece that keeps triangles must keep its measure.
+  // (A piece that vanishes whole is the vanishing rules' business, not a lost handle.)
+  std::vector<Id> group = FreshVector<Id>(s.Cut.size(), 0);
+  const Id previousPoints = this->PreviousPoints();
+  for (Id p = 0; p < previousPoints; ++p)
+  {
+    group[s.PointCluster[p]] = this->PieceOf(p);
+  }
+  std::vector<Id> kept;
+  for (size_t j = 0; j < s.From.size(); ++j)
+  {
+    if (!s.Duplicate[j])
+    {
+      kept.insert(kept.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
+    }
+  }
+  const std::vector<Id> now = HandleMeasures(
+    kept.data(), static_cast<Id>(kept.size() / 3), group, this->PreviousPieces);
+  for (std::uint32_t piece = 0; piece < this->PreviousPieces; ++piece)
+  {
+    if (now[piece] != UnmeasuredGroup && this->PreviousHandles[piece] != UnmeasuredGroup &&
+      now[piece] != this->PreviousHandles[piece])
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 //------------------------------------------------------------------------------

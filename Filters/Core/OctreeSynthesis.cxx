@@ -441,6 +441,7 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
   level = ClusterLevel();
   level.Epsilon = epsilon;
   Synthesis s;
+  bool lostHandle = false;
   for (int pass = 0;; ++pass)
   {
     this->CutAt(epsilon, s.Cut, pass > 0); // later passes replace only the marked clusters
@@ -469,14 +470,41 @@ Id OctreeClustering::Internals::TryLevel(double epsilon, ClusterLevel& level)
     }
     if (marked == 0)
     {
+      lostHandle = this->LosesHandle(s);
+      // A handle closed between clusters that each keep their link: the clusters that hold a
+      // loop of edges around no triangles of their own are split (only then: most such loops
+      // are around other clusters, which vanish with them), until it closes no more.
+      marked = lostHandle && !this->SplitFully ? this->MarkAnnuli(s) : 0;
+      lostHandle = lostHandle && marked == 0;
+    }
+    if (marked == 0)
+    {
       break;
     }
     level.FlippedTrianglesFixed += marked;
   }
   this->SplitFully = false;
   this->LiftRefusals(this->TrialRefusals);
+  if (lostHandle)
+  {
+    // No annulus to split: refused whole, as a level that keeps nothing (every search then
+    // tries a smaller epsilon).
+    ++this->HandleRefusals;
+    return 0;
+  }
   this->Finalize(s, level);
   return level.Mesh.GetNumberOfTriangles();
+}
+
+//------------------------------------------------------------------------------
+Id OctreeClustering::Internals::RepeatCurrentLevel(ClusterLevel& level)
+{
+  // At the input, even epsilon 0 may merge clusters of zero error (an exactly flat region,
+  // without OrderFlatClusters): a negative epsilon merges nothing.
+  const double epsilon = this->AtInput() ? -1.0 : this->CurrentEpsilon;
+  const Id count = this->TryLevel(epsilon, level);
+  level.Epsilon = std::max(0.0, epsilon); // the next searches start from it
+  return count;
 }
 
 //------------------------------------------------------------------------------

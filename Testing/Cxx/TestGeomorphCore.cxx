@@ -372,7 +372,9 @@ void CheckTrackedLinks(const char* name, vtkMultiBlockDataSet* hierarchy, Id& la
 // Octree levels of smooth surfaces merge hundreds of points into one, the case the link is kept
 // up to date for: on a manifold sphere, along a curve where three sheets meet (the equatorial
 // disk), and on a surface without consistent orientation (Boy's surface, whose test for one
-// fan falls back to the link's shape); and a single level of 1% from
+// fan falls back to the link's shape; with PreserveTopology off, as its seams stitch into a
+// surface of Euler characteristic 0 whose levels keep collapses of at most 29 points when they
+// must keep that); and a single level of 1% from
 // vtkTriangleCollapseDecimation, whose targets take many collapses each, some of them left
 // without one fan until a neighbour's collapse repairs them (79% of the steps can be stopped
 // at; 22% if only a target's own steps were tested again).
@@ -386,9 +388,10 @@ void TestTrackedLinks()
     double ReachableAtLeast;
   };
   std::vector<Case> cases;
-  const auto octree = [](vtkPolyData* mesh) {
+  const auto octree = [](vtkPolyData* mesh, bool preserveTopology = true) {
     vtkNew<vtkVertexClusterOctree> filter;
     filter->SetInputData(mesh);
+    filter->SetPreserveTopology(preserveTopology);
     filter->Update();
     return vtkSmartPointer<vtkMultiBlockDataSet>(filter->GetHierarchy());
   };
@@ -404,7 +407,7 @@ void TestTrackedLinks()
   vtkNew<vtkTriangleFilter> boyTriangles;
   boyTriangles->SetInputConnection(boySource->GetOutputPort());
   boyTriangles->Update();
-  cases.push_back({ "Boy's surface", octree(boyTriangles->GetOutput()), 100, 0.99 });
+  cases.push_back({ "Boy's surface", octree(boyTriangles->GetOutput(), false), 100, 0.99 });
   vtkNew<vtkTriangleCollapseDecimation> single;
   single->SetInputData(testing::MakeIcosphere(5));
   single->SetNumberOfLevels(1);

@@ -1,0 +1,141 @@
+// HandleMeasures (the genus check of vtkVertexClusterOctree's levels) on tiny hand-made
+// meshes with exact expected results: twice the genus of an orientable piece, the cross-caps
+// of a non-orientable one, unchanged when a hole closes, a pinched point counted once per fan,
+// and the side flags.
+#include "Core/PieceGenus.h"
+#include "MeshLODTestCheck.h"
+
+#include <iostream>
+#include <vector>
+
+namespace
+{
+using namespace meshlod;
+
+// An n x m grid of squares, two triangles each, with its points (i, j) numbered j * columns + i.
+// wrapI / wrapJ close it across i or j (twistJ closes j with i reversed: a Klein bottle with
+// wrapI). Open sides have their own row or column of points.
+std::vector<Id> Grid(int n, int m, bool wrapI, bool wrapJ, bool twistJ = false)
+{
+  const int columns = wrapI ? n : n + 1;
+  auto point = [&](int i, int j)
+  {
+    if (wrapJ && j == m)
+    {
+      j = 0;
+      i = twistJ ? (n - i) % n : i;
+    }
+    return static_cast<Id>(j * columns + (wrapI ? i % n : i));
+  };
+  std::vector<Id> triangles;
+  for (int j = 0; j < m; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const Id a = point(i, j), b = point(i + 1, j), c = point(i + 1, j + 1), d = point(i, j + 1);
+      triangles.insert(triangles.end(), { a, b, c, a, c, d });
+    }
+  }
+  return triangles;
+}
+
+Id PointsOf(const std::vector<Id>& triangles)
+{
+  Id most = -1;
+  for (const Id p : triangles)
+  {
+    most = std::max(most, p);
+  }
+  return most + 1;
+}
+
+// The measure of a mesh taken as one group.
+Id Measure(const std::vector<Id>& triangles)
+{
+  const std::vector<Id> group(PointsOf(triangles), 0);
+  return HandleMeasures(triangles.data(), static_cast<Id>(triangles.size() / 3), group, 1)[0];
+}
+
+const std::vector<Id> Tetrahedron = { 0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2 };
+
+void TestSurfaces()
+{
+  MESHLOD_CHECK_EQ(Measure(Tetrahedron), 0);                  // sphere
+  MESHLOD_CHECK_EQ(Measure(Grid(4, 4, true, true)), 2);       // torus: genus 1
+  MESHLOD_CHECK_EQ(Measure(Grid(4, 4, true, true, true)), 2); // Klein bottle: two cross-caps
+  MESHLOD_CHECK_EQ(Measure(Grid(3, 2, false, false)), 0);     // disk
+  MESHLOD_CHECK_EQ(Measure(Grid(4, 2, true, false)), 0);      // annulus: a disk with a hole
+  // A torus with a square hole cut (two triangles fewer): still genus 1, one boundary loop.
+  std::vector<Id> holed = Grid(4, 4, true, true);
+  holed.erase(holed.begin(), holed.begin() + 6);
+  MESHLOD_CHECK_EQ(Measure(holed), 2);
+  // Two tetrahedra touching at point 0: two spheres (2 - 2 - 2 = -2), not a pinched surface
+  // of one point less (2 - 3 = -1).
+  std::vector<Id> pinched = Tetrahedron;
+  for (const Id p : Tetrahedron)
+  {
+    pinched.push_back(p == 0 ? 0 : p + 3);
+  }
+  MESHLOD_CHECK_EQ(Measure(pinched), -2);
+}
+
+void TestGroups()
+{
+  // A tetrahedron (group 0), a torus (group 2), nothing in group 1, and a fin: an edge of
+  // three triangles (group 3), which is not measured.
+  std::vector<Id> triangles = Tetrahedron;
+  std::vector<Id> group(4, 0);
+  for (const Id p : Grid(4, 4, true, true))
+  {
+    triangles.push_back(p + 4);
+  }
+  group.resize(4 + 16, 2);
+  const Id fin = static_cast<Id>(group.size());
+  triangles.insert(triangles.end(), { fin, fin + 1, fin + 2, fin + 1, fin, fin + 3, fin, fin + 1, fin + 4 });
+  group.resize(fin + 5, 3);
+  std::vector<unsigned char> sides;
+  const std::vector<Id> measures =
+    HandleMeasures(triangles.data(), static_cast<Id>(triangles.size() / 3), group, 4, &sides);
+  MESHLOD_CHECK_EQ(measures.size(), 4u);
+  MESHLOD_CHECK_EQ(measures[0], 0);
+  MESHLOD_CHECK_EQ(measures[1], UnmeasuredGroup);
+  MESHLOD_CHECK_EQ(measures[2], 2);
+  MESHLOD_CHECK_EQ(measures[3], UnmeasuredGroup);
+  // Side flags: none on the closed pieces; each fin triangle has its first side on the edge of
+  // three triangles and its two others on the boundary.
+  MESHLOD_CHECK_EQ(sides.size(), triangles.size() / 3);
+  for (size_t t = 0; t + 3 < sides.size(); ++t)
+  {
+    MESHLOD_CHECK_EQ(sides[t], 0);
+  }
+  for (size_t t = sides.size() - 3; t < sides.size(); ++t)
+  {
+    MESHLOD_CHECK(SideNonManifold(sides[t], 0));
+    MESHLOD_CHECK(!SideOnBoundary(sides[t], 0));
+    MESHLOD_CHECK(SideOnBoundary(sides[t], 1) && SideOnBoundary(sides[t], 2));
+  }
+}
+
+void TestOpenSides()
+{
+  // Two triangles of a square, (0, 1, 2) and (0, 2, 3): the diagonal (the first's side 2,
+  // from corner 2 to corner 0, and the second's side 0) has two triangles, the four others one.
+  const std::vector<Id> square = { 0, 1, 2, 0, 2, 3 };
+  std::vector<unsigned char> sides;
+  const std::vector<Id> group(4, 0);
+  const std::vector<Id> measures = HandleMeasures(square.data(), 2, group, 1, &sides);
+  MESHLOD_CHECK_EQ(measures[0], 0);
+  MESHLOD_CHECK(SideOnBoundary(sides[0], 0) && SideOnBoundary(sides[0], 1));
+  MESHLOD_CHECK(!SideOnBoundary(sides[0], 2)); // 2 -> 0, the diagonal
+  MESHLOD_CHECK(!SideOnBoundary(sides[1], 0)); // 0 -> 2
+  MESHLOD_CHECK(SideOnBoundary(sides[1], 1) && SideOnBoundary(sides[1], 2));
+}
+} // namespace
+
+int TestPieceGenus(int, char*[])
+{
+  TestSurfaces();
+  TestGroups();
+  TestOpenSides();
+  return meshlod::testing::Result();
+}
