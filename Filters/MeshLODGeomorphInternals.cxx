@@ -83,14 +83,7 @@ bool ReadTriangles(vtkPolyData* poly, std::vector<Id>& triangles)
       triangles[i] = static_cast<Id>(conn[i]);
     }
   };
-  if (polys->IsStorage64Bit())
-  {
-    visit(polys->GetOffsetsArray64(), polys->GetConnectivityArray64());
-  }
-  else
-  {
-    visit(polys->GetOffsetsArray32(), polys->GetConnectivityArray32());
-  }
+  meshlod::WithCellStorage(polys, visit);
   return ok;
 }
 

@@ -41,16 +41,6 @@ bool IsFinitePoint(const double* x)
   return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
 }
 
-// f(offsets, connectivity) on the cell array's typed arrays, whichever storage (32 or 64 bits)
-// it has.
-template <typename F>
-auto WithCellStorage(vtkCellArray* cells, F&& f)
-{
-  return cells->IsStorage64Bit()
-    ? f(cells->GetOffsetsArray64(), cells->GetConnectivityArray64())
-    : f(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
-}
-
 // Index of the first point with a NaN or infinite coordinate, or -1.
 vtkIdType FirstNonFinitePoint(const std::vector<double>& xyz)
 {

@@ -137,6 +137,16 @@ VTKFILTERSMESHLOD_EXPORT void PrepareForWriting(vtkAbstractArray* array);
 VTKFILTERSMESHLOD_EXPORT vtkSmartPointer<vtkCellArray> MakeTriangleCells(
   const Id* triangles, Id numberOfTriangles);
 
+/// f(offsets, connectivity) on the cell array's typed arrays, whichever storage (32 or 64 bits)
+/// it has (include vtkCellArray.h to use it).
+template <typename CellArray, typename F>
+auto WithCellStorage(CellArray* cells, F&& f)
+{
+  return cells->IsStorage64Bit()
+    ? f(cells->GetOffsetsArray64(), cells->GetConnectivityArray64())
+    : f(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
+}
+
 } // namespace meshlod
 
 #endif
