@@ -13,6 +13,7 @@
 
 #include "OctreeClustering.h"
 #include "ParallelCompact.h"
+#include "PieceGenus.h"
 #include "Vector3.h"
 
 #include "vtkSMPTools.h"
@@ -161,9 +162,9 @@ struct OctreeClustering::Internals
   // MarkBreaks; empty when there is one piece.
   std::vector<std::uint32_t> PreviousPiece;
   std::uint32_t PreviousPieces = 0;
-  // Per piece of the current level: HandleMeasures (twice its genus where orientable), which a
+  // Per piece of the current level: HandleMeasures (its parts and twice their genus), which a
   // level made from it must keep (LosesHandle).
-  std::vector<Id> PreviousHandles;
+  std::vector<PieceMeasure> PreviousHandles;
   // Per triangle of the current level: HandleMeasures' side flags (MarkAnnuli).
   std::vector<unsigned char> PreviousSides;
   // How many trial levels TryLevel refused for a lost handle (returning 0 for them).

@@ -198,11 +198,13 @@ bool OctreeClustering::Internals::LosesHandle(const Synthesis& s) const
       kept.insert(kept.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
     }
   }
-  const std::vector<Id> now = HandleMeasures(
+  const std::vector<PieceMeasure> now = HandleMeasures(
     kept.data(), static_cast<Id>(kept.size() / 3), group, this->PreviousPieces);
   for (std::uint32_t piece = 0; piece < this->PreviousPieces; ++piece)
   {
-    if (now[piece] != UnmeasuredGroup && this->PreviousHandles[piece] != UnmeasuredGroup &&
+    // (A surface that touches itself at a point counts as its parts there: one of them that
+    // vanishes into the point is lost too, as one of two tori sharing a vertex was.)
+    if (now[piece].Measured && this->PreviousHandles[piece].Measured &&
       now[piece] != this->PreviousHandles[piece])
     {
       return true;

@@ -16,7 +16,7 @@ void Join(std::vector<Id>& up, Id a, Id b)
 }
 } // namespace
 
-std::vector<Id> HandleMeasures(const Id* triangles,
+std::vector<PieceMeasure> HandleMeasures(const Id* triangles,
   Id count,
   const std::vector<Id>& pointGroup,
   Id groups,
@@ -57,6 +57,9 @@ std::vector<Id> HandleMeasures(const Id* triangles,
   std::vector<unsigned char> nonManifold(groups, 0);
   std::vector<Id> up(corners);
   std::iota(up.begin(), up.end(), Id(0));
+  // The pieces: triangles joined across edges of two triangles.
+  std::vector<Id> piece(count);
+  std::iota(piece.begin(), piece.end(), Id(0));
   // visit(p, first, last) for each edge from p to a higher point: the sides on it.
   auto forEachEdge = [&](auto&& visit)
   {
@@ -83,6 +86,7 @@ std::vector<Id> HandleMeasures(const Id* triangles,
         auto at = [&](Id k, bool atP) { return (triangles[k] == p) == atP ? k : nextCorner(k); };
         Join(up, at(run[0], true), at(run[1], true));
         Join(up, at(run[0], false), at(run[1], false));
+        Join(piece, run[0] / 3, run[1] / 3);
       }
       else if (end - run > 2)
       {
@@ -93,9 +97,11 @@ std::vector<Id> HandleMeasures(const Id* triangles,
   {
     v[pointGroup[triangles[k]]] += FindRoot(up, k) == k ? 1 : 0;
   }
+  std::vector<Id> pieces(groups, 0);
   for (Id t = 0; t < count; ++t)
   {
     f[pointGroup[triangles[3 * t]]] += 1;
+    pieces[pointGroup[triangles[3 * t]]] += FindRoot(piece, t) == t ? 1 : 0;
   }
 
   // Boundary loops: the fans joined along the sides without another triangle.
@@ -131,14 +137,16 @@ std::vector<Id> HandleMeasures(const Id* triangles,
     }
   }
 
-  std::vector<Id> measure(groups, UnmeasuredGroup);
+  std::vector<PieceMeasure> measures(groups);
   for (Id g = 0; g < groups; ++g)
   {
     if (f[g] > 0 && !nonManifold[g])
     {
-      measure[g] = 2 - v[g] + e[g] - f[g] - loops[g];
+      measures[g].Pieces = pieces[g];
+      measures[g].Handles = 2 * pieces[g] - v[g] + e[g] - f[g] - loops[g];
+      measures[g].Measured = true;
     }
   }
-  return measure;
+  return measures;
 }
 } // namespace meshlod

@@ -10,8 +10,27 @@
 
 namespace meshlod
 {
-/// Marks a group that HandleMeasures does not measure.
-constexpr Id UnmeasuredGroup = -1;
+/// HandleMeasures' result for one group of points.
+struct PieceMeasure
+{
+  /// Connected pieces of the group's triangles, where a point the surface touches itself at
+  /// (two fans of triangles or more) joins nothing: two spheres touching at a point are two.
+  Id Pieces = 0;
+  /// Twice the genus of those pieces, summed (a piece that cannot be oriented counts its
+  /// cross-caps): 2 Pieces - V + E - F - L, with V the group's points counted once per fan, E
+  /// its distinct edges, F its triangles and L its boundary loops. A hole that closes (a loop
+  /// less, one more in V - E + F) leaves it as it was; a handle that closes lowers it by 2.
+  Id Handles = 0;
+  /// False for a group without triangles and for one with an edge of three triangles or more
+  /// (what it measures is not defined there): not compared.
+  bool Measured = false;
+  bool operator==(const PieceMeasure& other) const
+  {
+    return this->Pieces == other.Pieces && this->Handles == other.Handles &&
+      this->Measured == other.Measured;
+  }
+  bool operator!=(const PieceMeasure& other) const { return !(*this == other); }
+};
 
 /// HandleMeasures' flags of a triangle's side c.
 inline bool SideOnBoundary(unsigned char flags, int c)
@@ -23,20 +42,12 @@ inline bool SideNonManifold(unsigned char flags, int c)
   return (flags >> (c + 3) & 1) != 0;
 }
 
-/// For each group of points (pointGroup[p] in 0 .. groups - 1, one per point of the mesh the
-/// triangles refer to): 2 - V + E - F - L, where V counts the points of the group that
-/// triangles use, E the distinct edges whose lower point is in the group, F the triangles whose
-/// first corner is, and L the boundary loops (the cycles of edges of one triangle) through its
-/// points. For a group that is one connected manifold piece, that is twice its genus when it is
-/// orientable and its number of cross-caps when not: a hole that closes (a loop less, a face
-/// more in the Euler characteristic) leaves it as it was, a handle that closes lowers it by 2.
-/// UnmeasuredGroup for a group without triangles and for one with an edge of three triangles or
-/// more (what it measures is not defined there). Points where the surface touches itself (two
-/// fans of triangles or more) count once per fan, so that the measure is the surface's.
-/// `sides`, when given, receives per triangle bit c set when its side from corner c to the next
-/// has no other triangle (SideOnBoundary), bit c + 3 when it has two others or more
-/// (SideNonManifold).
-VTKFILTERSMESHLOD_EXPORT std::vector<Id> HandleMeasures(const Id* triangles,
+/// The pieces and handles of each group of points (pointGroup[p] in 0 .. groups - 1, one per
+/// point of the mesh the triangles refer to); an edge counts in the group of its lower point,
+/// a triangle and a piece in that of its first corner. `sides`, when given, receives per
+/// triangle bit c set when its side from corner c to the next has no other triangle
+/// (SideOnBoundary), bit c + 3 when it has two others or more (SideNonManifold).
+VTKFILTERSMESHLOD_EXPORT std::vector<PieceMeasure> HandleMeasures(const Id* triangles,
   Id count,
   const std::vector<Id>& pointGroup,
   Id groups,

@@ -1,7 +1,7 @@
 // HandleMeasures (the genus check of vtkVertexClusterOctree's levels) on tiny hand-made
 // meshes with exact expected results: twice the genus of an orientable piece, the cross-caps
-// of a non-orientable one, unchanged when a hole closes, a pinched point counted once per fan,
-// and the side flags.
+// of a non-orientable one, unchanged when a hole closes, surfaces touching at a point counted
+// as their parts, and the side flags.
 #include "Core/PieceGenus.h"
 #include "MeshLODTestCheck.h"
 
@@ -49,11 +49,15 @@ Id PointsOf(const std::vector<Id>& triangles)
   return most + 1;
 }
 
-// The measure of a mesh taken as one group.
-Id Measure(const std::vector<Id>& triangles)
+// The handles (twice the genus) of a mesh taken as one group, checking its number of pieces.
+Id Measure(const std::vector<Id>& triangles, Id pieces = 1)
 {
   const std::vector<Id> group(PointsOf(triangles), 0);
-  return HandleMeasures(triangles.data(), static_cast<Id>(triangles.size() / 3), group, 1)[0];
+  const PieceMeasure m =
+    HandleMeasures(triangles.data(), static_cast<Id>(triangles.size() / 3), group, 1)[0];
+  MESHLOD_CHECK(m.Measured);
+  MESHLOD_CHECK_EQ(m.Pieces, pieces);
+  return m.Handles;
 }
 
 const std::vector<Id> Tetrahedron = { 0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2 };
@@ -69,14 +73,23 @@ void TestSurfaces()
   std::vector<Id> holed = Grid(4, 4, true, true);
   holed.erase(holed.begin(), holed.begin() + 6);
   MESHLOD_CHECK_EQ(Measure(holed), 2);
-  // Two tetrahedra touching at point 0: two spheres (2 - 2 - 2 = -2), not a pinched surface
-  // of one point less (2 - 3 = -1).
-  std::vector<Id> pinched = Tetrahedron;
+  // Two tetrahedra touching at point 0: two spheres, not a pinched surface of one point less
+  // (whose 2 - V + E - F is 2 - 3 = -1).
+  std::vector<Id> spheres = Tetrahedron;
   for (const Id p : Tetrahedron)
   {
-    pinched.push_back(p == 0 ? 0 : p + 3);
+    spheres.push_back(p == 0 ? 0 : p + 3);
   }
-  MESHLOD_CHECK_EQ(Measure(pinched), -2);
+  MESHLOD_CHECK_EQ(Measure(spheres, 2), 0);
+  // Two tori touching at a point: 2 + 2, where one torus alone has 2 (a sum over the
+  // surface's fans alone, 2 - V + E - F, is 2 for both).
+  const std::vector<Id> torus = Grid(4, 4, true, true);
+  std::vector<Id> tori = torus;
+  for (const Id p : torus)
+  {
+    tori.push_back(p == 0 ? 0 : p + 15);
+  }
+  MESHLOD_CHECK_EQ(Measure(tori, 2), 4);
 }
 
 void TestGroups()
@@ -94,13 +107,13 @@ void TestGroups()
   triangles.insert(triangles.end(), { fin, fin + 1, fin + 2, fin + 1, fin, fin + 3, fin, fin + 1, fin + 4 });
   group.resize(fin + 5, 3);
   std::vector<unsigned char> sides;
-  const std::vector<Id> measures =
+  const std::vector<PieceMeasure> measures =
     HandleMeasures(triangles.data(), static_cast<Id>(triangles.size() / 3), group, 4, &sides);
   MESHLOD_CHECK_EQ(measures.size(), 4u);
-  MESHLOD_CHECK_EQ(measures[0], 0);
-  MESHLOD_CHECK_EQ(measures[1], UnmeasuredGroup);
-  MESHLOD_CHECK_EQ(measures[2], 2);
-  MESHLOD_CHECK_EQ(measures[3], UnmeasuredGroup);
+  MESHLOD_CHECK(measures[0].Measured && measures[0].Handles == 0 && measures[0].Pieces == 1);
+  MESHLOD_CHECK(!measures[1].Measured);
+  MESHLOD_CHECK(measures[2].Measured && measures[2].Handles == 2 && measures[2].Pieces == 1);
+  MESHLOD_CHECK(!measures[3].Measured);
   // Side flags: none on the closed pieces; each fin triangle has its first side on the edge of
   // three triangles and its two others on the boundary.
   MESHLOD_CHECK_EQ(sides.size(), triangles.size() / 3);
@@ -123,8 +136,8 @@ void TestOpenSides()
   const std::vector<Id> square = { 0, 1, 2, 0, 2, 3 };
   std::vector<unsigned char> sides;
   const std::vector<Id> group(4, 0);
-  const std::vector<Id> measures = HandleMeasures(square.data(), 2, group, 1, &sides);
-  MESHLOD_CHECK_EQ(measures[0], 0);
+  const std::vector<PieceMeasure> measures = HandleMeasures(square.data(), 2, group, 1, &sides);
+  MESHLOD_CHECK_EQ(measures[0].Handles, 0);
   MESHLOD_CHECK(SideOnBoundary(sides[0], 0) && SideOnBoundary(sides[0], 1));
   MESHLOD_CHECK(!SideOnBoundary(sides[0], 2)); // 2 -> 0, the diagonal
   MESHLOD_CHECK(!SideOnBoundary(sides[1], 0)); // 0 -> 2
