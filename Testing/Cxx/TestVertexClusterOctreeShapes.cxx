@@ -299,25 +299,8 @@ void TestNonManifold()
   }
   double p0[3];
   sphere->GetPoint(m, p0);
-  std::vector<double> points;
-  std::vector<long long> triangles;
-  for (int copy = 0; copy < 2; ++copy)
-  {
-    for (vtkIdType p = 0; p < n; ++p)
-    {
-      double x[3];
-      sphere->GetPoint(p, x);
-      points.insert(points.end(), { copy == 0 ? x[0] : 2.0 * p0[0] - x[0], x[1], x[2] });
-    }
-  }
-  for (const Triangle& t : Triangles(sphere))
-  {
-    triangles.insert(triangles.end(), { t[0], t[1], t[2] });
-    // The mirror image reverses the orientation; B's copy of m is A's m.
-    auto b = [&](vtkIdType v) { return static_cast<long long>(v == m ? m : v + n); };
-    triangles.insert(triangles.end(), { b(t[0]), b(t[2]), b(t[1]) });
-  }
-  vtkSmartPointer<vtkPolyData> twin = testing::MakePolyData(points, triangles);
+  vtkSmartPointer<vtkPolyData> twin = testing::MakeTwinTouchingAt(
+    sphere, m, m, [&p0](double x[3]) { x[0] = 2.0 * p0[0] - x[0]; }, true);
 
   vtkNew<vtkVertexClusterOctree> filter;
   filter->SetInputData(twin);

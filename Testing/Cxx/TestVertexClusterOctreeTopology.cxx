@@ -193,31 +193,9 @@ vtkSmartPointer<vtkPolyData> MakeTorusOrKleinBottle(int n, int m, bool klein, do
 // point where the first's outer equator and the second's inner equator meet, (1.3, 0, 0).
 vtkSmartPointer<vtkPolyData> MakeToriSharingPoint()
 {
-  vtkSmartPointer<vtkPolyData> torus = MakeTorusOrKleinBottle(60, 30, false, 0.3);
-  const long long n = torus->GetNumberOfPoints();
-  const long long shared = 30 * 30; // the second torus's point (30, 0)
-  std::vector<double> points;
-  std::vector<long long> triangles;
-  for (int copy = 0; copy < 2; ++copy)
-  {
-    for (vtkIdType p = 0; p < n; ++p)
-    {
-      double x[3];
-      torus->GetPoint(p, x);
-      points.insert(points.end(), { x[0] + 2.6 * copy, x[1], x[2] });
-    }
-    vtkIdType size;
-    const vtkIdType* ids;
-    for (vtkIdType c = 0; c < torus->GetNumberOfPolys(); ++c)
-    {
-      torus->GetPolys()->GetCellAtId(c, size, ids);
-      for (int k = 0; k < 3; ++k)
-      {
-        triangles.push_back(copy == 1 && ids[k] == shared ? 0 : copy * n + ids[k]);
-      }
-    }
-  }
-  return testing::MakePolyData(points, triangles); // (the unused copy of the point is dropped)
+  // (The second torus's point (30, 0) is 30 * 30.)
+  return testing::MakeTwinTouchingAt(MakeTorusOrKleinBottle(60, 30, false, 0.3), 0, 30 * 30,
+    [](double x[3]) { x[0] += 2.6; }, false);
 }
 
 // The handles of a surface: HandleMeasures of each connected piece, summed (twice the genus of

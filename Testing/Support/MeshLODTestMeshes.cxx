@@ -184,6 +184,41 @@ vtkSmartPointer<vtkPolyData> MakePolyData(
   return mesh;
 }
 
+vtkSmartPointer<vtkPolyData> MakeTwinTouchingAt(vtkPolyData* mesh,
+  vtkIdType first,
+  vtkIdType second,
+  const std::function<void(double[3])>& move,
+  bool mirrored)
+{
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  std::vector<double> points;
+  std::vector<long long> triangles;
+  for (int copy = 0; copy < 2; ++copy)
+  {
+    for (vtkIdType p = 0; p < n; ++p)
+    {
+      double x[3];
+      mesh->GetPoint(p, x);
+      if (copy == 1)
+      {
+        move(x);
+      }
+      points.insert(points.end(), x, x + 3);
+    }
+    vtkIdType size;
+    const vtkIdType* ids;
+    for (vtkIdType c = 0; c < mesh->GetNumberOfPolys(); ++c)
+    {
+      mesh->GetPolys()->GetCellAtId(c, size, ids);
+      for (const int k : { 0, mirrored && copy == 1 ? 2 : 1, mirrored && copy == 1 ? 1 : 2 })
+      {
+        triangles.push_back(copy == 1 && ids[k] == second ? first : copy * n + ids[k]);
+      }
+    }
+  }
+  return MakePolyData(points, triangles);
+}
+
 // Grid points are numbered row by row: point (i, j) = j * (nx + 1) + i at (i, j, 0).
 // Square (i, j) becomes triangles (a, b, c) and (a, c, d), counter-clockwise seen from +z.
 vtkSmartPointer<vtkPolyData> MakeGrid(int nx, int ny)

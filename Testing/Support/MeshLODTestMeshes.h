@@ -7,6 +7,7 @@
 
 class vtkAlgorithm;
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,15 @@ vtkSmartPointer<vtkPolyData> MakeWaveletIsosurface(int halfExtent);
 /// A closed surface from a flat list of points and triangles.
 vtkSmartPointer<vtkPolyData> MakePolyData(
   const std::vector<double>& points, const std::vector<long long>& triangles);
+/// Two copies of a triangle mesh touching at one point: the second copy's points moved by
+/// `move` (with `mirrored` its triangles reversed, as a mirror image needs to face outwards),
+/// and its point `second` replaced by the first copy's point `first` (its own copy of the point
+/// stays, used by no triangle).
+vtkSmartPointer<vtkPolyData> MakeTwinTouchingAt(vtkPolyData* mesh,
+  vtkIdType first,
+  vtkIdType second,
+  const std::function<void(double[3])>& move,
+  bool mirrored);
 
 } // namespace testing
 } // namespace meshlod
