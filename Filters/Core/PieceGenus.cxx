@@ -1,7 +1,6 @@
 #include "PieceGenus.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <numeric>
 
 namespace meshlod
