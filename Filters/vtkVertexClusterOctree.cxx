@@ -838,6 +838,9 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevel(meshlod::OctreeClustering& cl
       "Level " << i + 1 << " would keep no triangle; the hierarchy stops at level " << i << ".");
     return false;
   }
+  // (An epsilon below the previous level's is raised to it.)
+  const double asked = std::max(
+    requests[i].Epsilon, self->LevelEpsilons.empty() ? 0.0 : self->LevelEpsilons.back());
   self->LevelEpsilons.push_back(level.Epsilon);
   const vtkIdType previousTriangles =
     builder.GetLevel(builder.GetNumberOfLevels() - 1)->GetNumberOfPolys();
@@ -846,9 +849,7 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevel(meshlod::OctreeClustering& cl
     self->WarnIfCountMissed(static_cast<int>(i + 1), requests[i].Count,
       static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles()), previousTriangles);
   }
-  else if (level.Epsilon < std::max(requests[i].Epsilon, self->LevelEpsilons.size() > 1
-                                          ? self->LevelEpsilons[self->LevelEpsilons.size() - 2]
-                                          : 0.0))
+  else if (level.Epsilon < asked)
   {
     vtkWarningWithObjectMacro(self,
       "Level " << i + 1 << ": epsilon " << requests[i].Epsilon

@@ -147,7 +147,9 @@ public:
   void BuildTree();
 
   /// The next level at error bound `epsilon` (world units, at least the previous level's).
-  /// Returns false when the level would have no triangle left.
+  /// With PreserveTopology, an epsilon whose level would close a handle is lowered to the
+  /// largest found below it that keeps every handle (level.Epsilon is the one used). Returns
+  /// false when the level would have no triangle left.
   bool MakeLevel(double epsilon, ClusterLevel& level);
 
   /// The next level with about `targetTriangles` triangles (at most that many when reachable),

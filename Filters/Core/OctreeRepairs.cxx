@@ -190,13 +190,10 @@ bool OctreeClustering::Internals::LosesHandle(const Synthesis& s) const
   {
     group[s.PointCluster[p]] = this->PieceOf(p);
   }
-  std::vector<Id> kept;
-  for (size_t j = 0; j < s.From.size(); ++j)
+  std::vector<Id> kept; // the triangles the level would have (as Finalize takes them)
+  for (const Id j : this->KeptTriangles(s))
   {
-    if (!s.Duplicate[j])
-    {
-      kept.insert(kept.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
-    }
+    kept.insert(kept.end(), s.Triangles.begin() + 3 * j, s.Triangles.begin() + 3 * j + 3);
   }
   const std::vector<PieceMeasure> now = HandleMeasures(
     kept.data(), static_cast<Id>(kept.size() / 3), group, this->PreviousPieces);
