@@ -1,6 +1,7 @@
 // Octree clustering: the repairs of a trial level (see OctreeClusteringInternals.h): folds, fins,
 // breaks, pinched edges and vertices; the clusters of a triangle that needs one are marked, and
 // the trial is made again with them split.
+#include "ConcurrentForest.h"
 #include "FreshMemory.h"
 #include "GroupByKey.h"
 #include "OctreeClusteringInternals.h"
@@ -36,25 +37,12 @@ std::vector<Id> ClustersOf(const Synthesis& s, Flagged flagged)
   return clusters;
 }
 
-// Union-find over 0..n-1 (FindRoot's forest; each root the smallest of its set).
-struct Pieces
+// Joins the points of a triangle in a forest of points (the pieces of a level).
+void JoinTriangle(ConcurrentForest& pieces, const Id* tri)
 {
-  std::vector<Id> Up;
-  explicit Pieces(Id n)
-    : Up(n)
-  {
-    std::iota(this->Up.begin(), this->Up.end(), Id(0));
-  }
-  Id Root(Id k) { return FindRoot(this->Up, k); }
-  void JoinTriangle(const Id* tri)
-  {
-    for (int c = 1; c < 3; ++c)
-    {
-      const Id a = this->Root(tri[0]), b = this->Root(tri[c]);
-      this->Up[std::max(a, b)] = std::min(a, b);
-    }
-  }
-};
+  pieces.Join(tri[0], tri[1]);
+  pieces.Join(tri[0], tri[2]);
+}
 
 // A cluster's link (MarkPinchedVertices): the far edges of its kept triangles, two ends each,
 // and room to join them, kept by each thread from one cluster to the next.
@@ -107,11 +95,13 @@ void OctreeClustering::Internals::LabelPreviousPieces()
   const Id points = this->PreviousPoints();
   const Id triangles = this->PreviousTriangles();
   const Id* tri = this->PreviousTriangleData();
-  Pieces pieces(points);
-  for (Id t = 0; t < triangles; ++t)
-  {
-    pieces.JoinTriangle(tri + 3 * t);
-  }
+  ConcurrentForest pieces(points);
+  vtkSMPTools::For(0, triangles, [&](Id begin, Id end) {
+    for (Id t = begin; t < end; ++t)
+    {
+      JoinTriangle(pieces, tri + 3 * t);
+    }
+  });
   // Numbered 0, 1, ... in the order of their smallest point (a root comes before the rest of
   // its piece), so that MarkBreaks needs one entry per piece, not per point.
   ResizeFresh(this->PreviousPiece, points);
@@ -329,14 +319,14 @@ Id OctreeClustering::Internals::MarkBreaks(Synthesis& s)
 {
   const Id kept = static_cast<Id>(s.From.size());
   const Id clusters = static_cast<Id>(s.Cut.size());
-  Pieces after(clusters); // the clusters joined by the kept triangles
+  ConcurrentForest after(clusters); // the clusters joined by the kept triangles
   std::vector<unsigned char> alive = FreshVector<unsigned char>(clusters, 0);
   for (Id j = 0; j < kept; ++j)
   {
     if (!s.Duplicate[j])
     {
       const Id* tri = s.Triangles.data() + 3 * j;
-      after.JoinTriangle(tri);
+      JoinTriangle(after, tri);
       alive[tri[0]] = alive[tri[1]] = alive[tri[2]] = 1;
     }
   }

@@ -1,17 +1,54 @@
 #include "PieceGenus.h"
 
+#include "ConcurrentForest.h"
+#include "FreshMemory.h"
+#include "GroupByKey.h"
+
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
+
 #include <algorithm>
-#include <numeric>
+#include <cstdint>
 
 namespace meshlod
 {
 namespace
 {
-void Join(std::vector<Id>& up, Id a, Id b)
+// One group's counts, summed by each thread over the items it is given and added up after
+// (integer sums: the same for any split of the work).
+struct GroupCounts
 {
-  a = FindRoot(up, a);
-  b = FindRoot(up, b);
-  up[std::max(a, b)] = std::min(a, b);
+  Id Edges = 0;
+  Id Triangles = 0;
+  Id Fans = 0;
+  Id Pieces = 0;
+  bool NonManifold = false;
+};
+using ThreadCounts = vtkSMPThreadLocal<std::vector<GroupCounts>>;
+
+// What lies across a triangle's side (one byte per corner: the side from it to the next).
+enum SideKind : unsigned char
+{
+  TwoTriangles = 0,
+  Boundary = 1,
+  ThreeOrMore = 2
+};
+
+Id NextCorner(Id k)
+{
+  return k % 3 == 2 ? k - 2 : k + 1;
+}
+
+Id PreviousCorner(Id k)
+{
+  return k % 3 == 0 ? k + 2 : k - 1;
+}
+
+// body(begin, end, counts) over [0, n) with vtkSMPTools, counts the running thread's own.
+template <typename Body>
+void ForEachCounting(Id n, ThreadCounts& counts, Body&& body)
+{
+  vtkSMPTools::For(0, n, [&](Id begin, Id end) { body(begin, end, counts.Local()); });
 }
 } // namespace
 
@@ -23,126 +60,153 @@ std::vector<PieceMeasure> HandleMeasures(const Id* triangles,
 {
   const Id points = static_cast<Id>(pointGroup.size());
   const Id corners = 3 * count;
-  auto nextCorner = [](Id k) { return k % 3 == 2 ? k - 2 : k + 1; };
-  // Each side of each triangle listed at its lower point (as the corner it starts from), in
-  // compressed rows sorted by the side's higher point: an edge is then a run of sides with one
-  // higher point, as long as its number of triangles.
-  auto lower = [&](Id k) { return std::min(triangles[k], triangles[nextCorner(k)]); };
-  auto higher = [&](Id k) { return std::max(triangles[k], triangles[nextCorner(k)]); };
-  std::vector<Id> offsets(points + 1, 0);
-  for (Id k = 0; k < corners; ++k)
-  {
-    ++offsets[lower(k) + 1];
-  }
-  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-  std::vector<Id> sides(corners);
-  {
-    std::vector<Id> fill(offsets.begin(), offsets.end() - 1);
-    for (Id k = 0; k < corners; ++k)
+  // Each side of each triangle listed at its lower point, as its higher point (high 32 bits)
+  // and the corner it starts from (low 32 bits), in compressed rows sorted by that: an edge is
+  // then a run of sides with one higher point, as long as its number of triangles.
+  auto lower = [&](Id k) { return std::min(triangles[k], triangles[NextCorner(k)]); };
+  auto higher = [&](Id k) { return std::max(triangles[k], triangles[NextCorner(k)]); };
+  std::vector<Id> offsets;
+  std::vector<std::uint64_t> sides;
+  GroupItemsByKey(
+    static_cast<std::size_t>(points), corners, [&](std::int64_t k) { return lower(Id(k)); },
+    [&](std::int64_t k) {
+      return std::uint64_t(higher(Id(k))) << 32 | static_cast<std::uint32_t>(k);
+    },
+    offsets, sides);
+  vtkSMPTools::For(0, points, [&](Id begin, Id end) {
+    for (Id p = begin; p < end; ++p)
     {
-      sides[fill[lower(k)]++] = k;
+      std::sort(sides.begin() + offsets[p], sides.begin() + offsets[p + 1]);
     }
-  }
-  for (Id p = 0; p < points; ++p)
-  {
-    std::sort(sides.begin() + offsets[p], sides.begin() + offsets[p + 1],
-      [&](Id a, Id b) { return higher(a) < higher(b) || (higher(a) == higher(b) && a < b); });
-  }
+  });
+  auto sideHigher = [](std::uint64_t side) { return static_cast<Id>(side >> 32); };
+  auto sideCorner = [](std::uint64_t side) { return static_cast<Id>(side & 0xffffffffu); };
 
+  ThreadCounts counts(std::vector<GroupCounts>(static_cast<std::size_t>(groups)));
   // Points are counted as their fans (corners joined across the edges of two triangles), so
   // that a pinched point (two fans) counts as the two points of the surface it joins: the
-  // measure is the surface's, wherever it touches itself.
-  std::vector<Id> e(groups, 0), f(groups, 0), v(groups, 0), loops(groups, 0);
-  std::vector<unsigned char> nonManifold(groups, 0);
-  std::vector<Id> up(corners);
-  std::iota(up.begin(), up.end(), Id(0));
-  // The pieces: triangles joined across edges of two triangles.
-  std::vector<Id> piece(count);
-  std::iota(piece.begin(), piece.end(), Id(0));
-  // visit(p, first, last) for each edge from p to a higher point: the sides on it.
-  auto forEachEdge = [&](auto&& visit)
-  {
-    for (Id p = 0; p < points; ++p)
+  // measure is the surface's, wherever it touches itself. The pieces: triangles joined across
+  // edges of two triangles.
+  ConcurrentForest fans(corners);
+  ConcurrentForest pieces(count);
+  std::vector<unsigned char> kind = FreshVector<unsigned char>(corners, TwoTriangles);
+  ForEachCounting(points, counts, [&](Id begin, Id end, std::vector<GroupCounts>& mine) {
+    for (Id p = begin; p < end; ++p)
     {
+      GroupCounts& group = mine[pointGroup[p]];
       const auto last = sides.begin() + offsets[p + 1];
       for (auto run = sides.begin() + offsets[p]; run != last;)
       {
-        const Id q = higher(*run);
-        const auto end = std::find_if(run, last, [&](Id k) { return higher(k) != q; });
-        visit(p, run, end);
-        run = end;
+        const Id q = sideHigher(*run);
+        const auto next =
+          std::find_if(run, last, [&](std::uint64_t side) { return sideHigher(side) != q; });
+        group.Edges += 1;
+        if (next - run == 2)
+        {
+          // (The two sides run in opposite directions where the triangles agree on their
+          // orientation, in the same direction where they do not.)
+          const Id a = sideCorner(run[0]), b = sideCorner(run[1]);
+          auto at = [&](Id k, bool atP) { return (triangles[k] == p) == atP ? k : NextCorner(k); };
+          fans.Join(at(a, true), at(b, true));
+          fans.Join(at(a, false), at(b, false));
+          pieces.Join(a / 3, b / 3);
+        }
+        else
+        {
+          group.NonManifold |= next - run > 2;
+          for (auto side = run; side != next; ++side)
+          {
+            kind[sideCorner(*side)] = next - run == 1 ? Boundary : ThreeOrMore;
+          }
+        }
+        run = next;
       }
     }
-  };
-  forEachEdge(
-    [&](Id p, auto run, auto end)
+  });
+  ForEachCounting(count, counts, [&](Id begin, Id end, std::vector<GroupCounts>& mine) {
+    for (Id t = begin; t < end; ++t)
     {
-      e[pointGroup[p]] += 1;
-      if (end - run == 2)
+      GroupCounts& group = mine[pointGroup[triangles[3 * t]]];
+      group.Triangles += 1;
+      group.Pieces += pieces.IsRoot(t) ? 1 : 0;
+      for (Id k = 3 * t; k < 3 * t + 3; ++k)
       {
-        // (The two sides run in opposite directions where the triangles agree on their
-        // orientation, in the same direction where they do not.)
-        auto at = [&](Id k, bool atP) { return (triangles[k] == p) == atP ? k : nextCorner(k); };
-        Join(up, at(run[0], true), at(run[1], true));
-        Join(up, at(run[0], false), at(run[1], false));
-        Join(piece, run[0] / 3, run[1] / 3);
+        mine[pointGroup[triangles[k]]].Fans += fans.IsRoot(k) ? 1 : 0;
       }
-      else if (end - run > 2)
+    }
+  });
+
+  // Boundary loops: the fans joined along the sides without another triangle, each loop
+  // counted at its root (its smallest corner) in the group of that corner's point.
+  std::vector<Id> loops(static_cast<std::size_t>(groups), 0);
+  bool anyBoundary = false;
+  for (Id k = 0; k < corners && !anyBoundary; ++k)
+  {
+    anyBoundary = kind[k] == Boundary;
+  }
+  if (anyBoundary)
+  {
+    vtkSMPTools::For(0, corners, [&](Id begin, Id end) {
+      for (Id k = begin; k < end; ++k)
       {
-        nonManifold[pointGroup[p]] = 1;
+        if (kind[k] == Boundary)
+        {
+          fans.Join(k, NextCorner(k));
+        }
       }
     });
-  for (Id k = 0; k < corners; ++k)
-  {
-    v[pointGroup[triangles[k]]] += FindRoot(up, k) == k ? 1 : 0;
+    std::vector<unsigned char> counted = FreshVector<unsigned char>(corners, 0);
+    for (Id k = 0; k < corners; ++k)
+    {
+      if (kind[k] == Boundary || kind[PreviousCorner(k)] == Boundary)
+      {
+        const Id root = fans.Root(k);
+        if (!counted[root])
+        {
+          counted[root] = 1;
+          loops[pointGroup[triangles[root]]] += 1;
+        }
+      }
+    }
   }
-  std::vector<Id> pieces(groups, 0);
-  for (Id t = 0; t < count; ++t)
-  {
-    f[pointGroup[triangles[3 * t]]] += 1;
-    pieces[pointGroup[triangles[3 * t]]] += FindRoot(piece, t) == t ? 1 : 0;
-  }
-
-  // Boundary loops: the fans joined along the sides without another triangle.
   if (sideFlags)
   {
-    sideFlags->assign(count, 0);
-  }
-  std::vector<unsigned char> onBoundary(corners, 0);
-  forEachEdge(
-    [&](Id, auto run, auto end)
-    {
-      for (auto side = run; side != end && end - run != 2; ++side)
+    ResizeFresh(*sideFlags, count);
+    vtkSMPTools::For(0, count, [&](Id begin, Id end) {
+      for (Id t = begin; t < end; ++t)
       {
-        const Id k = *side;
-        if (end - run == 1)
+        unsigned char flags = 0;
+        for (int c = 0; c < 3; ++c)
         {
-          onBoundary[k] = onBoundary[nextCorner(k)] = 1;
-          Join(up, k, nextCorner(k));
+          const unsigned char side = kind[3 * t + c];
+          flags |= static_cast<unsigned char>(
+            side == Boundary ? 1u << c : side == ThreeOrMore ? 1u << (c + 3) : 0u);
         }
-        if (sideFlags)
-        {
-          (*sideFlags)[k / 3] |= static_cast<unsigned char>(1u << (k % 3 + (end - run == 1 ? 0 : 3)));
-        }
+        (*sideFlags)[t] = flags;
       }
     });
-  for (Id k = 0; k < corners; ++k)
-  {
-    const Id root = onBoundary[k] ? FindRoot(up, k) : InvalidId;
-    if (root != InvalidId && onBoundary[root] != 2)
-    {
-      onBoundary[root] = 2; // counted
-      loops[pointGroup[triangles[root]]] += 1;
-    }
   }
 
-  std::vector<PieceMeasure> measures(groups);
+  std::vector<GroupCounts> total(static_cast<std::size_t>(groups));
+  for (const std::vector<GroupCounts>& mine : counts)
+  {
+    for (Id g = 0; g < groups; ++g)
+    {
+      total[g].Edges += mine[g].Edges;
+      total[g].Triangles += mine[g].Triangles;
+      total[g].Fans += mine[g].Fans;
+      total[g].Pieces += mine[g].Pieces;
+      total[g].NonManifold |= mine[g].NonManifold;
+    }
+  }
+  std::vector<PieceMeasure> measures(static_cast<std::size_t>(groups));
   for (Id g = 0; g < groups; ++g)
   {
-    if (f[g] > 0 && !nonManifold[g])
+    const GroupCounts& c = total[g];
+    if (c.Triangles > 0 && !c.NonManifold)
     {
-      measures[g].Pieces = pieces[g];
-      measures[g].Handles = 2 * pieces[g] - v[g] + e[g] - f[g] - loops[g];
+      measures[g].Pieces = c.Pieces;
+      measures[g].Handles = 2 * c.Pieces - c.Fans + c.Edges - c.Triangles - loops[g];
       measures[g].Measured = true;
     }
   }

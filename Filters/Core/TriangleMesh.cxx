@@ -1,6 +1,7 @@
 #include "TriangleMesh.h"
 
 #include "FreshMemory.h"
+#include "GroupByKey.h"
 
 #include "vtkSMPTools.h"
 
@@ -13,14 +14,6 @@
 
 namespace meshlod
 {
-namespace
-{
-// VertexTriangleAdjacency::Build splits the vertices into as many ranges as threads, up to
-// this many, from this many triangles up (below, one pass costs less than starting threads).
-constexpr Id MaximumRowChunks = 8;
-constexpr Id ParallelRowsMinimumTriangles = 65536;
-}
-
 //------------------------------------------------------------------------------
 void TriangleMesh::AreaVector(Id t, double n[3]) const
 {
@@ -38,57 +31,11 @@ void TriangleMesh::AreaVector(Id t, double n[3]) const
 //------------------------------------------------------------------------------
 void VertexTriangleAdjacency::Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints)
 {
-  // Counting sort: count, prefix sum, fill. Filling in triangle order keeps each row sorted.
-  // The offsets double as the fill cursors (row v is filled from Offsets[v] on, which ends at
-  // the old Offsets[v + 1]), and are shifted back afterwards: no other array is needed, and
-  // rebuilding reuses the rows' memory. With several threads, each counts and fills the rows of
-  // one range of vertices, reading every triangle: the scattered writes, which take the time,
-  // are shared out, and every row is still filled in triangle order by one thread.
-  const Id chunks = numberOfTriangles < ParallelRowsMinimumTriangles
-    ? 1
-    : std::max<Id>(1, std::min<Id>(MaximumRowChunks, vtkSMPTools::GetEstimatedNumberOfThreads()));
-  const auto forEachCorner = [&](Id chunk, auto&& f) {
-    const Id low = static_cast<Id>(std::int64_t(numberOfPoints) * chunk / chunks);
-    const Id high = static_cast<Id>(std::int64_t(numberOfPoints) * (chunk + 1) / chunks);
-    for (Id t = 0; t < numberOfTriangles; ++t)
-    {
-      const Id* tri = triangles + 3 * static_cast<size_t>(t);
-      if (tri[0] == InvalidId)
-      {
-        continue;
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        if (tri[k] >= low && tri[k] < high)
-        {
-          f(t, tri[k]);
-        }
-      }
-    }
-  };
-  AssignFresh(this->Offsets, static_cast<size_t>(numberOfPoints) + 1, 0);
-  vtkSMPTools::For(0, chunks, 1, [&](Id begin, Id end) {
-    for (Id chunk = begin; chunk < end; ++chunk)
-    {
-      forEachCorner(chunk, [&](Id, Id v) { ++this->Offsets[v + 1]; });
-    }
-  });
-  for (Id v = 0; v < numberOfPoints; ++v)
-  {
-    this->Offsets[v + 1] += this->Offsets[v];
-  }
-  ResizeFresh(this->Triangles, this->Offsets[numberOfPoints]);
-  vtkSMPTools::For(0, chunks, 1, [&](Id begin, Id end) {
-    for (Id chunk = begin; chunk < end; ++chunk)
-    {
-      forEachCorner(chunk, [&](Id t, Id v) { this->Triangles[this->Offsets[v]++] = t; });
-    }
-  });
-  for (Id v = numberOfPoints; v > 0; --v)
-  {
-    this->Offsets[v] = this->Offsets[v - 1];
-  }
-  this->Offsets[0] = 0;
+  // Each corner in its point's row, in triangle order: each row sorted.
+  GroupItemsByKey(
+    static_cast<std::size_t>(numberOfPoints), 3 * static_cast<std::int64_t>(numberOfTriangles),
+    [triangles](std::int64_t k) { return triangles[k - k % 3] == InvalidId ? -1 : triangles[k]; },
+    [](std::int64_t k) { return static_cast<Id>(k / 3); }, this->Offsets, this->Triangles);
 }
 
 namespace
@@ -251,17 +198,36 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
 //------------------------------------------------------------------------------
 void TriangleMesh::GetBounds(double lo[3], double hi[3]) const
 {
+  // Per block of points, then over the blocks: a minimum and a maximum do not depend on the
+  // order they are taken in.
+  constexpr Id Block = 16384;
   const Id nv = this->GetNumberOfPoints();
+  const Id blocks = (nv + Block - 1) / Block;
+  std::vector<double> boxes(6 * static_cast<std::size_t>(blocks));
+  vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
+    for (Id b = begin; b < end; ++b)
+    {
+      double* box = boxes.data() + 6 * b;
+      std::copy(this->Point(b * Block), this->Point(b * Block) + 3, box);
+      std::copy(this->Point(b * Block), this->Point(b * Block) + 3, box + 3);
+      for (Id v = b * Block + 1; v < std::min(nv, (b + 1) * Block); ++v)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          box[c] = std::min(box[c], this->Point(v)[c]);
+          box[c + 3] = std::max(box[c + 3], this->Point(v)[c]);
+        }
+      }
+    }
+  });
   for (int c = 0; c < 3; ++c)
   {
-    lo[c] = hi[c] = nv > 0 ? this->Point(0)[c] : 0.0;
-  }
-  for (Id v = 1; v < nv; ++v)
-  {
-    for (int c = 0; c < 3; ++c)
+    lo[c] = blocks > 0 ? boxes[c] : 0.0;
+    hi[c] = blocks > 0 ? boxes[c + 3] : 0.0;
+    for (Id b = 1; b < blocks; ++b)
     {
-      lo[c] = std::min(lo[c], this->Point(v)[c]);
-      hi[c] = std::max(hi[c], this->Point(v)[c]);
+      lo[c] = std::min(lo[c], boxes[6 * b + c]);
+      hi[c] = std::max(hi[c], boxes[6 * b + c + 3]);
     }
   }
 }

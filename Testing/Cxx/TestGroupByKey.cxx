@@ -81,6 +81,26 @@ void CheckRandom()
     }
   }
   MESHLOD_CHECK(rowsMatch);
+
+  // GroupItemsByKey on the same items (300,000: by ranges of keys in parallel), every third
+  // left out by a negative key: the rows GroupByKey gives for the others.
+  auto keyOf = [&](std::int64_t i) { return i % 3 == 2 ? Id(-1) : items[i].first; };
+  auto valueOf = [&](std::int64_t i) { return items[i].second; };
+  std::vector<Id> rangeOffsets = { 3 };
+  std::vector<std::uint64_t> rangeValues = { 1, 2 };
+  meshlod::GroupItemsByKey(keys, static_cast<std::int64_t>(items.size()), keyOf, valueOf,
+    rangeOffsets, rangeValues);
+  std::vector<std::pair<Id, std::uint64_t>> kept;
+  for (std::size_t i = 0; i < items.size(); ++i)
+  {
+    if (i % 3 != 2)
+    {
+      kept.push_back(items[i]);
+    }
+  }
+  Group(keys, kept, offsets, values);
+  MESHLOD_CHECK(rangeOffsets == offsets);
+  MESHLOD_CHECK(rangeValues == values);
 }
 } // namespace
 

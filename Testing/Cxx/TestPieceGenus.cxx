@@ -5,7 +5,10 @@
 #include "Core/PieceGenus.h"
 #include "MeshLODTestCheck.h"
 
+#include "vtkSMPTools.h"
+
 #include <iostream>
+#include <string>
 #include <vector>
 
 namespace
@@ -143,6 +146,59 @@ void TestOpenSides()
   MESHLOD_CHECK(!SideOnBoundary(sides[1], 0)); // 0 -> 2
   MESHLOD_CHECK(SideOnBoundary(sides[1], 1) && SideOnBoundary(sides[1], 2));
 }
+
+void TestLargeWithThreads()
+{
+  // A torus of 180,000 triangles (large enough for the parallel passes) with 50 square holes
+  // cut apart from each other: still genus 1, with 50 boundary loops.
+  const int n = 300;
+  std::vector<Id> torus = Grid(n, n, true, true);
+  std::vector<Id> holed;
+  for (size_t t = 0; t < torus.size() / 3; ++t)
+  {
+    const size_t square = t / 2, i = square % n, j = square / n;
+    if (!(i % 30 == 3 && j % 60 == 7)) // 10 x 5 squares
+    {
+      holed.insert(holed.end(), torus.begin() + 3 * t, torus.begin() + 3 * t + 3);
+    }
+  }
+  MESHLOD_CHECK_EQ(torus.size() - holed.size(), 3u * 2 * 50);
+  MESHLOD_CHECK_EQ(Measure(holed), 2);
+  // Groups of points by id modulo 7, measured with one thread and with the backend in use:
+  // the same measures and side flags.
+  std::vector<Id> group(PointsOf(holed));
+  for (size_t p = 0; p < group.size(); ++p)
+  {
+    group[p] = static_cast<Id>(p % 7);
+  }
+  const std::string initial = vtkSMPTools::GetBackend();
+  std::vector<PieceMeasure> measures[2];
+  std::vector<unsigned char> sides[2];
+  for (int run = 0; run < 2; ++run)
+  {
+    vtkSMPTools::SetBackend(run == 0 ? "Sequential" : initial.c_str());
+    measures[run] =
+      HandleMeasures(holed.data(), static_cast<Id>(holed.size() / 3), group, 7, &sides[run]);
+  }
+  vtkSMPTools::SetBackend(initial.c_str());
+  MESHLOD_CHECK(measures[0] == measures[1]);
+  MESHLOD_CHECK(sides[0] == sides[1]);
+  Id pieces = 0, boundarySides = 0;
+  for (const PieceMeasure& m : measures[1])
+  {
+    MESHLOD_CHECK(m.Measured);
+    pieces += m.Pieces;
+  }
+  for (const unsigned char flags : sides[1])
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      boundarySides += SideOnBoundary(flags, c) ? 1 : 0;
+    }
+  }
+  MESHLOD_CHECK_EQ(pieces, 1);
+  MESHLOD_CHECK_EQ(boundarySides, 4 * 50);
+}
 } // namespace
 
 int TestPieceGenus(int, char*[])
@@ -150,5 +206,6 @@ int TestPieceGenus(int, char*[])
   TestSurfaces();
   TestGroups();
   TestOpenSides();
+  TestLargeWithThreads();
   return meshlod::testing::Result();
 }

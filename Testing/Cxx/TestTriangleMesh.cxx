@@ -290,6 +290,46 @@ void TestLargeRows()
   MESHLOD_CHECK(same);
   MESHLOD_CHECK_EQ(rows.Offsets.back(), 3 * (80000 - (80000 + 6) / 7));
 }
+
+// Bounds of a mesh large enough for GetBounds to take them in blocks of points in parallel:
+// the lowest and highest coordinates, whichever block holds them.
+void TestLargeBounds()
+{
+  TriangleMesh mesh = ToCore(testing::MakeGrid(200, 200)); // 40,401 points
+  const Id points = mesh.GetNumberOfPoints();
+  for (Id v = 0; v < points; ++v)
+  {
+    double* x = mesh.Point(v);
+    x[2] = 0.001 * static_cast<double>((v * 7919) % 1000) - 0.3;
+  }
+  mesh.Point(points - 1)[0] = -5.0; // in the last block
+  mesh.Point(20000)[1] = 1e4;       // in a middle block
+  mesh.Point(5)[2] = 7.0;            // in the first block
+  mesh.Point(3)[1] = -8.0;
+  double lo[3], hi[3];
+  mesh.GetBounds(lo, hi);
+  double expectedLo[3], expectedHi[3];
+  std::copy(mesh.Point(0), mesh.Point(0) + 3, expectedLo);
+  std::copy(mesh.Point(0), mesh.Point(0) + 3, expectedHi);
+  for (Id v = 1; v < points; ++v)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      expectedLo[c] = std::min(expectedLo[c], mesh.Point(v)[c]);
+      expectedHi[c] = std::max(expectedHi[c], mesh.Point(v)[c]);
+    }
+  }
+  MESHLOD_CHECK_EQ(lo[0], -5.0);
+  MESHLOD_CHECK_EQ(hi[1], 1e4);
+  MESHLOD_CHECK_EQ(hi[2], 7.0);
+  MESHLOD_CHECK_EQ(lo[1], -8.0);
+  for (int c = 0; c < 3; ++c)
+  {
+    MESHLOD_CHECK_EQ(lo[c], expectedLo[c]);
+    MESHLOD_CHECK_EQ(hi[c], expectedHi[c]);
+  }
+  MESHLOD_CHECK(lo[2] < -0.29);
+}
 } // namespace
 
 int TestTriangleMesh(int, char*[])
@@ -302,5 +342,6 @@ int TestTriangleMesh(int, char*[])
   TestCompaction();
   TestFreshMemory();
   TestLargeRows();
+  TestLargeBounds();
   return meshlod::testing::Result();
 }
