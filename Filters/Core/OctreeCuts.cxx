@@ -16,6 +16,12 @@ namespace meshlod
 {
 using namespace octree;
 
+namespace
+{
+// CollectCut walks the tree below this many nodes or more at once.
+constexpr std::size_t FrontierNodes = 256;
+}
+
 //------------------------------------------------------------------------------
 // Activation[i]: the smallest threshold on the path from node i to its root. A node is collapsed
 // (it or an ancestor is a cluster) exactly when epsilon reaches it.
@@ -60,21 +66,56 @@ void OctreeClustering::Internals::ComputeActivation(bool guess)
 void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cut) const
 {
   const ClusterTree& tree = this->Tree;
-  cut.clear();
-  std::vector<Id> stack(tree.Roots.rbegin(), tree.Roots.rend());
-  while (!stack.empty())
+  auto qualifies = [&](Id node) { return node < this->NV || this->Thr[node - this->NV] <= epsilon; };
+  // The walk in two parts: from the roots down to a frontier of some hundreds of nodes (each
+  // that does not qualify replaced by its children, in order), then below each frontier node
+  // with vtkSMPTools, the parts joined in frontier order: the depth-first order of one walk.
+  std::vector<Id> frontier(tree.Roots), next;
+  for (bool expanded = true; expanded && frontier.size() < FrontierNodes;)
   {
-    const Id node = stack.back();
-    stack.pop_back();
-    if (node < this->NV || this->Thr[node - this->NV] <= epsilon)
+    expanded = false;
+    next.clear();
+    for (const Id node : frontier)
     {
-      cut.push_back(node);
+      if (qualifies(node))
+      {
+        next.push_back(node);
+      }
+      else
+      {
+        next.insert(next.end(), tree.ChildrenBegin(node), tree.ChildrenEnd(node));
+        expanded = true;
+      }
     }
-    else
+    frontier.swap(next);
+  }
+  const Id parts = static_cast<Id>(frontier.size());
+  std::vector<std::vector<Id>> below(frontier.size());
+  vtkSMPTools::For(0, parts, 1, [&](Id begin, Id end) {
+    std::vector<Id> stack;
+    for (Id part = begin; part < end; ++part)
     {
-      stack.insert(stack.end(), std::make_reverse_iterator(tree.ChildrenEnd(node)),
-        std::make_reverse_iterator(tree.ChildrenBegin(node)));
+      stack.assign(1, frontier[part]);
+      while (!stack.empty())
+      {
+        const Id node = stack.back();
+        stack.pop_back();
+        if (qualifies(node))
+        {
+          below[part].push_back(node);
+        }
+        else
+        {
+          stack.insert(stack.end(), std::make_reverse_iterator(tree.ChildrenEnd(node)),
+            std::make_reverse_iterator(tree.ChildrenBegin(node)));
+        }
+      }
     }
+  });
+  cut.clear();
+  for (const std::vector<Id>& part : below)
+  {
+    cut.insert(cut.end(), part.begin(), part.end());
   }
 }
 

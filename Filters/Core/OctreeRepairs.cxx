@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
+#include <utility>
 
 namespace meshlod
 {
@@ -589,18 +590,17 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
   // vertex with very many triangles).
   std::vector<Id> offsets;
   std::vector<std::uint64_t> entries;
-  GroupByKey(
-    static_cast<size_t>(clusters),
-    [&](auto&& emit) {
-      for (Id j = 0; j < kept; ++j)
-      {
-        for (int c = 0; c < 3 && !s.Duplicate[j]; ++c)
-        {
-          const Id a = s.Triangles[3 * j + c], b = s.Triangles[3 * j + (c + 1) % 3];
-          emit(std::min(a, b),
-            (static_cast<std::uint64_t>(std::max(a, b)) << 32) | static_cast<std::uint32_t>(j));
-        }
-      }
+  auto sideEnds = [&](std::int64_t corner) {
+    const Id* tri = s.Triangles.data() + (corner - corner % 3);
+    const int c = static_cast<int>(corner % 3);
+    return std::make_pair(std::min(tri[c], tri[(c + 1) % 3]), std::max(tri[c], tri[(c + 1) % 3]));
+  };
+  GroupItemsByKey(
+    static_cast<size_t>(clusters), 3 * static_cast<std::int64_t>(kept),
+    [&](std::int64_t corner) { return s.Duplicate[corner / 3] ? Id(-1) : sideEnds(corner).first; },
+    [&](std::int64_t corner) {
+      return (static_cast<std::uint64_t>(sideEnds(corner).second) << 32) |
+        static_cast<std::uint32_t>(corner / 3);
     },
     offsets, entries);
   auto triangleOf = [&](std::size_t x) { return static_cast<Id>(entries[x] & 0xffffffffu); };

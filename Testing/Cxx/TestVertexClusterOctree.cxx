@@ -748,6 +748,33 @@ void TestAllPointsCoincident()
 }
 } // namespace
 
+// The same levels with one thread and with the backend in use, on an isosurface large enough
+// for the passes that split their work by ranges of points or clusters (from 65,536 triangles
+// in a level, and from a few hundred tree nodes for the walk that collects a cut).
+void TestThreadsOnLargeInput()
+{
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Gyroid, 170);
+  const vtkIdType input = mesh->GetNumberOfPolys();
+  std::vector<vtkSmartPointer<vtkMultiBlockDataSet>> runs;
+  testing::RunWithBothBackends([&]() -> vtkSmartPointer<vtkPolyData> {
+    vtkNew<vtkVertexClusterOctree> cluster;
+    cluster->SetInputData(mesh);
+    cluster->SetLevelModeToTargetTriangleCounts();
+    cluster->AddTargetTriangleCount(input / 5);
+    cluster->AddTargetTriangleCount(input / 50);
+    cluster->Update();
+    runs.push_back(cluster->GetHierarchy());
+    return Level(cluster->GetHierarchy(), 1);
+  });
+  MESHLOD_CHECK_EQ(runs.size(), 2u);
+  MESHLOD_CHECK_EQ(runs[0]->GetNumberOfBlocks(), 3u);
+  MESHLOD_CHECK_GT(Level(runs[0], 1)->GetNumberOfPolys(), 65536);
+  for (unsigned int i = 1; i < 3 && runs.size() == 2; ++i)
+  {
+    MESHLOD_CHECK(testing::SameMesh(Level(runs[0], i), Level(runs[1], i)));
+  }
+}
+
 int TestVertexClusterOctree(int, char*[])
 {
   TestFlatGrid();
@@ -758,5 +785,6 @@ int TestVertexClusterOctree(int, char*[])
   TestCellLimits();
   TestAllPointsCoincident();
   TestSettingsAndErrors();
+  TestThreadsOnLargeInput();
   return meshlod::testing::Result();
 }
