@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 
 namespace meshlod
@@ -635,47 +636,37 @@ void ClusterTree::ComputeOrder()
 }
 
 //------------------------------------------------------------------------------
-// The nodes that start at a position are the vertex there and those of its ancestors that start
-// there too: taking the positions in order lists every node's children, and the roots, in
-// depth-first order.
+// Each node listed under its parent (by ranges of parents in parallel), then each parent's
+// children, and the roots, sorted by position: depth-first order, as the ranges of two
+// children of one node do not overlap.
 void ClusterTree::ComputeChildren()
 {
   const Id nv = this->NV;
   const Id ni = this->NumberOfInternalNodes();
-  AssignFresh(this->ChildOffsets, static_cast<size_t>(ni) + 1, 0);
+  GroupItemsByKey(
+    static_cast<size_t>(ni), std::int64_t(nv) + ni,
+    [&](std::int64_t node) {
+      const Id parent = this->Parent(static_cast<Id>(node));
+      return parent == InvalidId ? Id(-1) : parent - nv;
+    },
+    [](std::int64_t node) { return static_cast<Id>(node); }, this->ChildOffsets, this->Children);
+  auto byPosition = [&](Id a, Id b) { return this->Position(a) < this->Position(b); };
+  vtkSMPTools::For(0, ni, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
+    {
+      std::sort(this->Children.begin() + this->ChildOffsets[i],
+        this->Children.begin() + this->ChildOffsets[i + 1], byPosition);
+    }
+  });
+  this->Roots.clear();
   for (Id node = 0; node < nv + ni; ++node)
   {
-    const Id parent = this->Parent(node);
-    if (parent != InvalidId)
+    if (this->Parent(node) == InvalidId)
     {
-      ++this->ChildOffsets[parent - nv + 1];
+      this->Roots.push_back(node);
     }
   }
-  for (Id i = 0; i < ni; ++i)
-  {
-    this->ChildOffsets[i + 1] += this->ChildOffsets[i];
-  }
-  ResizeFresh(this->Children, this->ChildOffsets[ni]);
-  this->Roots.clear();
-  std::vector<Id> cursor = FreshCopy(this->ChildOffsets.begin(), this->ChildOffsets.end() - 1);
-  for (Id pos = 0; pos < nv; ++pos)
-  {
-    for (Id node = this->Order[pos];;)
-    {
-      const Id parent = this->Parent(node);
-      if (parent == InvalidId)
-      {
-        this->Roots.push_back(node);
-        break;
-      }
-      this->Children[cursor[parent - nv]++] = node;
-      if (this->Position(parent) != pos)
-      {
-        break;
-      }
-      node = parent;
-    }
-  }
+  std::sort(this->Roots.begin(), this->Roots.end(), byPosition);
 }
 
 } // namespace meshlod
