@@ -4,11 +4,14 @@
 #include "OctreeClusteringInternals.h"
 #include "TriangulationFlips.h"
 
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <limits>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 namespace meshlod
 {
@@ -309,19 +312,32 @@ std::vector<Id> OctreeClustering::Internals::RedirectVanished(
   }
   if (anyVanished)
   {
-    for (Id t = 0; t < previousTriangles; ++t)
-    {
-      for (int c = 0; c < 3; ++c)
+    // The pairs are found by each thread in a range of triangles, then offered on one: the
+    // nearest candidate, the smaller on a tie, is the same in any order.
+    vtkSMPThreadLocal<std::vector<std::pair<Id, Id>>> pairs;
+    vtkSMPTools::For(0, previousTriangles, [&](Id begin, Id end) {
+      std::vector<std::pair<Id, Id>>& mine = pairs.Local();
+      for (Id t = begin; t < end; ++t)
       {
-        const Id k = s.PointCluster[prev[3 * t + c]];
-        for (int o = 1; o < 3 && newId[k] == InvalidId; ++o)
+        for (int c = 0; c < 3; ++c)
         {
-          const Id other = s.PointCluster[prev[3 * t + (c + o) % 3]];
-          if (newId[other] != InvalidId)
+          const Id k = s.PointCluster[prev[3 * t + c]];
+          for (int o = 1; o < 3 && newId[k] == InvalidId; ++o)
           {
-            offer(k, other);
+            const Id other = s.PointCluster[prev[3 * t + (c + o) % 3]];
+            if (newId[other] != InvalidId)
+            {
+              mine.emplace_back(k, other);
+            }
           }
         }
+      }
+    });
+    for (const std::vector<std::pair<Id, Id>>& mine : pairs)
+    {
+      for (const std::pair<Id, Id>& pair : mine)
+      {
+        offer(pair.first, pair.second);
       }
     }
     std::vector<Id> before = FreshVector<Id>(clusters, InvalidId);
