@@ -32,14 +32,8 @@ from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkTriangleFilter
 from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
 
 import meshlod
+from meshlod_testing import check, finish
 
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("CHECK failed:", what)
 
 
 def triangles_of(mesh):
@@ -204,5 +198,4 @@ for seed in range(SEEDS):
         check_hierarchy(label, hierarchy, octree, octree and not algorithm.GetPreserveTopology())
         check_geomorph(label, algorithm, rnd, hierarchy.GetBlock(0).GetNumberOfPolys())
 
-print("%d check(s) failed" % len(failures))
-sys.exit(1 if failures else 0)
+finish()

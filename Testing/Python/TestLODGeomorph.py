@@ -5,7 +5,6 @@ Exact counts on an extruded vector text, whose large flat faces make clusters th
 only together."""
 
 import os
-import sys
 import tempfile
 
 from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
@@ -19,14 +18,8 @@ from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataReader, vtkXMLMultiBlockData
 from vtkmodules.vtkRenderingFreeType import vtkVectorText
 
 import meshlod
+from meshlod_testing import check, finish, same_mesh
 
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("CHECK failed:", what)
 
 
 def make_polydata(points, triangles):
@@ -61,19 +54,6 @@ def gather(levels):
     for i, level in enumerate(levels):
         hierarchy.SetBlock(i, level)
     return hierarchy
-
-
-def points_of(poly):
-    return [poly.GetPoint(i) for i in range(poly.GetNumberOfPoints())]
-
-
-def triangles_of(poly):
-    ids = poly.GetPolys().GetConnectivityArray()
-    return [int(ids.GetTuple1(i)) for i in range(ids.GetNumberOfTuples())]
-
-
-def same_mesh(a, b):
-    return points_of(a) == points_of(b) and triangles_of(a) == triangles_of(b)
 
 
 def morph_hierarchy():
@@ -343,6 +323,4 @@ test_nearest()
 test_clusters_valid_together()
 test_strokes_merged_interleaved()
 test_saved_hierarchy_in_pieces()
-if failures:
-    print(len(failures), "check(s) failed")
-    sys.exit(1)
+finish()

@@ -32,7 +32,6 @@ vtkTriangleCollapseDecimation, vtkVertexClusterOctree and vtkLODGeomorph:
 
 import math
 import random
-import sys
 
 from vtkmodules.vtkCommonCore import (
     vtkDoubleArray,
@@ -58,17 +57,9 @@ from vtkmodules.vtkFiltersSources import vtkConeSource, vtkPlaneSource, vtkSpher
 from vtkmodules.vtkFiltersTexture import vtkTextureMapToSphere
 
 import meshlod
+from meshlod_testing import check, finish
 
-failures = []
-checks = [0]
 FILTERS = ("vtkTriangleCollapseDecimation", "vtkVertexClusterOctree")
-
-
-def check(condition, what):
-    checks[0] += 1
-    if not condition:
-        failures.append(what)
-        print("CHECK failed:", what)
 
 
 MESSAGES = vtkStringOutputWindow()
@@ -536,5 +527,4 @@ geomorph.UpdateInformation()
 check(not geomorph.GetOutputInformation(0).Has(vtkStreamingDemandDrivenPipeline.TIME_STEPS()),
       "the geomorph published time steps for a multiblock of textures")
 
-print("%d of %d checks failed" % (len(failures), checks[0]))
-sys.exit(1 if failures else 0)
+finish()

@@ -2,25 +2,17 @@
 hierarchy's levels, block names, morph arrays and field data, then vtkLODGeomorph driven by the
 pipeline time, compared with the explicit LevelOfDetail and an exact triangle count."""
 
-import sys
-
 from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet, vtkImplicitBoolean, vtkSphere
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
 from vtkmodules.vtkImagingHybrid import vtkSampleFunction
 
 import meshlod
+from meshlod_testing import check, finish, same_mesh, triangles_of
 
 LEVELS = 3  # levels after level 0 (ComputeLevelError measures each: the slow part)
 MORPH_ARRAYS = ("MorphTarget", "MorphTargetId", "CollapseRank")
 
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("CHECK failed:", what)
 
 
 def three_blobs(resolution, speck=False):
@@ -48,19 +40,6 @@ def three_blobs(resolution, speck=False):
 def field(level, name):
     array = level.GetFieldData().GetArray(name)
     return None if array is None else array.GetTuple1(0)
-
-
-def points_of(poly):
-    return [poly.GetPoint(i) for i in range(poly.GetNumberOfPoints())]
-
-
-def triangles_of(poly):
-    ids = poly.GetPolys().GetConnectivityArray()
-    return [int(ids.GetTuple1(i)) for i in range(ids.GetNumberOfTuples())]
-
-
-def same_mesh(a, b):
-    return points_of(a) == points_of(b) and triangles_of(a) == triangles_of(b)
 
 
 def test_hierarchy(contour, decimate, largest_hausdorff=0.1):
@@ -230,6 +209,4 @@ for preserve in (True, False):
     check(unused_points(coarsest) == (0 if preserve else 1),
           "PreserveTopology %s: %d points of no cell" % (preserve, unused_points(coarsest)))
 
-if failures:
-    print(len(failures), "check(s) failed")
-    sys.exit(1)
+finish()

@@ -4,21 +4,13 @@ pinched clusters keep the first level far above its target; with it off (the pap
 conditions alone) both levels come within the filter's tolerance of their targets, and the
 levels still nest (every MorphTargetId is a point of the next level)."""
 
-import sys
-
 from vtkmodules.vtkCommonCore import vtkMinimalStandardRandomSequence
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 
 import meshlod
+from meshlod_testing import check, finish
 
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("CHECK failed:", what)
 
 
 def noisy_sphere():
@@ -85,7 +77,5 @@ def main():
 
 
 main()
-if failures:
-    print("%d check(s) failed" % len(failures))
-    sys.exit(1)
+finish()
 print("all checks passed")
