@@ -68,7 +68,7 @@ void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cu
   const ClusterTree& tree = this->Tree;
   auto qualifies = [&](Id node) { return node < this->NV || this->Thr[node - this->NV] <= epsilon; };
   // The walk in two parts: from the roots down to a frontier of some hundreds of nodes (each
-  // that does not qualify replaced by its children, in order), then below each frontier node
+  // that does not qualify replaced by its children, in order), then below the frontier nodes
   // with vtkSMPTools, the parts joined in frontier order: the depth-first order of one walk.
   std::vector<Id> frontier(tree.Roots), next;
   for (bool expanded = true; expanded && frontier.size() < FrontierNodes;)
@@ -89,13 +89,18 @@ void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cu
     }
     frontier.swap(next);
   }
-  const Id parts = static_cast<Id>(frontier.size());
-  std::vector<std::vector<Id>> below(frontier.size());
+  // (In at most FrontierNodes parts of consecutive frontier nodes: a tree with very many roots,
+  // such as one per isolated vertex, is not walked one vector per root.)
+  const std::int64_t nodes = static_cast<std::int64_t>(frontier.size());
+  const Id parts = static_cast<Id>(std::min<std::int64_t>(nodes, FrontierNodes));
+  auto partBegin = [&](Id part) { return static_cast<Id>(nodes * part / std::max<Id>(parts, 1)); };
+  std::vector<std::vector<Id>> below(static_cast<std::size_t>(parts));
   vtkSMPTools::For(0, parts, 1, [&](Id begin, Id end) {
     std::vector<Id> stack;
     for (Id part = begin; part < end; ++part)
     {
-      stack.assign(1, frontier[part]);
+      stack.assign(std::make_reverse_iterator(frontier.begin() + partBegin(part + 1)),
+        std::make_reverse_iterator(frontier.begin() + partBegin(part)));
       while (!stack.empty())
       {
         const Id node = stack.back();

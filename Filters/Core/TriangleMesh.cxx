@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <utility>
 
@@ -198,19 +199,26 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
 //------------------------------------------------------------------------------
 void TriangleMesh::GetBounds(double lo[3], double hi[3]) const
 {
-  // Per block of points, then over the blocks: a minimum and a maximum do not depend on the
-  // order they are taken in.
+  // Per block of points, then over the blocks, as one pass from point 0 would take them: the
+  // first block starts from point 0, the others from an empty box, so that a NaN coordinate is
+  // passed over wherever it lies (std::min keeps its first argument when the second is NaN), as
+  // it was by the pass, rather than emptying the rest of its block.
   constexpr Id Block = 16384;
   const Id nv = this->GetNumberOfPoints();
-  const Id blocks = (nv + Block - 1) / Block;
+  const Id blocks = static_cast<Id>((std::int64_t(nv) + Block - 1) / Block);
   std::vector<double> boxes(6 * static_cast<std::size_t>(blocks));
   vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
+    constexpr double infinity = std::numeric_limits<double>::infinity();
     for (Id b = begin; b < end; ++b)
     {
       double* box = boxes.data() + 6 * b;
-      std::copy(this->Point(b * Block), this->Point(b * Block) + 3, box);
-      std::copy(this->Point(b * Block), this->Point(b * Block) + 3, box + 3);
-      for (Id v = b * Block + 1; v < std::min(nv, (b + 1) * Block); ++v)
+      for (int c = 0; c < 3; ++c)
+      {
+        box[c] = b == 0 ? this->Point(0)[c] : infinity;
+        box[c + 3] = b == 0 ? this->Point(0)[c] : -infinity;
+      }
+      const Id last = static_cast<Id>(std::min<std::int64_t>(nv, std::int64_t(b + 1) * Block));
+      for (Id v = b == 0 ? 1 : b * Block; v < last; ++v)
       {
         for (int c = 0; c < 3; ++c)
         {

@@ -10,6 +10,7 @@
 #include "vtkPolyData.h"
 
 #include <algorithm>
+#include <limits>
 #include <cstdint>
 #include <numeric>
 #include <vector>
@@ -329,6 +330,14 @@ void TestLargeBounds()
     MESHLOD_CHECK_EQ(hi[c], expectedHi[c]);
   }
   MESHLOD_CHECK(lo[2] < -0.29);
+
+  // A NaN coordinate is passed over, as by one pass from point 0, also at the first point of
+  // a block (which once emptied the rest of that block's box).
+  mesh.Point(16384)[0] = std::numeric_limits<double>::quiet_NaN();
+  mesh.Point(16385)[0] = -7.0;
+  mesh.GetBounds(lo, hi);
+  MESHLOD_CHECK_EQ(lo[0], -7.0);
+  MESHLOD_CHECK_EQ(hi[2], 7.0);
 }
 } // namespace
 

@@ -746,8 +746,6 @@ void TestAllPointsCoincident()
   MESHLOD_CHECK(observer->GetWarningMessage().find("Level 1 would keep no triangle") !=
     std::string::npos);
 }
-} // namespace
-
 // The same levels with one thread and with the backend in use, on an isosurface large enough
 // for the passes that split their work by ranges of points or clusters (from 65,536 triangles
 // in a level, and from a few hundred tree nodes for the walk that collects a cut).
@@ -774,6 +772,8 @@ void TestThreadsOnLargeInput()
     MESHLOD_CHECK(testing::SameMesh(Level(runs[0], i), Level(runs[1], i)));
   }
 }
+
+} // namespace
 
 int TestVertexClusterOctree(int, char*[])
 {
