@@ -245,6 +245,12 @@ struct OctreeClustering::Internals
 
   // --- cuts ------------------------------------------------------------------------------------
   void ComputeActivation(bool guess = false);
+  // Whether node may be a cluster at epsilon: a vertex always, an internal node from its
+  // threshold on.
+  bool Qualifies(Id node, double epsilon) const
+  {
+    return node < this->NV || this->Thr[node - this->NV] <= epsilon;
+  }
   void CollectCut(double epsilon, std::vector<Id>& cut) const;
   void CutAt(double epsilon, std::vector<Id>& cut, bool update = false);
   // CutAt's steps: the candidates sorted into those to evaluate, those that qualify and those

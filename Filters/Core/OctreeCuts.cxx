@@ -66,7 +66,6 @@ void OctreeClustering::Internals::ComputeActivation(bool guess)
 void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cut) const
 {
   const ClusterTree& tree = this->Tree;
-  auto qualifies = [&](Id node) { return node < this->NV || this->Thr[node - this->NV] <= epsilon; };
   // The walk in two parts: from the roots down to a frontier of some hundreds of nodes (each
   // that does not qualify replaced by its children, in order), then below the frontier nodes
   // with vtkSMPTools, the parts joined in frontier order: the depth-first order of one walk.
@@ -77,7 +76,7 @@ void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cu
     next.clear();
     for (const Id node : frontier)
     {
-      if (qualifies(node))
+      if (this->Qualifies(node, epsilon))
       {
         next.push_back(node);
       }
@@ -105,7 +104,7 @@ void OctreeClustering::Internals::CollectCut(double epsilon, std::vector<Id>& cu
       {
         const Id node = stack.back();
         stack.pop_back();
-        if (qualifies(node))
+        if (this->Qualifies(node, epsilon))
         {
           below[part].push_back(node);
         }
@@ -202,7 +201,7 @@ void OctreeClustering::Internals::TriageCandidates(const std::vector<Id>& candid
       pending.push_back(node);
       this->NewSlot(i);
     }
-    else if (node < this->NV || this->Thr[node - this->NV] <= epsilon)
+    else if (this->Qualifies(node, epsilon))
     {
       kept.push_back(node);
     }
@@ -246,7 +245,7 @@ void OctreeClustering::Internals::DescendToQualifying(
     for (const Id* c = this->Tree.ChildrenBegin(parent); c != this->Tree.ChildrenEnd(parent); ++c)
     {
       const Id child = *c;
-      if (child < this->NV || this->Thr[child - this->NV] <= epsilon)
+      if (this->Qualifies(child, epsilon))
       {
         into.push_back(child);
       }

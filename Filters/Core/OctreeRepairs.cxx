@@ -585,25 +585,13 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
 {
   const Id kept = static_cast<Id>(s.From.size());
   const Id clusters = static_cast<Id>(s.Cut.size());
-  // Each entry packs the larger cluster (high bits) and the triangle, so that sorting a
-  // cluster's entries brings the triangles of each of its edges together (n log n even around a
-  // vertex with very many triangles).
+  // Each side listed at its smaller cluster, packed with the larger (ListSidesByLowerPoint):
+  // sorting a cluster's entries brings the triangles of each of its edges together (n log n
+  // even around a vertex with very many triangles).
   std::vector<Id> offsets;
   std::vector<std::uint64_t> entries;
-  auto sideEnds = [&](std::int64_t corner) {
-    const Id* tri = s.Triangles.data() + (corner - corner % 3);
-    const int c = static_cast<int>(corner % 3);
-    return std::make_pair(std::min(tri[c], tri[(c + 1) % 3]), std::max(tri[c], tri[(c + 1) % 3]));
-  };
-  GroupItemsByKey(
-    static_cast<size_t>(clusters), 3 * static_cast<std::int64_t>(kept),
-    [&](std::int64_t corner) { return s.Duplicate[corner / 3] ? Id(-1) : sideEnds(corner).first; },
-    [&](std::int64_t corner) {
-      return (static_cast<std::uint64_t>(sideEnds(corner).second) << 32) |
-        static_cast<std::uint32_t>(corner / 3);
-    },
-    offsets, entries);
-  auto triangleOf = [&](std::size_t x) { return static_cast<Id>(entries[x] & 0xffffffffu); };
+  ListSidesByLowerPoint(s.Triangles.data(), kept, clusters, s.Duplicate.data(), offsets, entries);
+  auto triangleOf = [&](std::size_t x) { return SideCorner(entries[x]) / 3; };
   std::vector<Id> marks; // the clusters of the triangles on pinched edges, and shrunk curves
   const std::vector<CurveEdge> curveEdges = this->CurveEdgesOf(marks);
   // An edge that is the image of curve edges keeps the curve's k triangles: not a pinch.
@@ -623,16 +611,15 @@ Id OctreeClustering::Internals::MarkPinches(Synthesis& s)
       for (Id k = begin; k < end; ++k)
       {
         const std::size_t first = offsets[k], last = offsets[k + 1];
-        std::sort(entries.begin() + first, entries.begin() + last);
         for (std::size_t x = first; x < last;)
         {
           std::size_t y = x;
           bool watched = false;
-          for (; y < last && (entries[y] >> 32) == (entries[x] >> 32); ++y)
+          for (; y < last && SideHigherPoint(entries[y]) == SideHigherPoint(entries[x]); ++y)
           {
             watched = watched || s.Involved(triangleOf(y));
           }
-          if (y - x > 2 && watched && !onCurve(k, static_cast<Id>(entries[x] >> 32), y - x))
+          if (y - x > 2 && watched && !onCurve(k, SideHigherPoint(entries[x]), y - x))
           {
             std::fill(pinched.begin() + x, pinched.begin() + y, 1);
           }

@@ -2,7 +2,6 @@
 
 #include "ConcurrentForest.h"
 #include "FreshMemory.h"
-#include "GroupByKey.h"
 
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
@@ -60,27 +59,11 @@ std::vector<PieceMeasure> HandleMeasures(const Id* triangles,
 {
   const Id points = static_cast<Id>(pointGroup.size());
   const Id corners = 3 * count;
-  // Each side of each triangle listed at its lower point, as its higher point (high 32 bits)
-  // and the corner it starts from (low 32 bits), in compressed rows sorted by that: an edge is
-  // then a run of sides with one higher point, as long as its number of triangles.
-  auto lower = [&](Id k) { return std::min(triangles[k], triangles[NextCorner(k)]); };
-  auto higher = [&](Id k) { return std::max(triangles[k], triangles[NextCorner(k)]); };
+  // An edge is a run of sides with one higher point in its lower point's row, as long as its
+  // number of triangles.
   std::vector<Id> offsets;
   std::vector<std::uint64_t> sides;
-  GroupItemsByKey(
-    static_cast<std::size_t>(points), corners, [&](std::int64_t k) { return lower(Id(k)); },
-    [&](std::int64_t k) {
-      return std::uint64_t(higher(Id(k))) << 32 | static_cast<std::uint32_t>(k);
-    },
-    offsets, sides);
-  vtkSMPTools::For(0, points, [&](Id begin, Id end) {
-    for (Id p = begin; p < end; ++p)
-    {
-      std::sort(sides.begin() + offsets[p], sides.begin() + offsets[p + 1]);
-    }
-  });
-  auto sideHigher = [](std::uint64_t side) { return static_cast<Id>(side >> 32); };
-  auto sideCorner = [](std::uint64_t side) { return static_cast<Id>(side & 0xffffffffu); };
+  ListSidesByLowerPoint(triangles, count, points, nullptr, offsets, sides);
 
   ThreadCounts counts(std::vector<GroupCounts>(static_cast<std::size_t>(groups)));
   // Points are counted as their fans (corners joined across the edges of two triangles), so
@@ -97,15 +80,15 @@ std::vector<PieceMeasure> HandleMeasures(const Id* triangles,
       const auto last = sides.begin() + offsets[p + 1];
       for (auto run = sides.begin() + offsets[p]; run != last;)
       {
-        const Id q = sideHigher(*run);
+        const Id q = SideHigherPoint(*run);
         const auto next =
-          std::find_if(run, last, [&](std::uint64_t side) { return sideHigher(side) != q; });
+          std::find_if(run, last, [&](std::uint64_t side) { return SideHigherPoint(side) != q; });
         group.Edges += 1;
         if (next - run == 2)
         {
           // (The two sides run in opposite directions where the triangles agree on their
           // orientation, in the same direction where they do not.)
-          const Id a = sideCorner(run[0]), b = sideCorner(run[1]);
+          const Id a = SideCorner(run[0]), b = SideCorner(run[1]);
           auto at = [&](Id k, bool atP) { return (triangles[k] == p) == atP ? k : NextCorner(k); };
           fans.Join(at(a, true), at(b, true));
           fans.Join(at(a, false), at(b, false));
@@ -116,7 +99,7 @@ std::vector<PieceMeasure> HandleMeasures(const Id* triangles,
           group.NonManifold |= next - run > 2;
           for (auto side = run; side != next; ++side)
           {
-            kind[sideCorner(*side)] = next - run == 1 ? Boundary : ThreeOrMore;
+            kind[SideCorner(*side)] = next - run == 1 ? Boundary : ThreeOrMore;
           }
         }
         run = next;

@@ -2,6 +2,7 @@
 
 #include "FreshMemory.h"
 #include "GroupByKey.h"
+#include "ParallelCompact.h"
 
 #include "vtkSMPTools.h"
 
@@ -27,6 +28,29 @@ void TriangleMesh::AreaVector(Id t, double n[3]) const
   n[0] = u[1] * v[2] - u[2] * v[1];
   n[1] = u[2] * v[0] - u[0] * v[2];
   n[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+//------------------------------------------------------------------------------
+void ListSidesByLowerPoint(const Id* triangles, Id count, Id points, const unsigned char* skip,
+  std::vector<Id>& offsets, std::vector<std::uint64_t>& sides)
+{
+  auto ends = [triangles](std::int64_t k) {
+    const Id a = triangles[k], b = triangles[k % 3 == 2 ? k - 2 : k + 1];
+    return std::make_pair(std::min(a, b), std::max(a, b));
+  };
+  GroupItemsByKey(
+    static_cast<std::size_t>(points), 3 * static_cast<std::int64_t>(count),
+    [&](std::int64_t k) { return skip && skip[k / 3] ? Id(-1) : ends(k).first; },
+    [&](std::int64_t k) {
+      return std::uint64_t(ends(k).second) << 32 | static_cast<std::uint32_t>(k);
+    },
+    offsets, sides);
+  vtkSMPTools::For(0, points, [&](Id begin, Id end) {
+    for (Id p = begin; p < end; ++p)
+    {
+      std::sort(sides.begin() + offsets[p], sides.begin() + offsets[p + 1]);
+    }
+  });
 }
 
 //------------------------------------------------------------------------------
@@ -199,15 +223,14 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
 //------------------------------------------------------------------------------
 void TriangleMesh::GetBounds(double lo[3], double hi[3]) const
 {
-  // Per block of points, then over the blocks, as one pass from point 0 would take them: the
+  // Per fixed block of points, then over the blocks, as one pass from point 0 would take them: the
   // first block starts from point 0, the others from an empty box, so that a NaN coordinate is
   // passed over wherever it lies (std::min keeps its first argument when the second is NaN), as
   // it was by the pass, rather than emptying the rest of its block.
-  constexpr Id Block = 16384;
-  const Id nv = this->GetNumberOfPoints();
-  const Id blocks = static_cast<Id>((std::int64_t(nv) + Block - 1) / Block);
-  std::vector<double> boxes(6 * static_cast<std::size_t>(blocks));
-  vtkSMPTools::For(0, blocks, [&](Id begin, Id end) {
+  const FixedBlocks blocks{ this->GetNumberOfPoints() };
+  const Id count = blocks.Count();
+  std::vector<double> boxes(6 * static_cast<std::size_t>(count));
+  vtkSMPTools::For(0, count, [&](Id begin, Id end) {
     constexpr double infinity = std::numeric_limits<double>::infinity();
     for (Id b = begin; b < end; ++b)
     {
@@ -217,8 +240,7 @@ void TriangleMesh::GetBounds(double lo[3], double hi[3]) const
         box[c] = b == 0 ? this->Point(0)[c] : infinity;
         box[c + 3] = b == 0 ? this->Point(0)[c] : -infinity;
       }
-      const Id last = static_cast<Id>(std::min<std::int64_t>(nv, std::int64_t(b + 1) * Block));
-      for (Id v = b == 0 ? 1 : b * Block; v < last; ++v)
+      for (Id v = b == 0 ? 1 : blocks.Begin(b); v < blocks.End(b); ++v)
       {
         for (int c = 0; c < 3; ++c)
         {
@@ -230,9 +252,9 @@ void TriangleMesh::GetBounds(double lo[3], double hi[3]) const
   });
   for (int c = 0; c < 3; ++c)
   {
-    lo[c] = blocks > 0 ? boxes[c] : 0.0;
-    hi[c] = blocks > 0 ? boxes[c + 3] : 0.0;
-    for (Id b = 1; b < blocks; ++b)
+    lo[c] = count > 0 ? boxes[c] : 0.0;
+    hi[c] = count > 0 ? boxes[c + 3] : 0.0;
+    for (Id b = 1; b < count; ++b)
     {
       lo[c] = std::min(lo[c], boxes[6 * b + c]);
       hi[c] = std::max(hi[c], boxes[6 * b + c + 3]);

@@ -63,6 +63,23 @@ inline Id FindRoot(std::vector<Id>& parent, Id v)
   return v;
 }
 
+/// Each side of each triangle (from corner k = 3t + c to the next corner of t) listed at its
+/// lower point, packed as its higher point (high 32 bits) and k (low 32 bits), each row sorted:
+/// the sides of one edge are consecutive, in corner order, as many as the edge's triangles.
+/// Triangles t with skip[t] nonzero (when `skip` is given) are left out. Built with
+/// vtkSMPTools, the same rows for any thread count.
+VTKFILTERSMESHLOD_EXPORT void ListSidesByLowerPoint(const Id* triangles, Id count, Id points,
+  const unsigned char* skip, std::vector<Id>& offsets, std::vector<std::uint64_t>& sides);
+/// A side as ListSidesByLowerPoint packs it: its higher point, and its corner.
+inline Id SideHigherPoint(std::uint64_t side)
+{
+  return static_cast<Id>(side >> 32);
+}
+inline Id SideCorner(std::uint64_t side)
+{
+  return static_cast<Id>(side & 0xffffffffu);
+}
+
 /// Vertex -> incident triangles, as offsets into one flat list (compressed rows). The triangles
 /// of each vertex are listed in increasing id order, which makes every later pass deterministic.
 struct VTKFILTERSMESHLOD_EXPORT VertexTriangleAdjacency
