@@ -162,12 +162,8 @@ void TestUVSphere()
   vtkSmartPointer<vtkMultiBlockDataSet> byArea = Reduce(sphere, vtkTriangleCollapseDecimation::AREA_WEIGHTS);
   vtkSmartPointer<vtkMultiBlockDataSet> uniform =
     Reduce(sphere, vtkTriangleCollapseDecimation::UNIFORM_WEIGHTS);
-  MESHLOD_CHECK_EQ(byArea->GetNumberOfBlocks(), 3u);
-  MESHLOD_CHECK_EQ(uniform->GetNumberOfBlocks(), 3u);
-  if (byArea->GetNumberOfBlocks() != 3 || uniform->GetNumberOfBlocks() != 3)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(byArea->GetNumberOfBlocks(), 3u);
+  MESHLOD_REQUIRE_EQ(uniform->GetNumberOfBlocks(), 3u);
   vtkPolyData* coarseByArea = testing::Level(byArea, 2);
   vtkPolyData* coarseUniform = testing::Level(uniform, 2);
   const vtkIdType target = static_cast<vtkIdType>(std::floor(0.1 * sphere->GetNumberOfPolys()));
@@ -213,11 +209,7 @@ void TestExactScaling(int weights, double areaNormalization)
   vtkSmartPointer<vtkMultiBlockDataSet> scaledLevels = Reduce(scaled, weights, areaNormalization);
   vtkPolyData* coarse = testing::Level(unscaledLevels, 2);
   vtkPolyData* coarseScaled = testing::Level(scaledLevels, 2);
-  MESHLOD_CHECK(coarse != nullptr && coarseScaled != nullptr);
-  if (!coarse || !coarseScaled)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE(coarse != nullptr && coarseScaled != nullptr);
   MESHLOD_CHECK_GT(testing::InspectMesh(coarse).BoundaryEdges, 0);
   MESHLOD_CHECK_EQ(coarseScaled->GetNumberOfPolys(), coarse->GetNumberOfPolys());
   MESHLOD_CHECK_EQ(coarseScaled->GetNumberOfPoints(), coarse->GetNumberOfPoints());

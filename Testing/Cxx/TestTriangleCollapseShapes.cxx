@@ -87,11 +87,7 @@ void TestFlatGrid()
   filter->ComputeLevelErrorOn();
   filter->Update();
   vtkPolyData* coarse = Level(filter->GetHierarchy(), 1);
-  MESHLOD_CHECK(coarse != nullptr);
-  if (!coarse)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE(coarse != nullptr);
   MESHLOD_CHECK_LE(std::abs(coarse->GetNumberOfPolys() - 720), 2);
   const TriangleMesh mesh = testing::ToTriangleMesh(coarse);
   TriangleTopology topology;
@@ -167,11 +163,7 @@ void TestFacetedCylinder()
     filter->SetTargetReduction(1.0 - 160.0 / (92 * 64));
     filter->Update();
     vtkPolyData* coarse = Level(filter->GetHierarchy(), 1);
-    MESHLOD_CHECK(coarse != nullptr);
-    if (!coarse)
-    {
-      return;
-    }
+    MESHLOD_REQUIRE(coarse != nullptr);
     MESHLOD_CHECK_LE(coarse->GetNumberOfPolys(), 160);
     MESHLOD_CHECK_LE(160 - coarse->GetNumberOfPolys(), run.Landing);
     const SurfaceDistance distance = MeasureSurfaceDistance(input, coarse, options);
@@ -319,11 +311,7 @@ void CheckFanLevels(vtkPolyData* fan, int method, bool weight)
   filter->SetTargetReduction(0.99);
   filter->Update();
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
-  if (h->GetNumberOfBlocks() != 3)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 3u);
   const vtkIdType triangles = fan->GetNumberOfPolys();
   for (unsigned int i = 1; i < 3; ++i)
   {
@@ -465,11 +453,7 @@ void TestIndependentSetsStall()
   const testing::EventCounter reports(filter, vtkCommand::ProgressEvent);
   filter->Update();
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 4u);
-  if (h->GetNumberOfBlocks() != 4)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 4u);
   const vtkIdType input = Level(h, 0)->GetNumberOfPolys();
   MESHLOD_CHECK_EQ(input, 10800);
   for (unsigned int i = 1; i < 4; ++i)
@@ -514,11 +498,7 @@ void CheckNoisySphere(double amplitude)
   filter->AddLevelReduction(0.99);
   filter->Update();
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 4u);
-  if (h->GetNumberOfBlocks() != 4)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 4u);
   MESHLOD_CHECK_LE(Level(h, 3)->GetNumberOfPolys(), triangles / 100 + 3);
   for (unsigned int i = 1; i < 4; ++i)
   {
@@ -565,11 +545,7 @@ void TestSurfaceWithHoles()
   filter->AddLevelReduction(0.98);
   filter->Update();
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
-  if (h->GetNumberOfBlocks() != 3)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 3u);
   const testing::MeshReport fine = testing::InspectMesh(input);
   MESHLOD_CHECK_GT(fine.BoundaryEdges, 0);
   for (unsigned int i = 1; i < 3; ++i)
@@ -804,11 +780,7 @@ void TestExtrudedSolid()
   filter->AddLevelReduction(0.99);
   filter->Update();
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
-  if (h->GetNumberOfBlocks() != 3)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 3u);
   vtkPolyData* coarse = Level(h, 2);
   MESHLOD_CHECK_LE(coarse->GetNumberOfPolys(), n / 100 + 1);
   const PeerComparison c = CompareWithQuadricDecimation(
@@ -852,11 +824,7 @@ void TestFarFromOrigin()
     filter->SetTargetReduction(0.9);
     filter->Update();
     vtkPolyData* coarse = Level(filter->GetHierarchy(), 1);
-    MESHLOD_CHECK(coarse != nullptr);
-    if (!coarse)
-    {
-      return;
-    }
+    MESHLOD_REQUIRE(coarse != nullptr);
     hausdorff[i] = MeasureSurfaceDistance(inputs[i], coarse, options).Hausdorff;
     double bounds[6];
     coarse->GetBounds(bounds);

@@ -135,11 +135,7 @@ void TestSheetsMeetingAlongCurve()
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
   MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
   vtkPolyData* coarsest = Level(h, h->GetNumberOfBlocks() - 1);
-  MESHLOD_CHECK(coarsest != nullptr);
-  if (!coarsest)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE(coarsest != nullptr);
   std::cerr << "  sphere with an equatorial disk (" << n << " triangles): coarsest level "
             << coarsest->GetNumberOfPolys() << " triangles, asked " << n / 100 << "\n";
   MESHLOD_CHECK_LE(coarsest->GetNumberOfPolys(), n / 100 + 2);

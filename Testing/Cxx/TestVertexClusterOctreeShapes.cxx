@@ -61,11 +61,7 @@ void TestFlipFreeRepresentatives()
   const vtkIdType triangles = mesh->GetNumberOfPolys();
   vtkNew<vtkVertexClusterOctree> filter;
   vtkMultiBlockDataSet* h = AtTenthAndHundredth(filter, mesh);
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
-  if (h->GetNumberOfBlocks() != 3)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 3u);
   for (unsigned int i = 1; i < 3; ++i)
   {
     const SurfaceDistance d = MeasureSurfaceDistance(mesh, Level(h, i));
@@ -113,11 +109,7 @@ void TestFlatFacedSolid()
   filter->AddTargetTriangleCount(205);
   filter->Update();
   vtkMultiBlockDataSet* h = filter->GetHierarchy();
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
-  if (h->GetNumberOfBlocks() != 3)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 3u);
   vtkPolyData* coarse = Level(h, 2);
   const SurfaceDistance d = MeasureSurfaceDistance(mesh, coarse);
   std::cerr << "  subdivided icosahedron asked for 205: " << coarse->GetNumberOfPolys()
@@ -142,11 +134,7 @@ void TestSheetsAlongCurve()
   const vtkIdType n = input->GetNumberOfPolys();
   vtkNew<vtkVertexClusterOctree> filter;
   vtkMultiBlockDataSet* h = AtTenthAndHundredth(filter, input);
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
-  if (h->GetNumberOfBlocks() != 3)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 3u);
   MESHLOD_CHECK_EQ(testing::CountRepeatedPointTriangles(h), 0);
   MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
   SurfaceDistanceOptions options;
@@ -478,11 +466,7 @@ void TestNoisySphereCounts()
   const vtkIdType input = sphere->GetNumberOfPolys();
   vtkNew<vtkVertexClusterOctree> cluster;
   vtkMultiBlockDataSet* h = AtTenthAndHundredth(cluster, sphere);
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
-  if (h->GetNumberOfBlocks() != 3)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 3u);
   const testing::MeshReport r = testing::InspectMesh(Level(h, 2));
   const meshlod::SurfaceDistance d = meshlod::MeasureSurfaceDistance(sphere, Level(h, 2));
   std::cerr << "noisy sphere, target " << input / 100 << ": " << r.Triangles

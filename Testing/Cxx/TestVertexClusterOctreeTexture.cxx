@@ -178,11 +178,7 @@ Color BakedColor(vtkPolyData* level, vtkImageData* texture, const Triangle& t, c
 void CheckAtlas(vtkPolyData* level, vtkImageData* texture)
 {
   vtkDataArray* tcoords = level->GetPointData()->GetTCoords();
-  MESHLOD_CHECK(tcoords != nullptr && tcoords->GetNumberOfComponents() == 2);
-  if (!tcoords)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE(tcoords != nullptr && tcoords->GetNumberOfComponents() == 2);
   int dims[3];
   texture->GetDimensions(dims);
   MESHLOD_CHECK_EQ(dims[0], dims[1]);
@@ -606,11 +602,7 @@ void TestInputTexture()
   MESHLOD_CHECK(textures->GetBlock(0) == image.GetPointer());
   auto* level = vtkPolyData::SafeDownCast(h->GetBlock(1));
   auto* texture = vtkImageData::SafeDownCast(textures->GetBlock(1));
-  MESHLOD_CHECK(level && texture);
-  if (!level || !texture)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE(level && texture);
   MESHLOD_CHECK(level->GetPointData()->GetTCoords() != nullptr &&
     std::string(level->GetPointData()->GetTCoords()->GetName()) == "UV");
   MESHLOD_CHECK_EQ(texture->GetPointData()->GetScalars()->GetNumberOfComponents(), 3);

@@ -63,11 +63,7 @@ vtkSmartPointer<vtkMultiBlockDataSet> TenthAndHundredth(vtkPolyData* mesh, bool 
 void TestFreeLevelsReachTheirCounts(vtkPolyData* mesh)
 {
   vtkSmartPointer<vtkMultiBlockDataSet> h = TenthAndHundredth(mesh, false);
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
-  if (h->GetNumberOfBlocks() != 3)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 3u);
   const vtkIdType input = mesh->GetNumberOfPolys();
   std::int64_t nonManifold = 0;
   for (unsigned int i = 1; i < 3; ++i)
@@ -387,11 +383,7 @@ void TestNonOrientableSurface()
   source->GenerateNormalsOff();
   vtkSmartPointer<vtkPolyData> mesh = testing::TriangulateAndClean(source);
   vtkSmartPointer<vtkMultiBlockDataSet> h = TenthAndHundredth(mesh, true);
-  MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), 3u);
-  if (h->GetNumberOfBlocks() != 3)
-  {
-    return;
-  }
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 3u);
   const testing::MeshReport input = testing::InspectMesh(Level(h, 0));
   MESHLOD_CHECK(!input.ConsistentlyOriented);
   for (unsigned int i = 1; i < 3; ++i)
