@@ -114,12 +114,18 @@ struct OctreeClustering::Internals::KeptSurfaceGrid
     , Reach(reach)
   {
   }
+  // The quotient is clamped before the cast: an epsilon of 1e-20 of the diagonal puts points
+  // 1e20 cells away, beyond any integer (undefined in C++). Clamping keeps neighbouring cells
+  // neighbours (it never widens a gap), so the 27 cells around a point still hold every point
+  // within reach of it, the far ones then possibly among them, which the distance test drops.
   Cell CellOf(const double* x) const
   {
+    constexpr double Farthest = 4e18; // cells up to one beyond it still fit in 64 bits
     Cell cell;
     for (int c = 0; c < 3; ++c)
     {
-      cell[c] = static_cast<std::int64_t>(std::floor((x[c] - this->Centre[c]) / this->Reach));
+      const double q = std::floor((x[c] - this->Centre[c]) / this->Reach);
+      cell[c] = static_cast<std::int64_t>(std::max(-Farthest, std::min(Farthest, q)));
     }
     return cell;
   }

@@ -480,6 +480,60 @@ void TestFarPiecesStay()
   MESHLOD_CHECK_EQ(testing::CountCorrespondenceViolations(h), 0);
 }
 
+// An icosphere with 20 flat closed tetrahedra around it, at an epsilon of 1e-30 of the diagonal.
+// The tetrahedra have no error, so each merges whole and would vanish, but it lies far from
+// the level's surface: every one stays (the level keeps the input, with a warning). The grid
+// that finds the kept surface near a vanishing piece has cells of twice the epsilon, here 1e29
+// cells across the mesh, beyond any 64-bit integer (the cell numbers are clamped).
+void TestTinyEpsilonKeepsFlatPieces()
+{
+  vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(3);
+  std::vector<double> points;
+  std::vector<long long> triangles;
+  for (vtkIdType p = 0; p < sphere->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    sphere->GetPoint(p, x);
+    points.insert(points.end(), x, x + 3);
+  }
+  for (vtkIdType t = 0; t < sphere->GetNumberOfPolys(); ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      triangles.push_back(sphere->GetCell(t)->GetPointId(c));
+    }
+  }
+  constexpr int Pieces = 20;
+  for (int i = 0; i < Pieces; ++i)
+  {
+    const double angle = 2.0 * vtkMath::Pi() * i / Pieces;
+    const double centre[3] = { 2.5 * std::cos(angle), 2.5 * std::sin(angle), 0.1 * (i % 3) };
+    const double corners[4][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 0.3, 0.3 } };
+    const long long first = static_cast<long long>(points.size() / 3);
+    for (const auto& corner : corners)
+    {
+      points.insert(
+        points.end(), { centre[0] + 0.05 * corner[0], centre[1] + 0.05 * corner[1], centre[2] });
+    }
+    for (const long long tri : { 0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2 })
+    {
+      triangles.push_back(first + tri);
+    }
+  }
+  vtkSmartPointer<vtkPolyData> mesh = testing::MakePolyData(points, triangles);
+  vtkNew<vtkVertexClusterOctree> cluster;
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  cluster->AddObserver(vtkCommand::WarningEvent, warnings);
+  cluster->SetInputData(mesh);
+  cluster->SetLevelModeToEpsilonList();
+  cluster->AddEpsilonValue(1e-30);
+  cluster->Update();
+  vtkMultiBlockDataSet* h = cluster->GetHierarchy();
+  MESHLOD_REQUIRE_EQ(h->GetNumberOfBlocks(), 2u);
+  MESHLOD_CHECK_EQ(Level(h, 1)->GetNumberOfPolys(), sphere->GetNumberOfPolys() + 4 * Pieces);
+  MESHLOD_CHECK(warnings->GetWarningMessage().find("keeps the") != std::string::npos);
+}
+
 // The number of boundary loops of a surface.
 int CountBoundaryLoops(vtkPolyData* surface)
 {
@@ -543,6 +597,7 @@ int TestVertexClusterOctreeTopology(int, char*[])
   TestNonOrientableSurface();
   TestHandlesStay();
   TestFarPiecesStay();
+  TestTinyEpsilonKeepsFlatPieces();
   TestHolesStayOpen();
   TestSetting();
   return meshlod::testing::Result();
