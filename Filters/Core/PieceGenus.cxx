@@ -33,16 +33,6 @@ enum SideKind : unsigned char
   ThreeOrMore = 2
 };
 
-Id NextCorner(Id k)
-{
-  return k % 3 == 2 ? k - 2 : k + 1;
-}
-
-Id PreviousCorner(Id k)
-{
-  return k % 3 == 0 ? k + 2 : k - 1;
-}
-
 // body(begin, end, counts) over [0, n) with vtkSMPTools, counts the running thread's own.
 template <typename Body>
 void ForEachCounting(Id n, ThreadCounts& counts, Body&& body)

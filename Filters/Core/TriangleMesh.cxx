@@ -35,7 +35,7 @@ void ListSidesByLowerPoint(const Id* triangles, Id count, Id points, const unsig
   std::vector<Id>& offsets, std::vector<std::uint64_t>& sides)
 {
   auto ends = [triangles](std::int64_t k) {
-    const Id a = triangles[k], b = triangles[k % 3 == 2 ? k - 2 : k + 1];
+    const Id a = triangles[k], b = triangles[NextCorner(static_cast<Id>(k))];
     return std::make_pair(std::min(a, b), std::max(a, b));
   };
   GroupItemsByKey(

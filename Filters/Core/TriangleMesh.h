@@ -63,6 +63,17 @@ inline Id FindRoot(std::vector<Id>& parent, Id v)
   return v;
 }
 
+/// The corner after and before corner k = 3t + c in triangle t (corners in a flat list of
+/// triangles, three per triangle).
+inline Id NextCorner(Id k)
+{
+  return k % 3 == 2 ? k - 2 : k + 1;
+}
+inline Id PreviousCorner(Id k)
+{
+  return k % 3 == 0 ? k + 2 : k - 1;
+}
+
 /// Each side of each triangle (from corner k = 3t + c to the next corner of t) listed at its
 /// lower point, packed as its higher point (high 32 bits) and k (low 32 bits), each row sorted:
 /// the sides of one edge are consecutive, in corner order, as many as the edge's triangles.
