@@ -844,7 +844,10 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
         "(MeshLODSurfaceDistance: "
      << this->Yardstick.SamplesPerSurface << " area samples and up to "
      << this->Yardstick.MaximumVertexSamples
-     << " vertices per surface, fixed seed) in % of the input's bounding-box diagonal.\n"
+     << " vertices per surface, fixed seed, and from the "
+     << this->Yardstick.RefinedSamples
+     << " samples farthest from the other surface a search for the farthest point near each) in "
+        "% of the input's bounding-box diagonal.\n"
      << "- *x QD*: ratio to single-thread vtkQuadricDecimation on the same mesh and target "
         "(below 1: faster, more accurate, less memory).\n\n";
 

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <vector>
 
 namespace meshlod
@@ -51,12 +52,25 @@ std::vector<vtkIdType> Triangles(vtkPolyData* mesh)
   return tris;
 }
 
-// Sample positions on `mesh`: area-uniform samples first, then (strided) vertices.
+// Sample positions on `mesh`: area-uniform samples first, then (strided) vertices; the triangle
+// of each area sample.
 struct SampleSet
 {
   std::vector<double> Positions;
+  std::vector<vtkIdType> Triangles;
   std::int64_t AreaSamples = 0;
+  std::uint64_t Seed = 0;
 };
+
+// The barycentric weights of area sample i on its triangle (uniform over the triangle).
+void SampleWeights(std::uint64_t seed, std::int64_t i, double w[3])
+{
+  const double r1 = std::sqrt(Uniform(seed, 3 * i + 1));
+  const double r2 = Uniform(seed, 3 * i + 2);
+  w[0] = 1.0 - r1;
+  w[1] = r1 * (1.0 - r2);
+  w[2] = r1 * r2;
+}
 
 SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
   const SurfaceDistanceOptions& options, std::uint64_t seed)
@@ -80,6 +94,7 @@ SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
   }
   const double totalArea = cumulative[nt];
   samples.AreaSamples = totalArea > 0.0 ? options.SamplesPerSurface : 0;
+  samples.Seed = seed;
 
   const vtkIdType nv = points->GetNumberOfPoints();
   const vtkIdType stride = options.MaximumVertexSamples > 0
@@ -88,6 +103,7 @@ SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
   const vtkIdType vertexSamples = options.MaximumVertexSamples > 0 ? (nv + stride - 1) / stride : 0;
 
   samples.Positions.resize(3 * static_cast<size_t>(samples.AreaSamples + vertexSamples));
+  samples.Triangles.resize(static_cast<size_t>(samples.AreaSamples));
   vtkSMPTools::For(0, samples.AreaSamples, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
     {
@@ -95,9 +111,9 @@ SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
       vtkIdType t = std::upper_bound(cumulative.begin() + 1, cumulative.end(), pick) -
         (cumulative.begin() + 1);
       t = std::min(t, nt - 1);
-      const double r1 = std::sqrt(Uniform(seed, 3 * i + 1));
-      const double r2 = Uniform(seed, 3 * i + 2);
-      const double w[3] = { 1.0 - r1, r1 * (1.0 - r2), r1 * r2 };
+      samples.Triangles[i] = t;
+      double w[3];
+      SampleWeights(seed, i, w);
       double* out = samples.Positions.data() + 3 * i;
       out[0] = out[1] = out[2] = 0.0;
       for (int k = 0; k < 3; ++k)
@@ -124,20 +140,114 @@ SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
 // depend on the thread count.
 // (The closest point on a triangle is exact to rounding whatever the triangle's shape, on one of
 // zero area too: ClosestPointOnTriangle measures such a triangle by its edges.)
-void DistancesTo(const SurfaceTriangles& surface, const SampleSet& samples, double& maximum,
-  double& sumOfSquares)
+std::vector<double> DistancesOf(const SurfaceTriangles& surface, const double* positions,
+  vtkIdType count)
 {
-  const vtkIdType count = static_cast<vtkIdType>(samples.Positions.size() / 3);
   std::vector<double> distance(count, 0.0);
   vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
     {
       double closest[3], dist2;
-      surface.Tree.FindClosest(samples.Positions.data() + 3 * i, closest, dist2);
+      surface.Tree.FindClosest(positions + 3 * i, closest, dist2);
       distance[i] = std::sqrt(dist2);
     }
   });
+  return distance;
+}
+
+// The area samples farthest from the other surface, refined: from each of the RefinedSamples
+// farthest (ties by sample number, so that any thread count picks the same), a search over its
+// triangle climbs to the farthest point near it, in steps along the three edge directions that
+// halve when none goes farther. A far spot is often narrow (a fold of the other surface under a
+// large triangle), and random samples land near it, not on it. Returns the largest distance
+// found.
+double RefinedMaximum(const SurfaceTriangles& surface, const SurfaceTriangles& sampled,
+  const SampleSet& samples, const std::vector<double>& distance,
+  const SurfaceDistanceOptions& options)
+{
+  const std::int64_t refined = std::min<std::int64_t>(options.RefinedSamples, samples.AreaSamples);
+  if (refined <= 0)
+  {
+    return 0.0;
+  }
+  std::vector<vtkIdType> order(static_cast<size_t>(samples.AreaSamples));
+  std::iota(order.begin(), order.end(), vtkIdType(0));
+  std::sort(order.begin(), order.end(), [&](vtkIdType a, vtkIdType b)
+    { return distance[a] != distance[b] ? distance[a] > distance[b] : a < b; });
+  // The farthest sample of each triangle only: the farthest spots of other triangles are
+  // searched too, not the same one many times.
+  std::vector<vtkIdType> starts, taken;
+  for (const vtkIdType i : order)
+  {
+    if (static_cast<std::int64_t>(starts.size()) == refined)
+    {
+      break;
+    }
+    const vtkIdType t = samples.Triangles[i];
+    const auto at = std::lower_bound(taken.begin(), taken.end(), t);
+    if (at == taken.end() || *at != t)
+    {
+      taken.insert(at, t);
+      starts.push_back(i);
+    }
+  }
+  std::vector<double> found(starts.size(), 0.0);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(starts.size()), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType k = begin; k < end; ++k)
+    {
+      const vtkIdType i = starts[k];
+      const vtkIdType* ids = sampled.Triangles.data() + 3 * samples.Triangles[i];
+      const double* corner[3] = { sampled.Points.data() + 3 * ids[0],
+        sampled.Points.data() + 3 * ids[1], sampled.Points.data() + 3 * ids[2] };
+      auto distanceAt = [&](const double w[3]) {
+        double p[3], closest[3], dist2;
+        for (int c = 0; c < 3; ++c)
+        {
+          p[c] = w[0] * corner[0][c] + w[1] * corner[1][c] + w[2] * corner[2][c];
+        }
+        surface.Tree.FindClosest(p, closest, dist2);
+        return std::sqrt(dist2);
+      };
+      double w[3];
+      SampleWeights(samples.Seed, i, w);
+      double best = distance[i];
+      // Steps of a quarter of the triangle down to a thousandth of its width or less.
+      static const int moves[6][3] = { { 1, -1, 0 }, { -1, 1, 0 }, { 1, 0, -1 }, { -1, 0, 1 },
+        { 0, 1, -1 }, { 0, -1, 1 } };
+      for (double step = 0.25; step > 1e-3;)
+      {
+        bool moved = false;
+        for (const auto& m : moves)
+        {
+          const double t[3] = { w[0] + m[0] * step, w[1] + m[1] * step, w[2] + m[2] * step };
+          if (t[0] < 0.0 || t[1] < 0.0 || t[2] < 0.0)
+          {
+            continue;
+          }
+          const double d = distanceAt(t);
+          if (d > best)
+          {
+            best = d;
+            std::copy_n(t, 3, w);
+            moved = true;
+          }
+        }
+        step = moved ? step : 0.5 * step;
+      }
+      found[k] = best;
+    }
+  });
+  return *std::max_element(found.begin(), found.end());
+}
+
+void DistancesTo(const SurfaceTriangles& surface, const SurfaceTriangles& sampled,
+  const SampleSet& samples, const SurfaceDistanceOptions& options, double& maximum,
+  double& sumOfSquares)
+{
+  const vtkIdType count = static_cast<vtkIdType>(samples.Positions.size() / 3);
+  const std::vector<double> distance = DistancesOf(surface, samples.Positions.data(), count);
   maximum = count > 0 ? *std::max_element(distance.begin(), distance.end()) : 0.0;
+  maximum = std::max(maximum, RefinedMaximum(surface, sampled, samples, distance, options));
   const vtkIdType squared = samples.AreaSamples > 0 ? samples.AreaSamples : count;
   double sum = 0.0;
   for (vtkIdType i = 0; i < squared; ++i)
@@ -223,8 +333,8 @@ SurfaceDistance SurfaceDistanceMeter::Measure(vtkPolyData* other) const
   double sumAB = 0.0, sumBA = 0.0;
   SurfaceTriangles surface;
   surface.Build(other->GetPoints(), std::move(triangles));
-  DistancesTo(surface, samplesA, result.MaxAB, sumAB);
-  DistancesTo(this->Impl->Surface, samplesB, result.MaxBA, sumBA);
+  DistancesTo(surface, this->Impl->Surface, samplesA, options, result.MaxAB, sumAB);
+  DistancesTo(this->Impl->Surface, surface, samplesB, options, result.MaxBA, sumBA);
 
   const double nA = SquaredSampleCount(samplesA);
   const double nB = SquaredSampleCount(samplesB);

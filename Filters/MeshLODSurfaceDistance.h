@@ -6,15 +6,22 @@
 // times faster than vtkStaticCellLocator on a 2M-triangle surface), to rounding on triangles of
 // every shape, zero-area ones included (measured by their edges). A subset of each mesh's vertices joins the
 // samples for the maxima, because the largest deviation of a simplified mesh usually sits at
-// one of its vertices. From both directions it reports the one-sided maxima and RMS values and
-// their symmetric combination:
+// one of its vertices; where it does not, it often sits on a narrow spot of a large triangle
+// (over a fold of the other surface) that random samples land near but not on, so from the
+// area samples farthest from the other surface (on distinct triangles) a search climbs to the
+// farthest point near each (RefinedSamples). On a 611k-triangle gyroid isosurface reduced to
+// 1% that raised the Hausdorff distance measured with 100,000 samples from 0.230% to 0.243% of
+// the diagonal for vtkTriangleCollapseDecimation's level and from 0.182% to 0.240% for
+// vtkQuadricDecimation's (3,000,000 samples without the search: 0.241% and 0.237%). From both
+// directions it reports the one-sided maxima and RMS values and their symmetric combination:
 //   Hausdorff = max(MaxAB, MaxBA),  RMS = sqrt((sum of squares over both sample sets) / count).
 // RMS uses the area samples only (the vertex samples for a surface of zero area). Values are in
 // world units; *Percent() divides by the bounding-box diagonal of the first mesh (the reference).
 //
 // Used by the tests, the benchmark and vtkTriangleCollapseDecimation::ComputeLevelError. It is
 // a measurement by sampling, not a bound: the true maxima are at least as large (more area
-// samples can only raise them; the vertex samples, every k-th vertex, are not nested).
+// samples can only raise them; the vertex samples, every k-th vertex, are not nested; the
+// searches find local maxima).
 #ifndef MeshLODSurfaceDistance_h
 #define MeshLODSurfaceDistance_h
 
@@ -55,6 +62,10 @@ struct VTKFILTERSMESHLOD_EXPORT SurfaceDistanceOptions
   /// At most this many vertices of each mesh are added to its samples for the maxima
   /// (an evenly strided subset when the mesh has more).
   std::int64_t MaximumVertexSamples = 100000;
+  /// The maxima: from each of this many area samples farthest from the other surface (the
+  /// farthest of each triangle), a search climbs to the farthest point near it on its triangle
+  /// (0: none). Each search costs about 50 distance queries.
+  std::int64_t RefinedSamples = 128;
   std::uint64_t Seed = 12345;
 };
 

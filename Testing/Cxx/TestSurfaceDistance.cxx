@@ -3,6 +3,7 @@
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkCellArray.h"
 #include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -111,6 +112,48 @@ void TestDegenerateTriangles()
   MESHLOD_CHECK_LE(std::abs(spiked.MaxAB - 0.5), 1e-12);
 }
 
+// A flat 40 x 40 square (B) above a square with a narrow V-groove (A: half-width h, depth d,
+// along x = x0, between B's grid lines). The point of B farthest from A is on the groove's
+// centre line, h d / sqrt(h^2 + d^2) from its walls; a thin strip of B around that line is
+// nearly as far, and B's vertices lie outside it. Random samples land near the line, not on
+// it: the refinement climbs to it.
+void TestNarrowFarthestSpot()
+{
+  const double x0 = 20.45, h = 0.2, d = 2.0, size = 40.0;
+  vtkNew<vtkPoints> points;
+  const double xs[5] = { 0.0, x0 - h, x0, x0 + h, size };
+  const double zs[5] = { 0.0, 0.0, -d, 0.0, 0.0 };
+  for (const double y : { 0.0, size })
+  {
+    for (int i = 0; i < 5; ++i)
+    {
+      points->InsertNextPoint(xs[i], y, zs[i]);
+    }
+  }
+  vtkNew<vtkCellArray> strips;
+  for (vtkIdType i = 0; i < 4; ++i)
+  {
+    const vtkIdType lower[3] = { i, i + 1, i + 6 }, upper[3] = { i, i + 6, i + 5 };
+    strips->InsertNextCell(3, lower);
+    strips->InsertNextCell(3, upper);
+  }
+  vtkNew<vtkPolyData> grooved;
+  grooved->SetPoints(points);
+  grooved->SetPolys(strips);
+  vtkSmartPointer<vtkPolyData> flat = testing::MakeGrid(40, 40);
+  const double farthest = h * d / std::sqrt(h * h + d * d);
+
+  SurfaceDistanceOptions options;
+  options.SamplesPerSurface = 2000;
+  const SurfaceDistance refined = MeasureSurfaceDistance(grooved, flat, options);
+  MESHLOD_CHECK_LE(std::abs(refined.MaxBA - farthest), 1e-3 * farthest);
+  MESHLOD_CHECK_LE(std::abs(refined.MaxAB - d), 1e-12); // the groove's bottom, a vertex
+  options.RefinedSamples = 0;
+  const SurfaceDistance sampled = MeasureSurfaceDistance(grooved, flat, options);
+  MESHLOD_CHECK_LT(sampled.MaxBA, 0.99 * farthest);
+  MESHLOD_CHECK_GT(sampled.MaxBA, 0.5 * farthest); // samples did land in the strip
+}
+
 void TestSameForEveryBackend()
 {
   vtkSmartPointer<vtkPolyData> a = testing::MakeIsosurface(testing::Field::Metaballs, 40);
@@ -159,6 +202,7 @@ int TestSurfaceDistance(int, char*[])
   TestConcentricSpheres();
   TestOneSided();
   TestDegenerateTriangles();
+  TestNarrowFarthestSpot();
   TestSameForEveryBackend();
   TestTinySurface();
   return meshlod::testing::Result();
