@@ -737,7 +737,8 @@ std::string Benchmark::TargetSummary() const
   const double largest = this->Opts.Targets.front();
   std::ostringstream md;
   md << "## Against the reference filters\n\n"
-     << "Ratios of the columns above (below 1: MeshLOD is better). *Quality*: Hausdorff and RMS "
+     << "Ratios of the columns above (below 1: MeshLOD is better; *Two threads* is a speed-up, "
+        "above 1 is better). *Quality*: Hausdorff and RMS "
         "over the reference's at each target. *Time, all levels*: the one-thread time of the "
         "whole hierarchy over the reference's one-thread time for its "
      << Format("%g", 100.0 * largest)

@@ -119,9 +119,9 @@
  *   are marked for re-fitting at the end of the round, and a fit reads only its own cell's
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its whole
- *   hierarchy the curvature method takes 1.4-3.9x the time vtkQuadricDecimation needs for one 10%
- *   target on one thread, and 1.7-2.1x less on two (the quadric method: 0.29-0.54x over six runs
- *   on AMD EPYC processors, 0.32-0.52x in Benchmarks/RESULTS.md's, and 1.6-1.9x less on two; the
+ *   hierarchy the curvature method takes 1.4-3.5x the time vtkQuadricDecimation needs for one 10%
+ *   target on one thread, and 1.5-2.1x less on two (the quadric method: 0.29-0.54x over seven
+ *   runs on AMD EPYC processors, 0.34-0.46x in Benchmarks/RESULTS.md's, and 1.6-1.9x less on two; the
  *   ratios move with the processor, the machine's load and what ran before in the same process:
  *   on an Intel Xeon the quadric method took 0.42-0.69x over three runs, its own times about as
  *   on the EPYC, vtkQuadricDecimation's 1.3-2.0x shorter; on one EPYC the 154k mesh's 0.54 was
@@ -137,7 +137,7 @@
  * its target.) On the benchmark meshes both reach
  * about the same error per triangle (RMS within 3%, Hausdorff distances within the few tens of
  * percent by which a maximum varies between runs; Benchmarks/RESULTS.md); Greedy is the
- * default because it is faster: 1.7-2.4x on one thread, 2.1-3.1x on two. On CAD-like solids
+ * default because it is faster: 2.0-2.8x on one thread, 2.4-3.3x on two. On CAD-like solids
  * (flat faces, sharp rims) Greedy is also far more accurate: IndependentSets keeps paper 000's
  * valence rule for edge collapses too, and on the extruded text of the Python test (79,280
  * triangles) asked for 1% it stopped at 1.02% with about 40x vtkQuadricDecimation's Hausdorff
@@ -153,7 +153,7 @@
  * a tetrahedron, with its genus: on the isosurface of a noisy volume (103,940 triangles, 328
  * specks around single noisy samples besides the main surface, 312 of them of 8 triangles) the
  * levels stopped at 2,072 triangles for a target of 1,039, most of them specks, and that level was
- * 5.1 times as far from the input (Hausdorff distance) as vtkQuadricDecimation's output of the
+ * 5.2 times as far from the input (Hausdorff distance) as vtkQuadricDecimation's output of the
  * same count, which drops the specks. With PreserveTopology off small closed pieces vanish and the
  * levels reach their counts (Benchmarks/RESULTS.md, "Beyond isosurfaces"). A warning reports a
  * coarsest level short of its target,
@@ -360,11 +360,12 @@ public:
    * three edge midpoints (for an edge collapse: the midpoint and the two ends; ties go to the
    * centroid, then the vertices). On the benchmark isosurfaces (Benchmarks/RESULTS.md, the
    * "paper placement" rows, one thread): the same RMS distance to within 1%; at 10% of the
-   * triangles the same Hausdorff distance on the metaballs and the 611k gyroid, and less on the
-   * 2.3M gyroid (0.89x vtkQuadricDecimation's against 0.99x); at 1% the candidates' was
-   * 0.98, 1.08 and 0.77x vtkQuadricDecimation's against the default's 0.92, 1.26 and 0.88x:
-   * more on the metaballs, less on both gyroids (each is the distance at one spot, which moves
-   * by chance: see AreaNormalization), and the whole hierarchy took 1.4-1.5 times as long (an
+   * triangles the same Hausdorff distance on the metaballs, more on the 611k gyroid (0.95x
+   * vtkQuadricDecimation's against 0.89x) and less on the 2.3M gyroid (0.96x against 1.03x);
+   * at 1% the candidates' was 0.98, 0.93 and 1.04x vtkQuadricDecimation's against the
+   * default's 0.92, 1.02 and 0.99x: more on the metaballs and the 2.3M gyroid, less on the 611k
+   * gyroid (each is the distance at one spot, which moves by chance: see AreaNormalization),
+   * and the whole hierarchy took 1.3-1.4 times as long (an
    * eigendecomposition per solve, against one L D L^T factorisation). On faceted solids both
    * keep the faces exactly. Curvature method: not used (its collapse point comes from the fit).
    */
@@ -468,16 +469,16 @@ public:
    * is taken. The three weights are not used. WEIGHT is paper 000's weight W = A (wk kappa + wa
    * alpha + wv V) from the three weights above, at the collapse point described in the class docs.
    * The fit and the legality rules are the same for both. On the benchmark isosurfaces
-   * FIT_DEVIATION's Hausdorff distance is 0.91-1.34x and its RMS distance 0.94-1.19x
-   * vtkQuadricDecimation's, against 5.8-8.9x and 2.4-2.8x for WEIGHT (Benchmarks/RESULTS.md,
+   * FIT_DEVIATION's Hausdorff distance is 1.01-1.38x and its RMS distance 0.94-1.19x
+   * vtkQuadricDecimation's, against 4.7-8.6x and 2.4-2.8x for WEIGHT (Benchmarks/RESULTS.md,
    * where WEIGHT runs with the INDEPENDENT_SETS schedule; with GREEDY its RMS distance on the
    * metaballs at 10% is 3.05x vtkQuadricDecimation's): the
    * paper's weight is dominated by the area, so it evens out the triangles' sizes instead of
    * keeping small ones where the surface bends. On the other meshes of the benchmark (a torus,
    * noisy spheres, Boy's surface, a superquadric, a faceted cylinder and the surfaces of a
-   * segmented volume, with the default operator: see SetOperator) FIT_DEVIATION is at 0.84-1.53x
+   * segmented volume, with the default operator: see SetOperator) FIT_DEVIATION is at 0.84-1.54x
    * and 0.82-1.16x (the faceted cylinder aside, where both methods are within float rounding of its
-   * faces); on a terrain and a sphere with holes at 1.23-1.55x and 1.06-1.35x, on the wavelet and
+   * faces); on a terrain and a sphere with holes at 1.21-1.55x and 1.06-1.35x, on the wavelet and
    * noisy isosurfaces up to 3.3x and 4.3x at 1%. Where it falls short: a very rough input with
    * high-valence poles (a UV sphere with radial noise of an edge) gets long triangles across it at
    * coarse levels (at 1% 4x vtkQuadricDecimation's Hausdorff distance, WEIGHT 2x); so does a
@@ -525,13 +526,13 @@ public:
    * attention. Measured at 1% against vtkQuadricDecimation (Benchmarks/RESULTS.md, Beyond
    * isosurfaces; Hausdorff distance ratio, AREA_WEIGHTS -> UNIFORM_WEIGHTS, with the default
    * AreaNormalization): lower on some rough meshes and some with graded triangle sizes (very
-   * noisy sphere 0.97 -> 0.70, superquadric 1.07 -> 0.86, terrain 1.11 -> 1.05, Boy's surface
-   * 0.77 -> 0.74, two of three noisy UV spheres 1.06 -> 0.89 and 0.77 -> 0.61), higher on the
-   * third (0.78 -> 0.93), the parametric torus (0.73 -> 0.79) and the sphere with holes
-   * (1.06 -> 1.30); the RMS distance rises on most
+   * noisy sphere 0.96 -> 0.69, superquadric 1.07 -> 0.86, terrain 1.11 -> 1.04, two of three
+   * noisy UV spheres 1.08 -> 0.83 and 0.77 -> 0.62), about the same on Boy's surface
+   * (0.72 -> 0.73), higher on the third noisy sphere (0.79 -> 0.94), the parametric torus
+   * (0.70 -> 0.80) and the sphere with holes (1.06 -> 1.32); the RMS distance rises on most
    * (superquadric 0.72 -> 1.13, noisy UV spheres 0.80-0.83 -> 0.85-0.88). On the benchmark's
-   * marching-cubes isosurfaces UNIFORM_WEIGHTS has the larger Hausdorff distance at five of
-   * the six targets (metaballs at 1%: 0.92 -> 1.09) and the larger RMS distance at all. Keep
+   * marching-cubes isosurfaces UNIFORM_WEIGHTS has the larger Hausdorff distance at all six
+   * targets (metaballs at 1%: 0.92 -> 1.09) and the larger RMS distance at all. Keep
    * AREA_WEIGHTS for
    * isosurfaces and for the least RMS distance; try UNIFORM_WEIGHTS for rough or graded
    * tessellations when the largest distance matters.
@@ -557,16 +558,16 @@ public:
    * vtkQuadricDecimation at the same count (Benchmarks/RESULTS.md, the first and the
    * AreaNormalization 0 tables of "Beyond isosurfaces"; Hausdorff distance ratio, 0 -> 0.25), on
    * the 11 meshes there that are not at rounding level or topology-bound, the geometric mean went
-   * from 0.95 to 0.89 at 10% and from 1.00 to 0.93 at 1%, the RMS distance unchanged (0.91 and
-   * 0.87). At 1% lower on 6 of the 11 (parametric torus 0.95 -> 0.73, Boy's surface 1.15 -> 0.77),
-   * the same on one (segmented balls, 0.98), higher on 4 (noisy UV spheres, seeds 7 and 9, 1.05 ->
-   * 1.06 and 0.70 -> 0.77; terrain 1.08 -> 1.11; superquadric 1.03 -> 1.07). On the benchmark
-   * isosurfaces ("paper cost" rows), at 10% / 1%: metaballs 0.94 / 0.95 -> 0.88 / 0.92, gyroid
-   * (611k) 0.97 / 1.02 -> 0.81 / 1.26, gyroid (2.3M) 0.97 / 0.89 -> 0.99 / 0.88. The largest
+   * from 0.98 to 0.86 at 10% and from 0.98 to 0.92 at 1%, the RMS distance unchanged (0.91 and
+   * 0.87). At 1% lower on 6 of the 11 (parametric torus 0.91 -> 0.70, Boy's surface 1.08 -> 0.72),
+   * higher on 5 (segmented balls 0.94 -> 0.97; noisy UV spheres, seeds 7 and 9, 0.98 -> 1.08 and
+   * 0.72 -> 0.77; terrain 1.03 -> 1.11; superquadric 1.03 -> 1.07). On the benchmark
+   * isosurfaces ("paper cost" rows), at 10% / 1%: metaballs 0.93 / 0.98 -> 0.87 / 0.92, gyroid
+   * (611k) 1.01 / 0.82 -> 0.89 / 1.02, gyroid (2.3M) 0.95 / 1.15 -> 1.03 / 0.99. The largest
    * distance at 1% is one spot and moves by chance: with TargetReduction 0.99 instead of the
    * benchmark's 1 - 6,109 / 610,880 (a level of 6,108 triangles instead of 6,107) the same gyroid
-   * gives 0.98; over nine targets from 6,060 to 6,200 triangles the ratio was 0.86-1.26, median
-   * 1.00, the benchmark's target the highest, with the RMS distance 0.98-0.99x at each. Not in
+   * gives 0.78; over nine targets from 6,107 to 6,303 triangles the ratio was 0.85-1.04, median
+   * 1.02 (the benchmark's target's), with the RMS distance 0.98-0.99x at each. Not in
    * Benchmarks/RESULTS.md, from trial runs: powers of 0.5 and 0.75 gave 1.11 and 1.12 there; 0.5
    * lowered the 10% ratios a little more than 0.25 and raised RMS by about 1%; 1 raised RMS by
    * 7-12%. The power also shifts TRIANGLES_AND_EDGES towards whole triangles, whose three vertices
@@ -613,7 +614,7 @@ public:
    * quadric error among them. For the isosurface of a noisy volume, as of a scan, whose specks
    * around single noisy samples otherwise fill the coarse levels: on one of 103,940 triangles
    * with 328 specks, asked for 1%, 1,038 triangles at 1.4 times vtkQuadricDecimation's
-   * Hausdorff distance instead of 2,072 at 5.1 times (Benchmarks/RESULTS.md, "Beyond
+   * Hausdorff distance instead of 2,072 at 5.2 times (Benchmarks/RESULTS.md, "Beyond
    * isosurfaces"; the largest distances left are from vanished specks to the surface, for
    * vtkQuadricDecimation's output too). Costs 4 bytes per input point and 12 per piece (8 per
    * point while the pieces are labelled).
@@ -657,9 +658,11 @@ public:
   /**
    * Measure every level's symmetric Hausdorff and RMS surface distance to level 0 and store them as
    * MeasuredHausdorff and MeasuredRMS field data (10,000 area samples per surface plus up to 10,000
-   * vertices; level 0 is sampled once). Default off: it adds about two fifths to the run on one
-   * thread, a third on two (8 levels of a 977,200-triangle UV sphere: 1.2 s on top of 3.0 s on
-   * one thread, 0.65 s on top of 1.8 s on two; a search tree over level 0 is much of it). For a
+   * vertices, and from the 128 samples farthest from the other surface a search for the farthest
+   * point near each; level 0 is sampled once). Default off: it adds about two fifths to the run
+   * on one thread, two fifths to a half on two (8 levels of a 977,200-triangle UV sphere: 1.2 s
+   * on top of 2.8 s on one thread, 0.74 s on top of 1.6 s on two; a search tree over level 0 is
+   * much of it). For a
    * finer measurement use MeasureSurfaceDistance (MeshLODSurfaceDistance.h) with more samples.
    */
   vtkSetMacro(ComputeLevelError, bool);

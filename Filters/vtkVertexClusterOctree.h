@@ -133,8 +133,8 @@
  * around it. (Both with PreserveTopology on. The wavelet isosurface of Benchmarks/RESULTS.md,
  * open at the volume's faces, asked for 1%: its blobs vanished 5.3% of the diagonal away from
  * the level and the surface that capped a closed tube end lay 3.7% away, where its clusters
- * erred by 1.4% at most; with both rules its Hausdorff distance went from 1.63 to 0.42 times
- * vtkQuadricClustering's at the same count, 4,413 triangles instead of 4,311.) A cluster
+ * erred by 1.4% at most; when both rules came, its Hausdorff distance went from 1.63 to 0.42
+ * times vtkQuadricClustering's at the same count, 4,413 triangles instead of 4,311 then.) A cluster
  * whose triangles all vanish sends its points to the nearest neighbouring cluster. Beyond the paper,
  * each finished level can flip the edges whose other diagonal lies closer to the input
  * (FlipEdges, off by default: it breaks the exact triangle correspondence a geomorph needs): the
@@ -382,7 +382,7 @@ public:
    * vtkQuadricClustering's Hausdorff distance and 0.94 and 0.92 times its RMS distance, in a
    * quarter of the time; on smooth isosurfaces, counts and distances as with it on. With noise far
    * above the edge length (a sphere whose radii moved by up to 2.5 edges) it reaches both counts,
-   * at 0.66 and 0.71 times vtkQuadricClustering's Hausdorff distance and 0.96 and 0.53 times its
+   * at 0.67 and 0.71 times vtkQuadricClustering's Hausdorff distance and 0.96 and 0.53 times its
    * RMS distance (its 1% level crumpled, at about 5 and 10 times, before a vertex of a cluster
    * could stand in for a representative that flips a triangle), where the repairs keep 92% and 87%
    * of its triangles at the 10% and 1% targets; but the levels made with it off fold: on a sphere
@@ -402,7 +402,7 @@ public:
    * to the input (judged by the local surface distance both ways). Points, triangle counts,
    * clusters and MorphTargetId stay as they are, and the next level is clustered from the unflipped
    * triangles. On the benchmark isosurfaces it lowers the RMS distance by 8-21% and changes the
-   * Hausdorff distance by -12% to +1%, for 1.4-1.5 times the time on one thread (1.3-1.4 times on
+   * Hausdorff distance by -9% to +1%, for 1.3-1.4 times the time on one thread (1.3-1.4 times on
    * two; Benchmarks/RESULTS.md; 1.6-1.75 and 1.6-1.7 before edges whose far corners are sharp
    * were left unjudged, Core/TriangulationFlips.h). On a binary mask's terraced isosurface
    * (84,380 triangles) at 1%, where the input's connectivity joins many quads of clusters the
@@ -448,7 +448,7 @@ public:
   ///@{
   /**
    * Measure every level's surface distance to level 0 (MeasuredHausdorff, MeasuredRMS field
-   * data). Costs about a third of the simplification's time (0.5 s on top of 1.3 s for the
+   * data). Costs about half the simplification's time (0.5 s on top of 1.0 s for the
    * levels of a 977,200-triangle UV sphere, one thread). Default off.
    */
   vtkSetMacro(MeasureLevelErrors, bool);
