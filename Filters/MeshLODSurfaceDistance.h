@@ -19,9 +19,9 @@
 // world units; *Percent() divides by the bounding-box diagonal of the first mesh (the reference).
 //
 // Used by the tests, the benchmark and vtkTriangleCollapseDecimation::ComputeLevelError. It is
-// a measurement by sampling, not a bound: the true maxima are at least as large (more area
-// samples can only raise them; the vertex samples, every k-th vertex, are not nested; the
-// searches find local maxima).
+// a measurement by sampling, not a bound: the true maxima are at least as large (the searches
+// find local maxima, from starts that change with the number of samples; more RefinedSamples
+// can only raise them).
 #ifndef MeshLODSurfaceDistance_h
 #define MeshLODSurfaceDistance_h
 
@@ -64,7 +64,7 @@ struct VTKFILTERSMESHLOD_EXPORT SurfaceDistanceOptions
   std::int64_t MaximumVertexSamples = 100000;
   /// The maxima: from each of this many area samples farthest from the other surface (the
   /// farthest of each triangle), a search climbs to the farthest point near it on its triangle
-  /// (0: none). Each search costs about 50 distance queries.
+  /// (0: none). Each search costs about 50 distance queries, at most 3,120.
   std::int64_t RefinedSamples = 128;
   std::uint64_t Seed = 12345;
 };

@@ -143,15 +143,26 @@ void TestNarrowFarthestSpot()
   vtkSmartPointer<vtkPolyData> flat = testing::MakeGrid(40, 40);
   const double farthest = h * d / std::sqrt(h * h + d * d);
 
+  // Over 16 seeds (about 20 of the 2,000 samples land in the strip each time): the search ends
+  // within 1/1024 of the triangle's width of the centre line, under 0.5% of the distance; the
+  // samples alone fall short by a few percent on average.
   SurfaceDistanceOptions options;
   options.SamplesPerSurface = 2000;
-  const SurfaceDistance refined = MeasureSurfaceDistance(grooved, flat, options);
-  MESHLOD_CHECK_LE(std::abs(refined.MaxBA - farthest), 1e-3 * farthest);
-  MESHLOD_CHECK_LE(std::abs(refined.MaxAB - d), 1e-12); // the groove's bottom, a vertex
-  options.RefinedSamples = 0;
-  const SurfaceDistance sampled = MeasureSurfaceDistance(grooved, flat, options);
-  MESHLOD_CHECK_LT(sampled.MaxBA, 0.99 * farthest);
-  MESHLOD_CHECK_GT(sampled.MaxBA, 0.5 * farthest); // samples did land in the strip
+  double sampledSum = 0.0;
+  const int seeds = 16;
+  for (int seed = 1; seed <= seeds; ++seed)
+  {
+    options.Seed = static_cast<std::uint64_t>(seed);
+    options.RefinedSamples = 128;
+    const SurfaceDistance refined = MeasureSurfaceDistance(grooved, flat, options);
+    MESHLOD_CHECK_LE(std::abs(refined.MaxBA - farthest), 5e-3 * farthest);
+    MESHLOD_CHECK_LE(std::abs(refined.MaxAB - d), 1e-12); // the groove's bottom, a vertex
+    options.RefinedSamples = 0;
+    const SurfaceDistance sampled = MeasureSurfaceDistance(grooved, flat, options);
+    MESHLOD_CHECK_LE(sampled.MaxBA, refined.MaxBA);
+    sampledSum += sampled.MaxBA;
+  }
+  MESHLOD_CHECK_LT(sampledSum / seeds, 0.98 * farthest);
 }
 
 void TestSameForEveryBackend()
