@@ -133,21 +133,13 @@ SampleSet Sample(vtkPolyData* mesh, const std::vector<vtkIdType>& tris,
   return samples;
 }
 
-// Distances from points to a surface, one per point (exact to rounding whatever the triangle's
-// shape, on one of zero area too: ClosestPointOnTriangle measures such a triangle by its edges).
-std::vector<double> DistancesOf(const SurfaceTriangles& surface, const double* positions,
-  vtkIdType count)
+// The distance from p to a surface (exact to rounding whatever the triangle's shape, on one of
+// zero area too: ClosestPointOnTriangle measures such a triangle by its edges).
+double DistanceTo(const SurfaceTriangles& surface, const double p[3])
 {
-  std::vector<double> distance(count, 0.0);
-  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      double closest[3], dist2;
-      surface.Tree.FindClosest(positions + 3 * i, closest, dist2);
-      distance[i] = std::sqrt(dist2);
-    }
-  });
-  return distance;
+  double closest[3], dist2;
+  surface.Tree.FindClosest(p, closest, dist2);
+  return std::sqrt(dist2);
 }
 
 // The search of RefinedMaximum: from barycentric weights w on triangle `corner` (where the
@@ -162,13 +154,12 @@ double ClimbOnTriangle(const SurfaceTriangles& surface, const double* corner[3],
   double start)
 {
   auto distanceAt = [&](const double at[3]) {
-    double p[3], closest[3], dist2;
+    double p[3];
     for (int c = 0; c < 3; ++c)
     {
       p[c] = at[0] * corner[0][c] + at[1] * corner[1][c] + at[2] * corner[2][c];
     }
-    surface.Tree.FindClosest(p, closest, dist2);
-    return std::sqrt(dist2);
+    return DistanceTo(surface, p);
   };
   static const int moves[6][3] = { { 1, -1, 0 }, { -1, 1, 0 }, { 1, 0, -1 }, { -1, 0, 1 },
     { 0, 1, -1 }, { 0, -1, 1 } };
@@ -265,7 +256,13 @@ void DistancesTo(const SurfaceTriangles& surface, const SurfaceTriangles& sample
   double& sumOfSquares)
 {
   const vtkIdType count = static_cast<vtkIdType>(samples.Positions.size() / 3);
-  const std::vector<double> distance = DistancesOf(surface, samples.Positions.data(), count);
+  std::vector<double> distance(count, 0.0);
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      distance[i] = DistanceTo(surface, samples.Positions.data() + 3 * i);
+    }
+  });
   maximum = count > 0 ? *std::max_element(distance.begin(), distance.end()) : 0.0;
   maximum = std::max(maximum, RefinedMaximum(surface, sampled, samples, distance, options));
   const vtkIdType squared = samples.AreaSamples > 0 ? samples.AreaSamples : count;

@@ -3,7 +3,6 @@
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
 
-#include "vtkCellArray.h"
 #include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -12,6 +11,7 @@
 #include "vtkStaticCellLocator.h"
 
 #include <cmath>
+#include <vector>
 
 namespace
 {
@@ -120,26 +120,22 @@ void TestDegenerateTriangles()
 void TestNarrowFarthestSpot()
 {
   const double x0 = 20.45, h = 0.2, d = 2.0, size = 40.0;
-  vtkNew<vtkPoints> points;
+  std::vector<double> points;
   const double xs[5] = { 0.0, x0 - h, x0, x0 + h, size };
   const double zs[5] = { 0.0, 0.0, -d, 0.0, 0.0 };
   for (const double y : { 0.0, size })
   {
     for (int i = 0; i < 5; ++i)
     {
-      points->InsertNextPoint(xs[i], y, zs[i]);
+      points.insert(points.end(), { xs[i], y, zs[i] });
     }
   }
-  vtkNew<vtkCellArray> strips;
-  for (vtkIdType i = 0; i < 4; ++i)
+  std::vector<long long> strips;
+  for (long long i = 0; i < 4; ++i)
   {
-    const vtkIdType lower[3] = { i, i + 1, i + 6 }, upper[3] = { i, i + 6, i + 5 };
-    strips->InsertNextCell(3, lower);
-    strips->InsertNextCell(3, upper);
+    strips.insert(strips.end(), { i, i + 1, i + 6, i, i + 6, i + 5 });
   }
-  vtkNew<vtkPolyData> grooved;
-  grooved->SetPoints(points);
-  grooved->SetPolys(strips);
+  vtkSmartPointer<vtkPolyData> grooved = testing::MakePolyData(points, strips);
   vtkSmartPointer<vtkPolyData> flat = testing::MakeGrid(40, 40);
   const double farthest = h * d / std::sqrt(h * h + d * d);
 
