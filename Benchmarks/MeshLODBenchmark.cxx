@@ -723,6 +723,7 @@ std::string Benchmark::TargetSummary() const
     const char* Against;
   };
   const Pair pairs[] = { { "vtkTriangleCollapseDecimation", "vtkQuadricDecimation" },
+    { "vtkTriangleCollapseDecimation flipped edges", "vtkQuadricDecimation" },
     { "vtkTriangleCollapseDecimation independent sets", "vtkQuadricDecimation" },
     { "vtkTriangleCollapseDecimation triangles only", "vtkQuadricDecimation" },
     { "vtkTriangleCollapseDecimation curvature", "vtkQuadricDecimation" },

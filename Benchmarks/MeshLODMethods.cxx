@@ -144,6 +144,11 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     "as vtkTriangleCollapseDecimation, with AreaNormalization 0 (a collapse costs its merged "
     "quadric's value, paper 002's cost, not divided by the surface it stands for)",
     [](vtkTriangleCollapseDecimation* d) { d->SetAreaNormalization(0.0); }));
+  methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation flipped edges",
+    "as vtkTriangleCollapseDecimation, with FlipEdges on (the edges of each level with at most a "
+    "quarter of the input's triangles flipped towards the input; for discrete levels, see the "
+    "class docs)",
+    [](vtkTriangleCollapseDecimation* d) { d->FlipEdgesOn(); }));
   methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation independent sets",
     "quadric method, IndependentSets schedule (LevelFraction 0.025), triangles and edges, 8 levels",
     [](vtkTriangleCollapseDecimation* d) { d->SetScheduleToIndependentSets(); }));

@@ -27,6 +27,7 @@ set(meshlod_private_headers
   Filters/Core/IndexedHeap.h
   Filters/Core/LevelCentering.h
   Filters/Core/LevelData.h
+  Filters/Core/LevelEdgeFlips.h
   Filters/Core/LevelTracker.h
   Filters/Core/LinkFan.h
   Filters/Core/LocalSurfaceFit.h
@@ -66,6 +67,7 @@ set(meshlod_sources
   Filters/Core/GreedySchedule.cxx
   Filters/Core/IndependentSetSchedule.cxx
   Filters/Core/LevelCentering.cxx
+  Filters/Core/LevelEdgeFlips.cxx
   Filters/Core/LevelTracker.cxx
   Filters/Core/LinkFan.cxx
   Filters/Core/LocalSurfaceFit.cxx

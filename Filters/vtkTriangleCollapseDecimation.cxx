@@ -3,6 +3,7 @@
 #include "Core/FreshMemory.h"
 #include "Core/LevelCentering.h"
 #include "Core/LevelData.h"
+#include "Core/LevelEdgeFlips.h"
 #include "Core/TriangleCollapse.h"
 #include "MeshLODHierarchy.h"
 #include "MeshLODInputMesh.h"
@@ -284,6 +285,12 @@ int vtkTriangleCollapseDecimation::RequestData(
   {
     centering.SetLevelZero(builder.GetLevelZeroView(levelZeroPoints));
   }
+  meshlod::LevelEdgeFlips flips;
+  this->NumberOfFlips = 0;
+  if (this->FlipEdges)
+  {
+    flips.SetLevelZero(mesh.Mesh); // a copy: the engine takes the mesh over below
+  }
   // The maps to the source were for level 0, but for the point map when the curvature method's
   // fits read the input's points through it (12 bytes per input triangle alive to the end of
   // the run otherwise).
@@ -300,6 +307,10 @@ int vtkTriangleCollapseDecimation::RequestData(
     {
       centering.Apply(level.Mesh, level.Target, level.Sources.Offsets, level.Sources.Parents,
         level.Sources.Weights);
+    }
+    if (this->FlipEdges)
+    {
+      this->NumberOfFlips += flips.Apply(level.Mesh, level.Target, level.EstimatedError);
     }
     builder.AppendLevel(std::move(level));
   };
@@ -489,8 +500,10 @@ void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PreserveTopology: " << (this->PreserveTopology ? "On" : "Off") << "\n";
   os << indent << "MaximumFitPoints: " << this->MaximumFitPoints << "\n";
   os << indent << "CenterOnInput: " << (this->CenterOnInput ? "On" : "Off") << "\n";
+  os << indent << "FlipEdges: " << (this->FlipEdges ? "On" : "Off") << "\n";
   os << indent << "ComputeLevelError: " << (this->ComputeLevelError ? "On" : "Off") << "\n";
   os << indent << "NumberOfLevelsProduced: " << this->NumberOfLevelsProduced << "\n";
   os << indent << "ActualReduction: " << this->ActualReduction << "\n";
   os << indent << "NumberOfSwaps: " << this->NumberOfSwaps << "\n";
+  os << indent << "NumberOfFlips: " << this->NumberOfFlips << "\n";
 }

@@ -6,6 +6,9 @@
 // diagonal changes no point, no count and no cluster, so a level keeps its nesting and its
 // correspondence (MorphTargetId) while lying closer to the input.
 //
+// vtkTriangleCollapseDecimation's FlipEdges applies the same flips to its levels (LevelEdgeFlips.h),
+// where the greedy collapses sometimes leave a long edge across a saddle.
+//
 // A flip of the edge (a, b) between triangles (a, b, c) and (b, a, d) to (c, a, d), (d, b, c) is
 // judged on the input surface itself, locally: points on the four triangles (their centroids and
 // the two diagonals' quarter points and midpoints) are projected onto the input by a walk over its
@@ -50,6 +53,10 @@ struct VTKFILTERSMESHLOD_EXPORT TriangulationFlipOptions
   double RequiredGain = 0.8;
   /// An edge is judged only when the two angles facing it add up to this many degrees or more.
   double MinimumOppositeAngles = 120.0;
+  /// An edge is judged only when its quad's two configurations lie at least this fraction of
+  /// the error bound apart: a flip between closer ones changes the error by less (on a
+  /// 611k-triangle gyroid a tenth less time for the same flips).
+  double MinimumSeparation = 0.1;
 };
 
 /// Flip edges of `level` towards `input` (see above). `startVertex[p]` is an input vertex near

@@ -191,6 +191,26 @@ for name, changed in (("Placement", paper), ("PlaneWeights", uniform),
     check(coarsest_points(changed.GetHierarchy()) != coarsest_points(by_default.GetHierarchy()),
           "%s changes the coarsest level" % name)
 
+# FlipEdges (default off) through the wrapping: every level keeps its points and its count, and
+# some of its triangles are flipped.
+flipped = contour_filter()
+check(not flipped.GetFlipEdges(), "FlipEdges default")
+flipped.FlipEdgesOn()
+check("FlipEdges: On" in str(flipped), "PrintSelf shows FlipEdges")
+flipped.Update()
+check(flipped.GetNumberOfFlips() > 0, "%d flips" % flipped.GetNumberOfFlips())
+changed_levels = 0
+for i in range(LEVELS + 1):
+    plain_level = by_default.GetHierarchy().GetBlock(i)
+    flipped_level = flipped.GetHierarchy().GetBlock(i)
+    points = lambda level: [level.GetPoint(p) for p in range(level.GetNumberOfPoints())]
+    check(points(plain_level) == points(flipped_level), "level %d: points kept" % i)
+    check(plain_level.GetNumberOfPolys() == flipped_level.GetNumberOfPolys(),
+          "level %d: count kept" % i)
+    changed_levels += triangles_of(plain_level) != triangles_of(flipped_level)
+check(changed_levels > 0, "%d levels flipped" % changed_levels)
+
+
 def unused_points(poly):
     return poly.GetNumberOfPoints() - len(set(triangles_of(poly)))
 

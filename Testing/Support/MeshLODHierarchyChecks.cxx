@@ -418,6 +418,28 @@ bool SameMesh(vtkPolyData* a, vtkPolyData* b)
   return Triangles(a) == Triangles(b);
 }
 
+bool SamePointArray(vtkPolyData* a, vtkPolyData* b, const char* name)
+{
+  vtkDataArray* x = a->GetPointData()->GetArray(name);
+  vtkDataArray* y = b->GetPointData()->GetArray(name);
+  if (!x || !y || x->GetNumberOfTuples() != y->GetNumberOfTuples() ||
+    x->GetNumberOfComponents() != y->GetNumberOfComponents())
+  {
+    return false;
+  }
+  for (vtkIdType t = 0; t < x->GetNumberOfTuples(); ++t)
+  {
+    for (int c = 0; c < x->GetNumberOfComponents(); ++c)
+    {
+      if (x->GetComponent(t, c) != y->GetComponent(t, c))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 std::int64_t CountDifferingLevels(vtkMultiBlockDataSet* a, vtkMultiBlockDataSet* b)
 {
   const unsigned int na = a->GetNumberOfBlocks(), nb = b->GetNumberOfBlocks();

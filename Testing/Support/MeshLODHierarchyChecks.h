@@ -53,6 +53,9 @@ double BoundaryDeviation(vtkPolyData* fine, vtkPolyData* coarse);
 /// True when the two meshes have bitwise equal points and cells.
 bool SameMesh(vtkPolyData* a, vtkPolyData* b);
 
+/// True when both meshes have the point-data array `name` with equal tuples.
+bool SamePointArray(vtkPolyData* a, vtkPolyData* b, const char* name);
+
 /// Block i of a hierarchy as a polydata (null when it is not one).
 vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, unsigned int i);
 

@@ -1,0 +1,76 @@
+#include "LevelEdgeFlips.h"
+
+#include "FreshMemory.h"
+#include "GroupByKey.h"
+#include "TriangulationFlips.h"
+#include "Vector3.h"
+
+#include "vtkSMPTools.h"
+
+#include <limits>
+
+namespace meshlod
+{
+//------------------------------------------------------------------------------
+void LevelEdgeFlips::SetLevelZero(const TriangleMesh& input)
+{
+  this->Input = input;
+  this->InputTriangles.Build(this->Input);
+  const Id points = this->Input.GetNumberOfPoints();
+  this->LevelPoint = FreshVector<Id>(points);
+  vtkSMPTools::For(0, points, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
+    {
+      this->LevelPoint[i] = i;
+    }
+  });
+}
+
+//------------------------------------------------------------------------------
+Id LevelEdgeFlips::Apply(TriangleMesh& level, const std::vector<Id>& target, double estimatedError)
+{
+  // The correspondence from level 0, one level further (every level, flipped or not).
+  const Id inputPoints = this->Input.GetNumberOfPoints();
+  vtkSMPTools::For(0, inputPoints, [&](Id begin, Id end) {
+    for (Id i = begin; i < end; ++i)
+    {
+      const Id p = this->LevelPoint[i];
+      this->LevelPoint[i] = p == InvalidId ? InvalidId : target[p];
+    }
+  });
+  if (level.GetNumberOfTriangles() > LargestFraction * this->Input.GetNumberOfTriangles())
+  {
+    return 0;
+  }
+
+  // Each level point's walks start at the nearest input point it stands for (rows in input
+  // order, so the first of equally near ones, whatever the thread count).
+  const Id points = level.GetNumberOfPoints();
+  std::vector<Id> offsets, members;
+  GroupItemsByKey(
+    static_cast<std::size_t>(points), inputPoints,
+    [&](std::int64_t i) { return this->LevelPoint[i]; },
+    [](std::int64_t i) { return static_cast<Id>(i); }, offsets, members);
+  std::vector<Id> start = FreshVector<Id>(points, InvalidId);
+  vtkSMPTools::For(0, points, [&](Id begin, Id end) {
+    for (Id p = begin; p < end; ++p)
+    {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (Id k = offsets[p]; k < offsets[p + 1]; ++k)
+      {
+        const double d = Distance2(this->Input.Point(members[k]), level.Point(p));
+        if (d < nearest)
+        {
+          nearest = d;
+          start[p] = members[k];
+        }
+      }
+    }
+  });
+  TriangulationFlipOptions options;
+  options.MinimumOppositeAngles = MinimumOppositeAngles;
+  options.MinimumSeparation = MinimumSeparation;
+  return ImproveTriangulation(
+    this->Input, this->InputTriangles, start, ErrorScale * estimatedError, level, options);
+}
+} // namespace meshlod
