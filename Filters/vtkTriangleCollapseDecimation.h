@@ -119,9 +119,10 @@
  *   are marked for re-fitting at the end of the round, and a fit reads only its own cell's
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its whole
- *   hierarchy the curvature method takes 1.4-3.5x the time vtkQuadricDecimation needs for one 10%
- *   target on one thread, and 1.5-2.1x less on two (the quadric method: 0.29-0.54x over seven
- *   runs on AMD EPYC processors, 0.34-0.46x in Benchmarks/RESULTS.md's, and 1.6-1.9x less on two; the
+ *   hierarchy the curvature method takes 1.3-3.4x the time vtkQuadricDecimation needs for one 10%
+ *   target on one thread, and 1.6-1.8x less on two (the quadric method: 0.29-0.54x over eight
+ *   runs on AMD EPYC processors, 0.32-0.46x in Benchmarks/RESULTS.md's, and 1.4-1.9x less on two,
+ *   the least on the 154k-triangle mesh, whose one run of half a second swings most; the
  *   ratios move with the processor, the machine's load and what ran before in the same process:
  *   on an Intel Xeon the quadric method took 0.42-0.69x over three runs, its own times about as
  *   on the EPYC, vtkQuadricDecimation's 1.3-2.0x shorter; on one EPYC the 154k mesh's 0.54 was
@@ -365,7 +366,7 @@ public:
    * at 1% the candidates' was 0.98, 0.93 and 1.04x vtkQuadricDecimation's against the
    * default's 0.92, 1.02 and 0.99x: more on the metaballs and the 2.3M gyroid, less on the 611k
    * gyroid (each is the distance at one spot, which moves by chance: see AreaNormalization),
-   * and the whole hierarchy took 1.3-1.4 times as long (an
+   * and the whole hierarchy took 1.3-1.45 times as long (an
    * eigendecomposition per solve, against one L D L^T factorisation). On faceted solids both
    * keep the faces exactly. Curvature method: not used (its collapse point comes from the fit).
    */
@@ -661,12 +662,14 @@ public:
    * (Core/LevelEdgeFlips.h, the judge of vtkVertexClusterOctree's FlipEdges). Points, triangle
    * counts, MorphTargetId and CollapseRank stay as they are, and the next level is made from
    * the unflipped triangles. It removes the long edges across a saddle that the collapses
-   * sometimes leave: on the 611k-triangle gyroid isosurface of
-   * Benchmarks/RESULTS.md the Hausdorff distance falls from 0.243% to 0.188% of the diagonal at
-   * 1% of the triangles and from 0.0200% to 0.0181% at 10%, on the 2.3M-triangle one from
-   * 0.0627% to 0.0517% and from 0.0056% to 0.0050%, the RMS distances by 1-3%; on the metaballs
-   * isosurface, with hardly a saddle, the distances hardly move (RMS 0.5% lower). It takes about
-   * 1.4 times the time on one thread. The price: a level's triangles are then no longer what the
+   * sometimes leave. On the gyroid isosurfaces of Benchmarks/RESULTS.md
+   * the Hausdorff distance at 1% of the triangles falls from 0.243% to 0.188% of the diagonal
+   * (611k triangles; from 1.02 to 0.79 times vtkQuadricDecimation's) and from 0.0627% to 0.0517%
+   * (2.3M; 0.99 to 0.82 times), at 10% from 0.0056% to 0.0050% (2.3M; 1.03 to 0.92 times) and
+   * hardly at all (611k), the RMS distances by 1-3%; on the metaballs isosurface, with hardly a
+   * saddle, the distances hardly move (RMS 0.4% lower). The whole hierarchy takes 1.3-1.5 times
+   * as long on one thread (0.32 to 0.41, 0.38 to 0.56 and 0.46 to 0.61 times
+   * vtkQuadricDecimation's time for 10%). The price: a level's triangles are then no longer what the
    * finer level's become through its collapses, so a geomorph into a flipped level ends on its
    * unflipped triangles and the flipped quads change at the switch (a small pop), and the
    * exact-count mode of vtkLODGeomorph applied to a flipped level may keep a pair of
@@ -674,7 +677,8 @@ public:
    * 46,660 triangles, 67 such pairs over 292 counts between its levels of 4,666 and 2,623
    * triangles; every count was reached). For discrete levels (no
    * geomorph) turn it on. Memory: a copy of the input's points and triangles with their
-   * adjacency for the run (about 40 bytes per input triangle). Default off.
+   * adjacency for the run, 40 bytes more per input triangle (241 instead of 200 on the 2.3M
+   * gyroid, 0.51 times vtkQuadricDecimation's growth). Default off.
    */
   vtkSetMacro(FlipEdges, bool);
   vtkGetMacro(FlipEdges, bool);
