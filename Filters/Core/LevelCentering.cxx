@@ -199,13 +199,7 @@ struct LevelCentering::Projection
 void LevelCentering::SetLevelZero(const LevelZeroView& view)
 {
   this->Input = view;
-  this->LevelPoint.resize(view.Points);
-  vtkSMPTools::For(0, view.Points, [&](Id begin, Id end) {
-    for (Id v = begin; v < end; ++v)
-    {
-      this->LevelPoint[v] = v;
-    }
-  });
+  this->LevelPoint.Reset(view.Points);
   this->Shifts.clear();
 }
 
@@ -219,12 +213,7 @@ void LevelCentering::Apply(TriangleMesh& level,
   const Id points = level.GetNumberOfPoints();
 
   // The correspondence from level 0, one level further.
-  vtkSMPTools::For(0, this->Input.Points, [&](Id begin, Id end) {
-    for (Id i = begin; i < end; ++i)
-    {
-      this->LevelPoint[i] = target[this->LevelPoint[i]];
-    }
-  });
+  this->LevelPoint.Advance(target);
 
   // Levels with more than LargestFraction of the input's triangles stay as they are.
   if (level.GetNumberOfTriangles() > LargestFraction * this->Input.Triangles)

@@ -38,6 +38,7 @@
 #ifndef meshlod_LevelCentering_h
 #define meshlod_LevelCentering_h
 
+#include "LevelZeroCorrespondence.h"
 #include "TriangleMesh.h"
 #include "Vector3.h"
 #include "vtkFiltersMeshLODModule.h"
@@ -142,7 +143,7 @@ private:
 
   // Level 0, and per input point the point of the last level it became.
   LevelZeroView Input;
-  std::vector<Id> LevelPoint;
+  LevelZeroCorrespondence LevelPoint;
   // The point of the last level that sample i (input triangle i) belongs to: that of its first
   // corner.
   Id SamplePoint(Id i) const { return this->LevelPoint[this->InputId(i, 0)]; }

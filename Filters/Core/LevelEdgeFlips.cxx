@@ -16,28 +16,14 @@ void LevelEdgeFlips::SetLevelZero(const TriangleMesh& input)
 {
   this->Input = input;
   this->InputTriangles.Build(this->Input);
-  const Id points = this->Input.GetNumberOfPoints();
-  this->LevelPoint = FreshVector<Id>(points);
-  vtkSMPTools::For(0, points, [&](Id begin, Id end) {
-    for (Id i = begin; i < end; ++i)
-    {
-      this->LevelPoint[i] = i;
-    }
-  });
+  this->LevelPoint.Reset(this->Input.GetNumberOfPoints());
 }
 
 //------------------------------------------------------------------------------
 Id LevelEdgeFlips::Apply(TriangleMesh& level, const std::vector<Id>& target, double estimatedError)
 {
   // The correspondence from level 0, one level further (every level, flipped or not).
-  const Id inputPoints = this->Input.GetNumberOfPoints();
-  vtkSMPTools::For(0, inputPoints, [&](Id begin, Id end) {
-    for (Id i = begin; i < end; ++i)
-    {
-      const Id p = this->LevelPoint[i];
-      this->LevelPoint[i] = p == InvalidId ? InvalidId : target[p];
-    }
-  });
+  this->LevelPoint.Advance(target);
   if (level.GetNumberOfTriangles() > LargestFraction * this->Input.GetNumberOfTriangles())
   {
     return 0;
@@ -46,6 +32,7 @@ Id LevelEdgeFlips::Apply(TriangleMesh& level, const std::vector<Id>& target, dou
   // Each level point's walks start at the nearest input point it stands for (rows in input
   // order, so the first of equally near ones, whatever the thread count).
   const Id points = level.GetNumberOfPoints();
+  const Id inputPoints = this->Input.GetNumberOfPoints();
   std::vector<Id> offsets, members;
   GroupItemsByKey(
     static_cast<std::size_t>(points), inputPoints,

@@ -31,6 +31,7 @@
 #ifndef meshlod_LevelEdgeFlips_h
 #define meshlod_LevelEdgeFlips_h
 
+#include "LevelZeroCorrespondence.h"
 #include "TriangleMesh.h"
 #include "vtkFiltersMeshLODModule.h"
 
@@ -62,7 +63,7 @@ public:
 private:
   TriangleMesh Input;
   VertexTriangleAdjacency InputTriangles;
-  std::vector<Id> LevelPoint; // input point -> its point of the last level
+  LevelZeroCorrespondence LevelPoint;
 };
 } // namespace meshlod
 

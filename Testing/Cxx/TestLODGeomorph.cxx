@@ -37,6 +37,7 @@ namespace
 {
 using namespace meshlod;
 using testing::Level;
+using testing::SameValues;
 
 // The mesh with float or double points and point data: Height (double, = z), Label (int,
 // 10 * id), Normals (float, the attribute) and cell data CellLabel (int, 100 + id).
@@ -82,26 +83,6 @@ vtkPolyData* Run(vtkLODGeomorph* filter, double lod)
   filter->SetLevelOfDetail(lod);
   filter->Update();
   return filter->GetOutput();
-}
-
-bool SameValues(vtkDataArray* a, vtkDataArray* b)
-{
-  if (!a || !b || a->GetNumberOfTuples() != b->GetNumberOfTuples() ||
-    a->GetNumberOfComponents() != b->GetNumberOfComponents())
-  {
-    return false;
-  }
-  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
-  {
-    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
-    {
-      if (a->GetComponent(i, c) != b->GetComponent(i, c))
-      {
-        return false;
-      }
-    }
-  }
-  return true;
 }
 
 void TestHierarchy(vtkMultiBlockDataSet* h)

@@ -13,6 +13,7 @@
 
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 
 #include <algorithm>
@@ -533,7 +534,9 @@ void TestTriangleCollapseFlips()
     changedInAll += changed;
     for (const char* name : { "MorphTargetId", "CollapseRank", "MorphTarget" })
     {
-      MESHLOD_CHECK(i + 1 == levels || testing::SamePointArray(a, b, name)); // (none on the last)
+      // (The last level has none.)
+      MESHLOD_CHECK(i + 1 == levels ||
+        testing::SameValues(a->GetPointData()->GetArray(name), b->GetPointData()->GetArray(name)));
     }
     if (4 * a->GetNumberOfPolys() > mesh->GetNumberOfPolys())
     {

@@ -45,6 +45,7 @@
 namespace
 {
 using namespace meshlod;
+using testing::SameValues;
 using testing::Triangles;
 using Triangle = testing::TriangleIds;
 using Color = std::array<double, 3>;
@@ -625,27 +626,8 @@ void TestInputTexture()
   MESHLOD_CHECK_LT(baked, 4.0);
   CheckExactCountsWithOwnTextures(h, 0);
 }
-//------------------------------------------------------------------------------
-// The same output for one thread and for several (the whole pipeline, baking included).
-bool SameArray(vtkDataArray* a, vtkDataArray* b)
-{
-  if (!a || !b || a->GetNumberOfTuples() != b->GetNumberOfTuples() ||
-    a->GetNumberOfComponents() != b->GetNumberOfComponents() ||
-    a->GetDataType() != b->GetDataType())
-  {
-    return false;
-  }
-  for (vtkIdType i = 0; i < a->GetNumberOfTuples() * a->GetNumberOfComponents(); ++i)
-  {
-    if (a->GetComponent(i / a->GetNumberOfComponents(), i % a->GetNumberOfComponents()) !=
-      b->GetComponent(i / b->GetNumberOfComponents(), i % b->GetNumberOfComponents()))
-    {
-      return false;
-    }
-  }
-  return true;
-}
 
+//------------------------------------------------------------------------------
 // A request for a piece of the mesh still gets the whole texture: the piece request used to
 // reach port 1, so an image source made half the image (371 of 4,096 texels of the level's
 // baked texture then differed) and an image filter there crashed on the part it was missing.
@@ -688,10 +670,10 @@ void TestTextureInPieces()
   auto* baked = vtkImageData::SafeDownCast(textures->GetBlock(1));
   auto* expected = vtkImageData::SafeDownCast(reference->GetTextures()->GetBlock(1));
   MESHLOD_CHECK(baked && expected &&
-    SameArray(baked->GetPointData()->GetScalars(), expected->GetPointData()->GetScalars()));
+    SameValues(baked->GetPointData()->GetScalars(), expected->GetPointData()->GetScalars()));
 }
 
-
+// The same output for one thread and for several (the whole pipeline, baking included).
 void CheckThreads(vtkPolyData* mesh, vtkImageData* texture)
 {
   const std::string original = vtkSMPTools::GetBackend();
@@ -729,21 +711,21 @@ void CheckThreads(vtkPolyData* mesh, vtkImageData* texture)
   {
     auto* a = vtkPolyData::SafeDownCast(one->GetBlock(i));
     auto* b = vtkPolyData::SafeDownCast(two->GetBlock(i));
-    MESHLOD_CHECK(SameArray(a->GetPoints()->GetData(), b->GetPoints()->GetData()));
+    MESHLOD_CHECK(SameValues(a->GetPoints()->GetData(), b->GetPoints()->GetData()));
     MESHLOD_CHECK(Triangles(a) == Triangles(b));
     MESHLOD_CHECK_EQ(
       a->GetPointData()->GetNumberOfArrays(), b->GetPointData()->GetNumberOfArrays());
     for (int k = 0; k < a->GetPointData()->GetNumberOfArrays(); ++k)
     {
       // (By place: the arrays come in the same order, and some have no name.)
-      MESHLOD_CHECK(SameArray(a->GetPointData()->GetArray(k), b->GetPointData()->GetArray(k)));
+      MESHLOD_CHECK(SameValues(a->GetPointData()->GetArray(k), b->GetPointData()->GetArray(k)));
     }
     auto* ta = vtkImageData::SafeDownCast(results[0][1]->GetBlock(i));
     auto* tb = vtkImageData::SafeDownCast(results[1][1]->GetBlock(i));
     MESHLOD_CHECK((ta == nullptr) == (tb == nullptr));
     if (ta && tb)
     {
-      MESHLOD_CHECK(SameArray(ta->GetPointData()->GetScalars(), tb->GetPointData()->GetScalars()));
+      MESHLOD_CHECK(SameValues(ta->GetPointData()->GetScalars(), tb->GetPointData()->GetScalars()));
     }
   }
 }

@@ -418,20 +418,19 @@ bool SameMesh(vtkPolyData* a, vtkPolyData* b)
   return Triangles(a) == Triangles(b);
 }
 
-bool SamePointArray(vtkPolyData* a, vtkPolyData* b, const char* name)
+bool SameValues(vtkDataArray* a, vtkDataArray* b)
 {
-  vtkDataArray* x = a->GetPointData()->GetArray(name);
-  vtkDataArray* y = b->GetPointData()->GetArray(name);
-  if (!x || !y || x->GetNumberOfTuples() != y->GetNumberOfTuples() ||
-    x->GetNumberOfComponents() != y->GetNumberOfComponents())
+  if (!a || !b || a->GetNumberOfTuples() != b->GetNumberOfTuples() ||
+    a->GetNumberOfComponents() != b->GetNumberOfComponents() ||
+    a->GetDataType() != b->GetDataType())
   {
     return false;
   }
-  for (vtkIdType t = 0; t < x->GetNumberOfTuples(); ++t)
+  for (vtkIdType t = 0; t < a->GetNumberOfTuples(); ++t)
   {
-    for (int c = 0; c < x->GetNumberOfComponents(); ++c)
+    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
     {
-      if (x->GetComponent(t, c) != y->GetComponent(t, c))
+      if (a->GetComponent(t, c) != b->GetComponent(t, c))
       {
         return false;
       }

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+class vtkDataArray;
 class vtkMultiBlockDataSet;
 class vtkPolyData;
 
@@ -53,8 +54,8 @@ double BoundaryDeviation(vtkPolyData* fine, vtkPolyData* coarse);
 /// True when the two meshes have bitwise equal points and cells.
 bool SameMesh(vtkPolyData* a, vtkPolyData* b);
 
-/// True when both meshes have the point-data array `name` with equal tuples.
-bool SamePointArray(vtkPolyData* a, vtkPolyData* b, const char* name);
+/// True when both arrays exist and have the same data type, shape and values.
+bool SameValues(vtkDataArray* a, vtkDataArray* b);
 
 /// Block i of a hierarchy as a polydata (null when it is not one).
 vtkPolyData* Level(vtkMultiBlockDataSet* hierarchy, unsigned int i);
