@@ -393,10 +393,10 @@ void HierarchyBuilder::SetLevelZero(const InputMesh& input)
 }
 
 //------------------------------------------------------------------------------
-LevelCentering::LevelZeroView HierarchyBuilder::GetLevelZeroView(std::vector<double>& copy) const
+LevelZeroView HierarchyBuilder::GetLevelZeroView(std::vector<double>& copy) const
 {
   vtkPolyData* level0 = this->Impl->Levels.front();
-  LevelCentering::LevelZeroView view;
+  LevelZeroView view;
   vtkDataArray* points = level0->GetPoints()->GetData();
   if (auto* doubles = vtkDoubleArray::FastDownCast(points))
   {

@@ -25,7 +25,7 @@
 #ifndef MeshLODHierarchy_h
 #define MeshLODHierarchy_h
 
-#include "Core/LevelCentering.h"
+#include "Core/LevelZeroView.h"
 #include "Core/LevelData.h"
 #include "vtkFiltersMeshLODModule.h"
 #include "vtkSmartPointer.h"
@@ -93,9 +93,9 @@ public:
   /// arrays and its VTK arrays are not all alive at the peak of memory.
   void AppendLevel(LevelData&& level);
 
-  /// Level 0's points and triangles, to be read in place (LevelCentering): its points are
-  /// copied into `copy` when they are neither float nor double.
-  LevelCentering::LevelZeroView GetLevelZeroView(std::vector<double>& copy) const;
+  /// Level 0's points and triangles, to be read in place (LevelCentering, LevelEdgeFlips): its
+  /// points are copied into `copy` when they are neither float nor double.
+  LevelZeroView GetLevelZeroView(std::vector<double>& copy) const;
 
   /// Number of levels so far (level 0 included).
   int GetNumberOfLevels() const;

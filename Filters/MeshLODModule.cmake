@@ -29,6 +29,7 @@ set(meshlod_private_headers
   Filters/Core/LevelData.h
   Filters/Core/LevelEdgeFlips.h
   Filters/Core/LevelZeroCorrespondence.h
+  Filters/Core/LevelZeroView.h
   Filters/Core/LevelTracker.h
   Filters/Core/LinkFan.h
   Filters/Core/LocalSurfaceFit.h

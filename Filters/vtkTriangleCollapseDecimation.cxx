@@ -279,17 +279,21 @@ int vtkTriangleCollapseDecimation::RequestData(
 
   meshlod::HierarchyBuilder builder;
   builder.SetLevelZero(mesh);
-  meshlod::LevelCentering centering;
+  // Level 0 as the output holds it: the engine takes the mesh over below.
   std::vector<double> levelZeroPoints; // only if its points are neither float nor double
+  const meshlod::LevelZeroView levelZero = this->CenterOnInput || this->FlipEdges
+    ? builder.GetLevelZeroView(levelZeroPoints)
+    : meshlod::LevelZeroView();
+  meshlod::LevelCentering centering;
   if (this->CenterOnInput)
   {
-    centering.SetLevelZero(builder.GetLevelZeroView(levelZeroPoints));
+    centering.SetLevelZero(levelZero);
   }
   meshlod::LevelEdgeFlips flips;
   this->NumberOfFlips = 0;
   if (this->FlipEdges)
   {
-    flips.SetLevelZero(mesh.Mesh); // a copy: the engine takes the mesh over below
+    flips.SetLevelZero(levelZero);
   }
   // The maps to the source were for level 0, but for the point map when the curvature method's
   // fits read the input's points through it (12 bytes per input triangle alive to the end of

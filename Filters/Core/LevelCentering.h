@@ -39,10 +39,10 @@
 #define meshlod_LevelCentering_h
 
 #include "LevelZeroCorrespondence.h"
+#include "LevelZeroView.h"
 #include "TriangleMesh.h"
 #include "Vector3.h"
 #include "vtkFiltersMeshLODModule.h"
-#include "vtkType.h"
 
 #include <cmath>
 #include <cstddef>
@@ -67,18 +67,7 @@ public:
   /// Points of a higher valence are not moved.
   static constexpr int MaximumValence = 32;
 
-  /// Level 0 as the hierarchy holds it, read in place (it must outlive this object): points in
-  /// double or single precision (one of the two pointers set), triangles as three 32- or 64-bit
-  /// point ids each (one of the two set), every point used by a triangle.
-  struct LevelZeroView
-  {
-    const double* Doubles = nullptr;
-    const float* Floats = nullptr;
-    const vtkTypeInt32* Ids32 = nullptr;
-    const vtkTypeInt64* Ids64 = nullptr;
-    Id Points = 0;
-    Id Triangles = 0;
-  };
+  /// Level 0 as the hierarchy holds it, read in place (it must outlive this object).
   void SetLevelZero(const LevelZeroView& view);
 
   /// Moves the points of `level`, whose previous level maps to it by `target` (previous point ->
@@ -109,23 +98,13 @@ private:
   static void PointShift(const TriangleMesh& level, const VertexTriangleAdjacency& around, Id p,
     const PointSums& sum, double itself, float* shift);
 
-  Id InputId(Id t, int k) const
-  {
-    const size_t i = 3 * static_cast<size_t>(t) + k;
-    return static_cast<Id>(this->Input.Ids32 ? this->Input.Ids32[i] : this->Input.Ids64[i]);
-  }
   // Centroid, unit normal (0 when degenerate) and area of input triangle t.
   double InputCentroid(Id t, double centroid[3], double unit[3]) const
   {
     double p[3][3];
     for (int c = 0; c < 3; ++c)
     {
-      const size_t i = 3 * static_cast<size_t>(this->InputId(t, c));
-      for (int k = 0; k < 3; ++k)
-      {
-        p[c][k] = this->Input.Doubles ? this->Input.Doubles[i + k]
-                                      : static_cast<double>(this->Input.Floats[i + k]);
-      }
+      this->Input.Point(this->Input.Corner(t, c), p[c]);
     }
     double n[3];
     Normal(p[0], p[1], p[2], n);
@@ -146,7 +125,7 @@ private:
   LevelZeroCorrespondence LevelPoint;
   // The point of the last level that sample i (input triangle i) belongs to: that of its first
   // corner.
-  Id SamplePoint(Id i) const { return this->LevelPoint[this->InputId(i, 0)]; }
+  Id SamplePoint(Id i) const { return this->LevelPoint[this->Input.Corner(i, 0)]; }
   std::vector<float> Shifts; // last level's points: x, y, z of their shift
 };
 

@@ -12,11 +12,11 @@
 namespace meshlod
 {
 //------------------------------------------------------------------------------
-void LevelEdgeFlips::SetLevelZero(const TriangleMesh& input)
+void LevelEdgeFlips::SetLevelZero(const LevelZeroView& input)
 {
   this->Input = input;
-  this->InputTriangles.Build(this->Input);
-  this->LevelPoint.Reset(this->Input.GetNumberOfPoints());
+  this->Input.BuildAdjacency(this->InputTriangles);
+  this->LevelPoint.Reset(this->Input.Points);
 }
 
 //------------------------------------------------------------------------------
@@ -24,7 +24,7 @@ Id LevelEdgeFlips::Apply(TriangleMesh& level, const std::vector<Id>& target, dou
 {
   // The correspondence from level 0, one level further (every level, flipped or not).
   this->LevelPoint.Advance(target);
-  if (level.GetNumberOfTriangles() > LargestFraction * this->Input.GetNumberOfTriangles())
+  if (level.GetNumberOfTriangles() > LargestFraction * this->Input.Triangles)
   {
     return 0;
   }
@@ -32,7 +32,7 @@ Id LevelEdgeFlips::Apply(TriangleMesh& level, const std::vector<Id>& target, dou
   // Each level point's walks start at the nearest input point it stands for (rows in input
   // order, so the first of equally near ones, whatever the thread count).
   const Id points = level.GetNumberOfPoints();
-  const Id inputPoints = this->Input.GetNumberOfPoints();
+  const Id inputPoints = this->Input.Points;
   std::vector<Id> offsets, members;
   GroupItemsByKey(
     static_cast<std::size_t>(points), inputPoints,
@@ -45,7 +45,9 @@ Id LevelEdgeFlips::Apply(TriangleMesh& level, const std::vector<Id>& target, dou
       double nearest = std::numeric_limits<double>::infinity();
       for (Id k = offsets[p]; k < offsets[p + 1]; ++k)
       {
-        const double d = Distance2(this->Input.Point(members[k]), level.Point(p));
+        double x[3];
+        this->Input.Point(members[k], x);
+        const double d = Distance2(x, level.Point(p));
         if (d < nearest)
         {
           nearest = d;

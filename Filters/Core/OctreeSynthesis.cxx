@@ -571,8 +571,8 @@ void OctreeClustering::Internals::FlipLevelEdges(ClusterLevel& level) const
         }
       }
     });
-  ImproveTriangulation(
-    this->Mesh, this->Topology.VertexTriangles, start, level.EstimatedError, level.Mesh);
+  ImproveTriangulation(LevelZeroView::Of(this->Mesh), this->Topology.VertexTriangles, start,
+    level.EstimatedError, level.Mesh);
 }
 
 //------------------------------------------------------------------------------

@@ -17,37 +17,49 @@ namespace
 // Closest points on the input surface by a walk: first over vertices (to the one nearest p, by
 // point distances only), then over the triangles around the current triangle's corners to
 // whichever is closer, until none is. Local (a walk, not a search), so its start must be near:
-// a vertex of the cluster being judged, then the previous sample's vertex.
+// a vertex of the cluster being judged, then the previous sample's vertex. `Surface` is a
+// TypedLevelZeroView.
+template <typename Surface>
 struct SurfaceWalk
 {
-  const TriangleMesh& Mesh;
+  Surface Mesh;
   const VertexTriangleAdjacency& Adjacency;
   static constexpr int MaximumSteps = 256;
 
   double Distance2To(Id t, const double p[3], double q[3], bool& inside) const
   {
-    const Id* tri = this->Mesh.Triangle(t);
-    return ClosestPointOnTriangle(
-      p, this->Mesh.Point(tri[0]), this->Mesh.Point(tri[1]), this->Mesh.Point(tri[2]), q, inside);
+    double corner[3][3];
+    for (int k = 0; k < 3; ++k)
+    {
+      this->Mesh.Point(this->Mesh.Corner(t, k), corner[k]);
+    }
+    return ClosestPointOnTriangle(p, corner[0], corner[1], corner[2], q, inside);
+  }
+
+  double Distance2ToPoint(Id v, const double p[3]) const
+  {
+    double x[3];
+    this->Mesh.Point(v, x);
+    return Distance2(p, x);
   }
 
   // `vertex`: the start, then the vertex nearest p found.
   void Closest(const double p[3], Id& vertex, double q[3]) const
   {
-    double nearest = Distance2(p, this->Mesh.Point(vertex));
+    double nearest = this->Distance2ToPoint(vertex, p);
     for (int step = 0; step < MaximumSteps; ++step)
     {
       const Id current = vertex;
       for (Id i = this->Adjacency.Begin(current); i < this->Adjacency.End(current); ++i)
       {
-        const Id* tri = this->Mesh.Triangle(this->Adjacency.Triangles[i]);
         for (int k = 0; k < 3; ++k)
         {
-          const double d = Distance2(p, this->Mesh.Point(tri[k]));
+          const Id corner = this->Mesh.Corner(this->Adjacency.Triangles[i], k);
+          const double d = this->Distance2ToPoint(corner, p);
           if (d < nearest)
           {
             nearest = d;
-            vertex = tri[k];
+            vertex = corner;
           }
         }
       }
@@ -77,14 +89,14 @@ struct SurfaceWalk
     for (int step = 0; step < MaximumSteps && !inside; ++step)
     {
       const Id current = triangle;
-      const Id* tri = this->Mesh.Triangle(current);
       for (int k = 0; k < 3; ++k)
       {
-        if (tri[k] == vertex)
+        const Id corner = this->Mesh.Corner(current, k);
+        if (corner == vertex)
         {
           continue; // its fan was scanned
         }
-        for (Id i = this->Adjacency.Begin(tri[k]); i < this->Adjacency.End(tri[k]); ++i)
+        for (Id i = this->Adjacency.Begin(corner); i < this->Adjacency.End(corner); ++i)
         {
           const Id t = this->Adjacency.Triangles[i];
           double x[3];
@@ -106,7 +118,7 @@ struct SurfaceWalk
     }
     if (vertex == InvalidId)
     {
-      vertex = this->Mesh.Triangle(triangle)[0];
+      vertex = this->Mesh.Corner(triangle, 0);
     }
   }
 };
@@ -125,9 +137,10 @@ struct Quad
   }
 };
 
+template <typename Surface>
 struct FlipJudge
 {
-  SurfaceWalk Walk;
+  SurfaceWalk<Surface> Walk;
   const std::vector<Id>& StartVertex;
   double ErrorBound2;
   double MinimumSeparation2;
@@ -165,10 +178,10 @@ struct FlipJudge
       // The walk starts from the nearest of the previous sample's vertex and the corners'
       // start vertices: a walk by distance does not cross a ridge (on a tent, the midpoint of
       // the diagonal under the ridge stuck on the face it came from).
-      double nearest = Distance2(p, this->Walk.Mesh.Point(hint));
+      double nearest = this->Walk.Distance2ToPoint(hint, p);
       for (const Id v : starts)
       {
-        const double dv = Distance2(p, this->Walk.Mesh.Point(v));
+        const double dv = this->Walk.Distance2ToPoint(v, p);
         if (dv < nearest)
         {
           nearest = dv;
@@ -541,8 +554,9 @@ namespace
 // Each interior edge once, from its triangle of lower id: into `gain`, after / before where the
 // flip is worth making, else -1. Only the edges of triangles marked `changed` are judged again
 // (candidates left by a sweep that skipped them for a shared vertex keep their gain).
+template <typename Judge>
 void JudgeEdges(const TriangleMesh& level, const TriangleTopology& topology,
-  const FlipJudge& judge, const TriangulationFlipOptions& options,
+  const Judge& judge, const TriangulationFlipOptions& options,
   const std::vector<std::uint8_t>& changed, std::vector<float>& gain)
 {
   const double minimumOpposite = options.MinimumOppositeAngles * (vtkMath::Pi() / 180.0);
@@ -628,23 +642,11 @@ Id MakeFlips(TriangleMesh& level, const TriangleTopology& topology, std::vector<
   }
   return made;
 }
-} // namespace
 
-//------------------------------------------------------------------------------
-Id ImproveTriangulation(const TriangleMesh& input,
-  const VertexTriangleAdjacency& inputTriangles,
-  const std::vector<Id>& startVertex,
-  double errorBound,
-  TriangleMesh& level,
-  const TriangulationFlipOptions& options)
+// Sweeps of judging and flipping until one flips nothing (at most MaximumSweeps).
+template <typename Judge>
+Id MakeSweeps(TriangleMesh& level, const Judge& judge, const TriangulationFlipOptions& options)
 {
-  if (!(errorBound > 0.0) || !std::isfinite(errorBound))
-  {
-    return 0; // an exact level (or no bound): nothing to gain
-  }
-  const FlipJudge judge{ SurfaceWalk{ input, inputTriangles }, startVertex,
-    4.0 * errorBound * errorBound,
-    std::pow(options.MinimumSeparation * errorBound, 2) };
   const Id nt = level.GetNumberOfTriangles();
   std::vector<float> gain(3 * static_cast<size_t>(nt), -1.0f);
   // A judgement depends on the quad's four points only: after the first sweep only the edges of
@@ -665,6 +667,29 @@ Id ImproveTriangulation(const TriangleMesh& input,
       break;
     }
   }
+  return flips;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+Id ImproveTriangulation(const LevelZeroView& input,
+  const VertexTriangleAdjacency& inputTriangles,
+  const std::vector<Id>& startVertex,
+  double errorBound,
+  TriangleMesh& level,
+  const TriangulationFlipOptions& options)
+{
+  if (!(errorBound > 0.0) || !std::isfinite(errorBound))
+  {
+    return 0; // an exact level (or no bound): nothing to gain
+  }
+  Id flips = 0;
+  input.Dispatch([&](auto surface) {
+    using Surface = decltype(surface);
+    const FlipJudge<Surface> judge{ SurfaceWalk<Surface>{ surface, inputTriangles }, startVertex,
+      4.0 * errorBound * errorBound, std::pow(options.MinimumSeparation * errorBound, 2) };
+    flips = MakeSweeps(level, judge, options);
+  });
   return flips;
 }
 

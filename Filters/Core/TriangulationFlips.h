@@ -38,6 +38,7 @@
 #ifndef meshlod_TriangulationFlips_h
 #define meshlod_TriangulationFlips_h
 
+#include "LevelZeroView.h"
 #include "TriangleMesh.h"
 #include "vtkFiltersMeshLODModule.h"
 
@@ -59,10 +60,11 @@ struct VTKFILTERSMESHLOD_EXPORT TriangulationFlipOptions
   double MinimumSeparation = 0.1;
 };
 
-/// Flip edges of `level` towards `input` (see above). `startVertex[p]` is an input vertex near
-/// level point p (of the input part p represents); `errorBound` is the level's largest cluster
-/// error in world units. Returns the number of flips made.
-VTKFILTERSMESHLOD_EXPORT Id ImproveTriangulation(const TriangleMesh& input,
+/// Flip edges of `level` towards `input` (see above; read in place, LevelZeroView.h).
+/// `startVertex[p]` is an input vertex near level point p (of the input part p represents);
+/// `errorBound` is the level's largest cluster error in world units. Returns the number of
+/// flips made.
+VTKFILTERSMESHLOD_EXPORT Id ImproveTriangulation(const LevelZeroView& input,
   const VertexTriangleAdjacency& inputTriangles,
   const std::vector<Id>& startVertex,
   double errorBound,

@@ -324,23 +324,42 @@ TentQuad MakeQuad(const TriangleMesh& input, int n, const std::array<Id, 6>& tri
 void TestTentFlips()
 {
   constexpr int n = 10;
-  const TriangleMesh input = Tent(n, 1.0);
+  const TriangleMesh tent = Tent(n, 1.0);
+  const LevelZeroView input = LevelZeroView::Of(tent);
   VertexTriangleAdjacency adjacency;
-  adjacency.Build(input);
+  adjacency.Build(tent);
   constexpr Id A = 0, B = 1, C = 2, D = 3;
 
   // Across the ridge (diagonal AB, 1/sqrt(2) under it at the middle): flipped onto the ridge,
   // where the two new triangles are the tent's faces exactly.
-  TentQuad across = MakeQuad(input, n, { B, A, C, A, B, D });
+  TentQuad across = MakeQuad(tent, n, { B, A, C, A, B, D });
   MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, across.Start, 0.5, across.Level), 1);
   const std::vector<Id> flipped = { C, B, D, D, A, C };
   MESHLOD_CHECK(across.Level.Triangles == flipped);
   // Judged again, the flipped pair stays.
   MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, across.Start, 0.5, across.Level), 0);
 
+  // The same input read as vtkTriangleCollapseDecimation reads its level 0 (single-precision
+  // points, 64-bit ids, the adjacency built from the view): the same flip.
+  const std::vector<float> floats(tent.Points.begin(), tent.Points.end());
+  const std::vector<vtkTypeInt64> ids64(tent.Triangles.begin(), tent.Triangles.end());
+  LevelZeroView single;
+  single.Floats = floats.data();
+  single.Ids64 = ids64.data();
+  single.Points = tent.GetNumberOfPoints();
+  single.Triangles = tent.GetNumberOfTriangles();
+  VertexTriangleAdjacency singleAdjacency;
+  single.BuildAdjacency(singleAdjacency);
+  MESHLOD_CHECK(singleAdjacency.Offsets == adjacency.Offsets);
+  MESHLOD_CHECK(singleAdjacency.Triangles == adjacency.Triangles);
+  TentQuad acrossSingle = MakeQuad(tent, n, { B, A, C, A, B, D });
+  MESHLOD_CHECK_EQ(
+    ImproveTriangulation(single, singleAdjacency, acrossSingle.Start, 0.5, acrossSingle.Level), 1);
+  MESHLOD_CHECK(acrossSingle.Level.Triangles == flipped);
+
   // Without an error bound (an exact level) or with one far below the local error (the walk
   // would be lost) nothing is judged.
-  TentQuad unbounded = MakeQuad(input, n, { B, A, C, A, B, D });
+  TentQuad unbounded = MakeQuad(tent, n, { B, A, C, A, B, D });
   MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, unbounded.Start, 0.0, unbounded.Level), 0);
   MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, unbounded.Start, 0.1, unbounded.Level), 0);
 
@@ -349,19 +368,20 @@ void TestTentFlips()
   VertexTriangleAdjacency flatAdjacency;
   flatAdjacency.Build(flat);
   TentQuad plane = MakeQuad(flat, n, { B, A, C, A, B, D });
-  MESHLOD_CHECK_EQ(ImproveTriangulation(flat, flatAdjacency, plane.Start, 0.5, plane.Level), 0);
+  MESHLOD_CHECK_EQ(
+    ImproveTriangulation(LevelZeroView::Of(flat), flatAdjacency, plane.Start, 0.5, plane.Level), 0);
 
   // A quad that is not convex at A (D moved out beyond A, so that the other diagonal passes
   // outside the quad): one flipped triangle would face down.
-  TentQuad folded = MakeQuad(input, n, { B, A, C, A, B, D });
+  TentQuad folded = MakeQuad(tent, n, { B, A, C, A, B, D });
   const double pulled[3] = { -3.0, 1.0, 0.0 };
   std::copy_n(pulled, 3, folded.Level.Point(D));
   MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, folded.Start, 0.5, folded.Level), 0);
 
   // A boundary edge (one triangle) is never flipped.
-  TentQuad single = MakeQuad(input, n, { B, A, C, B, A, C });
-  single.Level.Triangles.resize(3);
-  MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, single.Start, 0.5, single.Level), 0);
+  TentQuad one = MakeQuad(tent, n, { B, A, C, B, A, C });
+  one.Level.Triangles.resize(3);
+  MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, one.Start, 0.5, one.Level), 0);
 }
 
 // A kite across a low ridge: diagonal AB short (A (-0.2, 0), B (0.2, 0)), 0.04 under the ridge at
@@ -371,12 +391,13 @@ void TestTentFlips()
 void TestSharpQuadNotJudged()
 {
   constexpr int n = 10;
-  const TriangleMesh input = Tent(n, 0.2);
+  const TriangleMesh tent = Tent(n, 0.2);
+  const LevelZeroView input = LevelZeroView::Of(tent);
   VertexTriangleAdjacency adjacency;
-  adjacency.Build(input);
+  adjacency.Build(tent);
   constexpr Id A = 0, B = 1, C = 2, D = 3;
   const std::array<Id, 4> corners = { 5 * (n + 1) + 4, 5 * (n + 1) + 6, 5, n * (n + 1) + 5 };
-  auto kite = [&] { return QuadAt(input, corners, { B, A, C, A, B, D }); };
+  auto kite = [&] { return QuadAt(tent, corners, { B, A, C, A, B, D }); };
   TentQuad sharp = kite();
   MESHLOD_CHECK_EQ(ImproveTriangulation(input, adjacency, sharp.Start, 0.2, sharp.Level), 0);
   TentQuad judged = kite();
