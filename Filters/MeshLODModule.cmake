@@ -28,9 +28,9 @@ set(meshlod_private_headers
   Filters/Core/LevelCentering.h
   Filters/Core/LevelData.h
   Filters/Core/LevelEdgeFlips.h
+  Filters/Core/LevelTracker.h
   Filters/Core/LevelZeroCorrespondence.h
   Filters/Core/LevelZeroView.h
-  Filters/Core/LevelTracker.h
   Filters/Core/LinkFan.h
   Filters/Core/LocalSurfaceFit.h
   Filters/Core/MergedLink.h

@@ -121,7 +121,7 @@
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its whole
  *   hierarchy the curvature method takes 1.3-3.4x the time vtkQuadricDecimation needs for one 10%
  *   target on one thread, and 1.6-1.8x less on two (the quadric method: 0.29-0.54x over eight
- *   runs on AMD EPYC processors, 0.32-0.46x in Benchmarks/RESULTS.md's, and 1.4-1.9x less on two,
+ *   runs on AMD EPYC processors, 0.31-0.46x in Benchmarks/RESULTS.md's, and 1.4-1.9x less on two,
  *   the least on the 154k-triangle mesh, whose one run of half a second swings most; the
  *   ratios move with the processor, the machine's load and what ran before in the same process:
  *   on an Intel Xeon the quadric method took 0.42-0.69x over three runs, its own times about as
@@ -366,7 +366,7 @@ public:
    * at 1% the candidates' was 0.98, 0.93 and 1.04x vtkQuadricDecimation's against the
    * default's 0.92, 1.02 and 0.99x: more on the metaballs and the 2.3M gyroid, less on the 611k
    * gyroid (each is the distance at one spot, which moves by chance: see AreaNormalization),
-   * and the whole hierarchy took 1.3-1.45 times as long (an
+   * and the whole hierarchy took 1.2-1.45 times as long (an
    * eigendecomposition per solve, against one L D L^T factorisation). On faceted solids both
    * keep the faces exactly. Curvature method: not used (its collapse point comes from the fit).
    */
@@ -667,9 +667,10 @@ public:
    * (611k triangles; from 1.02 to 0.79 times vtkQuadricDecimation's) and from 0.0627% to 0.0517%
    * (2.3M; 0.99 to 0.82 times), at 10% from 0.0056% to 0.0050% (2.3M; 1.03 to 0.92 times) and
    * hardly at all (611k), the RMS distances by 1-3%; on the metaballs isosurface, with hardly a
-   * saddle, the distances hardly move (RMS 0.4% lower). The whole hierarchy takes 1.3-1.5 times
-   * as long on one thread (0.32 to 0.41, 0.38 to 0.56 and 0.46 to 0.61 times
-   * vtkQuadricDecimation's time for 10%). The price: a level's triangles are then no longer what the
+   * saddle, the distances hardly move (RMS 0.4% lower). The whole hierarchy takes 1.2-1.5 times
+   * as long on one thread (0.46 to 0.66, 0.31 to 0.46 and 0.36 to 0.45 times
+   * vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the 2.3M gyroid). The
+   * price: a level's triangles are then no longer what the
    * finer level's become through its collapses, so a geomorph into a flipped level ends on its
    * unflipped triangles and the flipped quads change at the switch (a small pop), and the
    * exact-count mode of vtkLODGeomorph applied to a flipped level may keep a pair of
@@ -677,7 +678,7 @@ public:
    * 46,660 triangles, 67 such pairs over 292 counts between its levels of 4,666 and 2,623
    * triangles; every count was reached). For discrete levels (no
    * geomorph) turn it on. Memory: the input is read in place (the output's level 0), and its
-   * adjacency is kept for the run, 16 bytes more per input triangle (217 instead of 200 on the
+   * adjacency is kept for the run, 16-17 bytes more per input triangle (217 instead of 200 on the
    * 2.3M gyroid, 0.46 times vtkQuadricDecimation's growth). Default off.
    */
   vtkSetMacro(FlipEdges, bool);

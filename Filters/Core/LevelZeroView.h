@@ -4,8 +4,8 @@
 // TriangleMesh over and collapses it, so these read the hierarchy's level-0 vtkPolyData in
 // place (HierarchyBuilder::GetLevelZeroView) instead of keeping a copy: 24 bytes per input
 // triangle less (double points, 32-bit ids) for its FlipEdges, and the points of a single
-// precision input stay in single precision. The octree keeps its input mesh and is viewed
-// through Of().
+// precision input stay in single precision. The octree keeps its input mesh, and its flips
+// view that through Of().
 #ifndef meshlod_LevelZeroView_h
 #define meshlod_LevelZeroView_h
 
@@ -64,7 +64,8 @@ struct LevelZeroView
   template <typename F>
   void Dispatch(F&& f) const;
 
-  /// The triangles around each point (VertexTriangleAdjacency::Build's rows).
+  /// The triangles around each point (VertexTriangleAdjacency::Build's rows; every triangle
+  /// counts, a view has no deleted ones).
   void BuildAdjacency(VertexTriangleAdjacency& adjacency) const
   {
     GroupItemsByKey(
