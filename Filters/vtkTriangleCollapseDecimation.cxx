@@ -279,11 +279,15 @@ int vtkTriangleCollapseDecimation::RequestData(
 
   meshlod::HierarchyBuilder builder;
   builder.SetLevelZero(mesh);
-  // Level 0 as the output holds it: the engine takes the mesh over below.
+  // Level 0 as the output holds it (the engine takes the mesh over below), for the passes that
+  // look at each level through it.
+  const bool throughLevelZero = this->CenterOnInput || this->FlipEdges;
   std::vector<double> levelZeroPoints; // only if its points are neither float nor double
-  const meshlod::LevelZeroView levelZero = this->CenterOnInput || this->FlipEdges
-    ? builder.GetLevelZeroView(levelZeroPoints)
-    : meshlod::LevelZeroView();
+  meshlod::LevelZeroCorrespondence levelZero;
+  if (throughLevelZero)
+  {
+    levelZero.Reset(builder.GetLevelZeroView(levelZeroPoints));
+  }
   meshlod::LevelCentering centering;
   if (this->CenterOnInput)
   {
@@ -307,14 +311,18 @@ int vtkTriangleCollapseDecimation::RequestData(
   meshlod::TriangleCollapseCallbacks callbacks;
   callbacks.EmitLevel = [&](meshlod::LevelData& level) {
     jumps.AddLevel(level.EstimatedError, level.Mesh.GetNumberOfTriangles());
+    if (throughLevelZero)
+    {
+      levelZero.Advance(level.Target);
+    }
     if (this->CenterOnInput)
     {
-      centering.Apply(level.Mesh, level.Target, level.Sources.Offsets, level.Sources.Parents,
-        level.Sources.Weights);
+      centering.Apply(
+        level.Mesh, level.Sources.Offsets, level.Sources.Parents, level.Sources.Weights);
     }
     if (this->FlipEdges)
     {
-      this->NumberOfFlips += flips.Apply(level.Mesh, level.Target, level.EstimatedError);
+      this->NumberOfFlips += flips.Apply(level.Mesh, level.EstimatedError);
     }
     builder.AppendLevel(std::move(level));
   };

@@ -705,9 +705,11 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
   }
   meshlod::LevelCentering centering;
   std::vector<double> levelZeroPoints; // only if its points are neither float nor double
+  meshlod::LevelZeroCorrespondence levelZero;
   if (self->CenterOnInput)
   {
-    centering.SetLevelZero(builder.GetLevelZeroView(levelZeroPoints));
+    levelZero.Reset(builder.GetLevelZeroView(levelZeroPoints));
+    centering.SetLevelZero(levelZero);
   }
   SplitMap previous;
   Id previousPoints = in.Mesh.GetNumberOfPoints();
@@ -721,8 +723,8 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
 
     if (self->CenterOnInput)
     {
-      centering.Apply(
-        level.Mesh, level.Target, level.SourceOffsets, level.SourceParents, level.SourceWeights);
+      levelZero.Advance(level.Target);
+      centering.Apply(level.Mesh, level.SourceOffsets, level.SourceParents, level.SourceWeights);
     }
     meshlod::TextureAtlas atlas;
     SplitMap split;

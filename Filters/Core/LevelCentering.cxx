@@ -196,27 +196,22 @@ struct LevelCentering::Projection
 // triangles between them lie below them by the input's own chordal error, and levels nearly as
 // fine as the input were pushed out by it, 20% further from the input than uncentred at half
 // the input's triangles.)
-void LevelCentering::SetLevelZero(const LevelZeroView& view)
+void LevelCentering::SetLevelZero(const LevelZeroCorrespondence& levelZero)
 {
-  this->Input = view;
-  this->LevelPoint.Reset(view.Points);
+  this->LevelZero = &levelZero;
   this->Shifts.clear();
 }
 
 //------------------------------------------------------------------------------
 void LevelCentering::Apply(TriangleMesh& level,
-  const std::vector<Id>& target,
   const std::vector<Id>& sourceOffsets,
   const std::vector<Id>& sourceParents,
   const std::vector<float>& sourceWeights)
 {
   const Id points = level.GetNumberOfPoints();
 
-  // The correspondence from level 0, one level further.
-  this->LevelPoint.Advance(target);
-
   // Levels with more than LargestFraction of the input's triangles stay as they are.
-  if (level.GetNumberOfTriangles() > LargestFraction * this->Input.Triangles)
+  if (level.GetNumberOfTriangles() > LargestFraction * this->LevelZero->Input.Triangles)
   {
     this->Shifts.clear();
     return;
@@ -284,7 +279,7 @@ void LevelCentering::SumProjections(const TriangleMesh& level,
   std::vector<float>& pointDistance) const
 {
   const Id points = level.GetNumberOfPoints();
-  const Id samplePoints = this->Input.Triangles;
+  const Id samplePoints = this->LevelZero->Input.Triangles;
   const Id stride =
     std::max<Id>(MinimumStride, samplePoints / std::max<Id>(1, SamplesPerPoint * points));
   std::vector<Id> sampleOffsets, samples;

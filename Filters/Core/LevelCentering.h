@@ -39,7 +39,6 @@
 #define meshlod_LevelCentering_h
 
 #include "LevelZeroCorrespondence.h"
-#include "LevelZeroView.h"
 #include "TriangleMesh.h"
 #include "Vector3.h"
 #include "vtkFiltersMeshLODModule.h"
@@ -67,15 +66,15 @@ public:
   /// Points of a higher valence are not moved.
   static constexpr int MaximumValence = 32;
 
-  /// Level 0 as the hierarchy holds it, read in place (it must outlive this object).
-  void SetLevelZero(const LevelZeroView& view);
+  /// Level 0 as the hierarchy holds it and where its points have gone (it must outlive this
+  /// object, and be advanced to each level before Apply).
+  void SetLevelZero(const LevelZeroCorrespondence& levelZero);
 
-  /// Moves the points of `level`, whose previous level maps to it by `target` (previous point ->
-  /// point) and whose points come from the previous level's as `sourceOffsets`,
-  /// `sourceParents` and `sourceWeights` say (the PointSources layout: point p's parents are
-  /// entries [offsets[p], offsets[p + 1])). Call once per level, coarsening.
+  /// Moves the points of `level`, whose points come from the previous level's as
+  /// `sourceOffsets`, `sourceParents` and `sourceWeights` say (the PointSources layout: point p's
+  /// parents are entries [offsets[p], offsets[p + 1])). Call once per level, coarsening, after
+  /// advancing the correspondence to it.
   void Apply(TriangleMesh& level,
-    const std::vector<Id>& target,
     const std::vector<Id>& sourceOffsets,
     const std::vector<Id>& sourceParents,
     const std::vector<float>& sourceWeights);
@@ -104,7 +103,7 @@ private:
     double p[3][3];
     for (int c = 0; c < 3; ++c)
     {
-      this->Input.Point(this->Input.Corner(t, c), p[c]);
+      this->LevelZero->Input.Point(this->LevelZero->Input.Corner(t, c), p[c]);
     }
     double n[3];
     Normal(p[0], p[1], p[2], n);
@@ -121,11 +120,10 @@ private:
   }
 
   // Level 0, and per input point the point of the last level it became.
-  LevelZeroView Input;
-  LevelZeroCorrespondence LevelPoint;
+  const LevelZeroCorrespondence* LevelZero = nullptr;
   // The point of the last level that sample i (input triangle i) belongs to: that of its first
   // corner.
-  Id SamplePoint(Id i) const { return this->LevelPoint[this->Input.Corner(i, 0)]; }
+  Id SamplePoint(Id i) const { return (*this->LevelZero)[this->LevelZero->Input.Corner(i, 0)]; }
   std::vector<float> Shifts; // last level's points: x, y, z of their shift
 };
 

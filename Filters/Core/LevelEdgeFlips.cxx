@@ -12,19 +12,17 @@
 namespace meshlod
 {
 //------------------------------------------------------------------------------
-void LevelEdgeFlips::SetLevelZero(const LevelZeroView& input)
+void LevelEdgeFlips::SetLevelZero(const LevelZeroCorrespondence& levelZero)
 {
-  this->Input = input;
-  this->Input.BuildAdjacency(this->InputTriangles);
-  this->LevelPoint.Reset(this->Input.Points);
+  this->LevelZero = &levelZero;
+  levelZero.Input.BuildAdjacency(this->InputTriangles);
 }
 
 //------------------------------------------------------------------------------
-Id LevelEdgeFlips::Apply(TriangleMesh& level, const std::vector<Id>& target, double estimatedError)
+Id LevelEdgeFlips::Apply(TriangleMesh& level, double estimatedError)
 {
-  // The correspondence from level 0, one level further (every level, flipped or not).
-  this->LevelPoint.Advance(target);
-  if (level.GetNumberOfTriangles() > LargestFraction * this->Input.Triangles)
+  const LevelZeroView& input = this->LevelZero->Input;
+  if (level.GetNumberOfTriangles() > LargestFraction * input.Triangles)
   {
     return 0;
   }
@@ -32,11 +30,11 @@ Id LevelEdgeFlips::Apply(TriangleMesh& level, const std::vector<Id>& target, dou
   // Each level point's walks start at the nearest input point it stands for (rows in input
   // order, so the first of equally near ones, whatever the thread count).
   const Id points = level.GetNumberOfPoints();
-  const Id inputPoints = this->Input.Points;
+  const Id inputPoints = input.Points;
   std::vector<Id> offsets, members;
   GroupItemsByKey(
     static_cast<std::size_t>(points), inputPoints,
-    [&](std::int64_t i) { return this->LevelPoint[i]; },
+    [&](std::int64_t i) { return (*this->LevelZero)[static_cast<Id>(i)]; },
     [](std::int64_t i) { return static_cast<Id>(i); }, offsets, members);
   std::vector<Id> start = FreshVector<Id>(points, InvalidId);
   vtkSMPTools::For(0, points, [&](Id begin, Id end) {
@@ -46,7 +44,7 @@ Id LevelEdgeFlips::Apply(TriangleMesh& level, const std::vector<Id>& target, dou
       for (Id k = offsets[p]; k < offsets[p + 1]; ++k)
       {
         double x[3];
-        this->Input.Point(members[k], x);
+        input.Point(members[k], x);
         const double d = Distance2(x, level.Point(p));
         if (d < nearest)
         {
@@ -60,6 +58,6 @@ Id LevelEdgeFlips::Apply(TriangleMesh& level, const std::vector<Id>& target, dou
   options.MinimumOppositeAngles = MinimumOppositeAngles;
   options.MinimumSeparation = MinimumSeparation;
   return ImproveTriangulation(
-    this->Input, this->InputTriangles, start, ErrorScale * estimatedError, level, options);
+    input, this->InputTriangles, start, ErrorScale * estimatedError, level, options);
 }
 } // namespace meshlod

@@ -27,15 +27,15 @@
 // 6.2 s for the run, against 3.8 s) and their distances are small.
 //
 // Memory: the input is read in place, as the hierarchy's level 0 holds it (LevelZeroView.h); its
-// vertex-to-triangle adjacency and one id per input point are kept for the whole run (about 16
-// bytes per input triangle; a copy of the input's points and triangles took 24 more, and on the
-// 2.3M-triangle gyroid the run grew by 241 bytes per input triangle instead of 217, 0.51 times
-// vtkQuadricDecimation's growth).
+// vertex-to-triangle adjacency is kept for the whole run (about 14 bytes per input triangle),
+// and so is one id per input point (LevelZeroCorrespondence), which the centring shares (about
+// 2 more when CenterOnInput is off). A copy of the input's points and triangles took 24 more: on
+// the 2.3M-triangle gyroid the run grew by 241 bytes per input triangle instead of 217 (0.51
+// times vtkQuadricDecimation's growth), measured while each pass still kept its own ids.
 #ifndef meshlod_LevelEdgeFlips_h
 #define meshlod_LevelEdgeFlips_h
 
 #include "LevelZeroCorrespondence.h"
-#include "LevelZeroView.h"
 #include "TriangleMesh.h"
 #include "vtkFiltersMeshLODModule.h"
 
@@ -56,19 +56,18 @@ public:
   static constexpr double MinimumOppositeAngles = 150.0;
   static constexpr double MinimumSeparation = 0.3;
 
-  /// The input (level 0), read in place (it must outlive this object): the level's points must
-  /// be in the same coordinates.
-  void SetLevelZero(const LevelZeroView& input);
+  /// The input (level 0) and where its points have gone (it must outlive this object, and be
+  /// advanced to each level before Apply): the level's points must be in the same coordinates.
+  void SetLevelZero(const LevelZeroCorrespondence& levelZero);
 
-  /// Flip the edges of the next level. `target` maps the previous level's points to the
-  /// level's (MorphTargetId); `estimatedError` is the level's estimated error in world units.
-  /// Returns the number of flips made.
-  Id Apply(TriangleMesh& level, const std::vector<Id>& target, double estimatedError);
+  /// Flip the edges of the next level, after advancing the correspondence to it;
+  /// `estimatedError` is the level's estimated error in world units. Returns the number of
+  /// flips made.
+  Id Apply(TriangleMesh& level, double estimatedError);
 
 private:
-  LevelZeroView Input;
+  const LevelZeroCorrespondence* LevelZero = nullptr;
   VertexTriangleAdjacency InputTriangles;
-  LevelZeroCorrespondence LevelPoint;
 };
 } // namespace meshlod
 
