@@ -26,6 +26,7 @@
 // VTK_SMP_BACKEND_IN_USE=Sequential (run-benchmarks.sh does): with TBB, VTK 9.1 does not limit
 // the threads of a scope. The untimed work (generating meshes, measuring distances) and the
 // multi-thread rows switch to the parallel backend and back.
+#include "BenchmarkArguments.h"
 #include "BenchmarkMethods.h"
 #include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestMeshes.h"
@@ -204,15 +205,13 @@ bool ParseArguments(int argc, char* argv[], Options& options)
       options.Meshes.clear();
       for (const std::string& item : Split(value, ','))
       {
-        const std::vector<std::string> parts = Split(item, ':');
         meshlod::testing::Field field;
-        if (parts.size() != 2 || !meshlod::testing::FieldFromName(parts[0], field) ||
-          std::atof(parts[1].c_str()) < 100.0)
+        double triangles;
+        if (!meshlod::benchmark::MeshArgument(item, field, triangles))
         {
-          std::cerr << "bad mesh " << item << " (want field:triangles, e.g. gyroid:600000)\n";
           return false;
         }
-        options.Meshes.emplace_back(field, std::atof(parts[1].c_str()));
+        options.Meshes.emplace_back(field, triangles);
       }
     }
     else if (key == "--targets")

@@ -65,18 +65,9 @@ int main(int argc, char* argv[])
   }
   const int draws = argc > 2 ? std::max(1, std::atoi(argv[2])) : 9;
   std::vector<std::pair<meshlod::testing::Field, double>> meshes;
-  for (int i = 3; i < argc; ++i)
+  if (!meshlod::benchmark::MeshArguments(argc, argv, 3, meshes))
   {
-    const std::string spec = argv[i];
-    const std::size_t colon = spec.find(':');
-    meshlod::testing::Field field;
-    if (colon == std::string::npos ||
-      !meshlod::testing::FieldFromName(spec.substr(0, colon), field))
-    {
-      std::fprintf(stderr, "bad mesh %s (want field:triangles, e.g. gyroid:600000)\n", argv[i]);
-      return 1;
-    }
-    meshes.emplace_back(field, std::atof(spec.c_str() + colon + 1));
+    return 2;
   }
   if (meshes.empty())
   {

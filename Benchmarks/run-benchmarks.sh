@@ -15,14 +15,15 @@ VTK_SMP_BACKEND_IN_USE=Sequential "$build/bin/MeshLODBenchmark" \
   --command "Benchmarks/run-benchmarks.sh${*:+ $*}" \
   "$@"
 
-# The spread of the quality ratios over nearby targets, vtkLODGeomorph's cost per frame, the
-# colour figure of vtkVertexClusterOctree's texture baking (computed and asserted by its CTest
+# The spread of the quality ratios over nearby targets, vtkLODGeomorph's cost per frame and
+# whether it lands on the levels, the colour figure of vtkVertexClusterOctree's texture baking (computed and asserted by its CTest
 # test) and the quality on meshes other than isosurfaces, appended to the same report.
 {
   echo
-  echo "The four sections below are appended by the same command: TargetSensitivityBenchmark"
+  echo "The five sections below are appended by the same command: TargetSensitivityBenchmark"
   echo "(Benchmarks/TargetSensitivityBenchmark.cxx), GeomorphBenchmark"
-  echo "(Benchmarks/GeomorphBenchmark.cxx), the test TestVertexClusterOctreeTexture and"
+  echo "(Benchmarks/GeomorphBenchmark.cxx), GeomorphJumpBenchmark"
+  echo "(Benchmarks/GeomorphJumpBenchmark.cxx), the test TestVertexClusterOctreeTexture and"
   echo "OtherMeshesBenchmark (Benchmarks/OtherMeshesBenchmark.cxx)."
   echo
   echo "## One target or nine"
@@ -37,6 +38,8 @@ VTK_SMP_BACKEND_IN_USE=Sequential "$build/bin/MeshLODBenchmark" \
   "$build/bin/TargetSensitivityBenchmark"
   echo
   "$build/bin/GeomorphBenchmark"
+  echo
+  "$build/bin/GeomorphJumpBenchmark"
   echo
   echo "## vtkVertexClusterOctree colour preservation"
   echo

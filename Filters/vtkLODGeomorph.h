@@ -24,7 +24,13 @@
  * output equals level i (its arrays are shared); as t -> 1 its geometry tends to level i + 1's
  * (the collapsing triangles shrink to their collapse points and are kept, with vanishing area:
  * the output stays a valid mesh with fixed connectivity). DropDegenerateTriangles removes the
- * triangles whose corners coincide in the output up to rounding.
+ * triangles whose corners coincide in the output up to rounding. A hierarchy made with FlipEdges
+ * on (either filter) is not smooth across levels: its levels' triangles are no longer the images
+ * of the finer level's, so as t -> 1 the output tends to those images, and at L = i + 1 it jumps
+ * to level i + 1 where quads were flipped, by 0.5-1.9 times the level's own Hausdorff distance
+ * to the input on the benchmark isosurfaces (see their FlipEdges). With FlipEdges off (the
+ * default) the output at L -> i + 1 is level i + 1 (Benchmarks/RESULTS.md, "vtkLODGeomorph at
+ * the levels").
  *
  * @par Without morph data (Correspondence NearestVertices)
  * The correspondence between level i and level i + 1 is built by nearest vertices, as in Pan,

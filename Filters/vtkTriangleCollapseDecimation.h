@@ -670,14 +670,20 @@ public:
    * saddle, the distances hardly move (RMS 0.4% lower). The whole hierarchy takes 1.2-1.5 times
    * as long on one thread (0.46 to 0.66, 0.31 to 0.46 and 0.36 to 0.45 times
    * vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the 2.3M gyroid). The
-   * price: a level's triangles are then no longer what the
-   * finer level's become through its collapses, so a geomorph into a flipped level ends on its
-   * unflipped triangles and the flipped quads change at the switch (a small pop), and the
-   * exact-count mode of vtkLODGeomorph applied to a flipped level may keep a pair of
-   * coincident triangles where a collapse meets a flipped quad (on a gyroid isosurface of
-   * 46,660 triangles, 67 such pairs over 292 counts between its levels of 4,666 and 2,623
-   * triangles; every count was reached). For discrete levels (no
-   * geomorph) turn it on. Memory: the input is read in place (the output's level 0), and its
+   * price: a level's triangles are then no longer what the finer level's become through its
+   * collapses, so a geomorph from level i ends (as L tends to i + 1) on those images, not on
+   * level i + 1, and jumps at L = i + 1 where quads were flipped. The jump is as large as the
+   * level's own error there: between vtkLODGeomorph at L = i + 1 - 1e-7 and level i + 1 the
+   * Hausdorff distance was 1.0-1.7 times level i + 1's Hausdorff distance to the input on the
+   * metaballs isosurface and 1.45-1.6 times on the 611k gyroid (the RMS distance 0.1-0.2 and
+   * 0.25-0.5 times the level's; the six levels of at most a quarter of the input's triangles,
+   * no jump into the others; Benchmarks/RESULTS.md, "vtkLODGeomorph at the levels"). Where level i is flipped too, the morph's end also keeps a few
+   * pairs of coincident triangles (up to 16 triangles more than the level's 34,352), and so may
+   * the exact-count mode of vtkLODGeomorph applied to a flipped level where a collapse meets a
+   * flipped quad (on a gyroid isosurface of 46,660 triangles, 67 such pairs over 292 counts
+   * between its levels of 4,666 and 2,623 triangles; every count was reached). For discrete
+   * levels (no geomorph) turn it on; for geomorphs leave it off (then the geomorph at
+   * L -> i + 1 is level i + 1 exactly). Memory: the input is read in place (the output's level 0), and its
    * adjacency is kept for the run, 16-17 bytes more per input triangle (217 instead of 200 on the
    * 2.3M gyroid, 0.46 times vtkQuadricDecimation's growth). Default off.
    */
