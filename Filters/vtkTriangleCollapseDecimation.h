@@ -138,7 +138,7 @@
  * its target.) On the benchmark meshes both reach
  * about the same error per triangle (RMS within 3%, Hausdorff distances within the few tens of
  * percent by which a maximum varies between runs; Benchmarks/RESULTS.md); Greedy is the
- * default because it is faster: 2.0-2.8x on one thread, 2.4-3.3x on two. On CAD-like solids
+ * default because it is faster: 1.7-2.6x on one thread, 2.2-3.3x on two. On CAD-like solids
  * (flat faces, sharp rims) Greedy is also far more accurate: IndependentSets keeps paper 000's
  * valence rule for edge collapses too, and on the extruded text of the Python test (79,280
  * triangles) asked for 1% it stopped at 1.02% with about 40x vtkQuadricDecimation's Hausdorff
@@ -667,9 +667,10 @@ public:
    * (611k triangles; from 1.02 to 0.79 times vtkQuadricDecimation's) and from 0.0627% to 0.0517%
    * (2.3M; 0.99 to 0.82 times), at 10% from 0.0056% to 0.0050% (2.3M; 1.03 to 0.92 times) and
    * hardly at all (611k), the RMS distances by 1-3%; on the metaballs isosurface, with hardly a
-   * saddle, the distances hardly move (RMS 0.4% lower). The whole hierarchy takes 1.2-1.5 times
-   * as long on one thread (0.46 to 0.66, 0.31 to 0.46 and 0.36 to 0.45 times
-   * vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the 2.3M gyroid). The
+   * saddle, the distances hardly move (RMS 0.4% lower). The whole hierarchy takes 1.3-1.4 times
+   * as long on one thread (0.47 to 0.64, 0.36 to 0.51 and 0.34 to 0.46 times
+   * vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the 2.3M gyroid; 1.2-1.5
+   * times over the benchmark's runs). The
    * price: a level's triangles are then no longer what the finer level's become through its
    * collapses, so a geomorph from level i ends (as L tends to i + 1) on those images, not on
    * level i + 1, and jumps at L = i + 1 where quads were flipped. The jump is as large as the
@@ -684,7 +685,7 @@ public:
    * between its levels of 4,666 and 2,623 triangles; every count was reached). For discrete
    * levels (no geomorph) turn it on; for geomorphs leave it off (then the geomorph at
    * L -> i + 1 is level i + 1 exactly). Memory: the input is read in place (the output's level 0), and its
-   * adjacency is kept for the run, 16-17 bytes more per input triangle (217 instead of 200 on the
+   * adjacency is kept for the run, 14-15 bytes more per input triangle (215 instead of 200 on the
    * 2.3M gyroid, 0.46 times vtkQuadricDecimation's growth). Default off.
    */
   vtkSetMacro(FlipEdges, bool);
