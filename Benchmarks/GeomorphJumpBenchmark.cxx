@@ -27,7 +27,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
-#include <string>
 #include <vector>
 
 namespace
@@ -52,13 +51,13 @@ JumpSummary MeasureJumps(vtkPolyData* input, vtkMultiBlockDataSet* hierarchy,
   const meshlod::SurfaceDistanceOptions& options)
 {
   JumpSummary s;
+  vtkNew<vtkLODGeomorph> geomorph;
+  geomorph->SetInputData(hierarchy);
+  geomorph->DropDegenerateTrianglesOn();
   for (unsigned int b = 1; b < hierarchy->GetNumberOfBlocks(); ++b)
   {
     vtkPolyData* level = vtkPolyData::SafeDownCast(hierarchy->GetBlock(b));
-    vtkNew<vtkLODGeomorph> geomorph;
-    geomorph->SetInputData(hierarchy);
     geomorph->SetLevelOfDetail(b - 1e-7);
-    geomorph->DropDegenerateTrianglesOn();
     geomorph->Update();
     const meshlod::SurfaceDistance jump =
       meshlod::MeasureSurfaceDistance(geomorph->GetOutput(), level, options);
@@ -143,9 +142,9 @@ int main(int argc, char* argv[])
     const char* name = meshlod::testing::FieldName(mesh.first);
     // Both filters with their defaults, FlipEdges off, then on.
     auto measure = [&](auto* filter) {
+      filter->SetInputData(input);
       for (const bool flip : { false, true })
       {
-        filter->SetInputData(input);
         filter->SetFlipEdges(flip);
         filter->Update();
         PrintRow(name, triangles, filter->GetClassName(), flip,

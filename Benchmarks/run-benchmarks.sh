@@ -16,8 +16,9 @@ VTK_SMP_BACKEND_IN_USE=Sequential "$build/bin/MeshLODBenchmark" \
   "$@"
 
 # The spread of the quality ratios over nearby targets, vtkLODGeomorph's cost per frame and
-# whether it lands on the levels, the colour figure of vtkVertexClusterOctree's texture baking (computed and asserted by its CTest
-# test) and the quality on meshes other than isosurfaces, appended to the same report.
+# whether it lands on the levels, the colour figure of vtkVertexClusterOctree's texture baking
+# (computed and asserted by its CTest test) and the quality on meshes other than isosurfaces,
+# appended to the same report.
 {
   echo
   echo "The five sections below are appended by the same command: TargetSensitivityBenchmark"
