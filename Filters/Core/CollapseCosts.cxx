@@ -22,8 +22,10 @@ constexpr double Infinity = std::numeric_limits<double>::infinity();
 // more than an edge along it, and without the edges such a solid cannot go below about a fifth
 // of its triangles without losing its rims.
 constexpr double CreaseEdgeFactor = 1.0e6;
-// FitSurface drops duplicate stencil vertices by a linear search up to this many vertices.
+// ListStencil drops duplicate stencil vertices as they come up to this many vertices (in a set
+// of StencilSlots places), FrameRim frames each rim vertex once up to this many rim edges.
 constexpr std::size_t LinearStencil = 32;
+constexpr std::size_t StencilSlots = 128; // a power of two, at least twice LinearStencil + 1
 
 double Distance(const double* a, const double* b)
 {
@@ -530,7 +532,6 @@ bool CollapseCostModel::EvaluateTriangleOrEdge(
 //------------------------------------------------------------------------------
 double CollapseCostModel::CollapseHeight(const CostScratch& scratch, bool leastDeviation) const
 {
-  const std::vector<Id>& rimEdges = scratch.RimEdges;
   const SurfaceFitResult& fit = scratch.Fit;
   // The new triangles join the collapse point p = c + h n to the stencil boundary polygon. Over
   // one of them, (p, a, b) seen in the fit's frame, the mean of the linear triangle is the mean
@@ -542,44 +543,79 @@ double CollapseCostModel::CollapseHeight(const CostScratch& scratch, bool leastD
   // quadratic in h, the one at the midpoint of (a, b) does not depend on it: its least h
   // leaves out the (a, b) term, which the mean-difference height makes up for by lifting p.
   double weighted = 0.0, total = 0.0;
-  for (std::size_t e = 0; e + 1 < rimEdges.size(); e += 2)
+  for (std::size_t e = 0; e < scratch.RimMidpoints.size(); ++e)
   {
-    double ua, va, da, ub, vb, db;
-    fit.Frame(this->State.Mesh.Point(rimEdges[e]), ua, va, da);
-    fit.Frame(this->State.Mesh.Point(rimEdges[e + 1]), ub, vb, db);
-    const double area = scratch.RimWeights[e / 2] * 0.5 * std::abs(ua * vb - va * ub);
-    const double spokes = fit.At(0.5 * ua, 0.5 * va) + fit.At(0.5 * ub, 0.5 * vb) - 0.5 * (da + db);
-    const double rim = fit.At(0.5 * (ua + ub), 0.5 * (va + vb)) - 0.5 * (da + db);
-    weighted += area * (leastDeviation ? spokes : spokes + rim);
+    const double* a = scratch.RimPoints.data() + CostScratch::RimPointSize * scratch.RimEnds[2 * e];
+    const double* b =
+      scratch.RimPoints.data() + CostScratch::RimPointSize * scratch.RimEnds[2 * e + 1];
+    const double area = scratch.RimWeights[e] * 0.5 * std::abs(a[0] * b[1] - a[1] * b[0]);
+    const double spokes = a[3] + b[3] - 0.5 * (a[2] + b[2]);
+    weighted += area * (leastDeviation ? spokes : spokes + scratch.RimMidpoints[e]);
     total += area;
   }
   return total > 0.0 ? weighted / total : fit.Height;
 }
 
 //------------------------------------------------------------------------------
-double CollapseCostModel::FitDeviation(const CostScratch& scratch, const double position[3]) const
+double CollapseCostModel::FitDeviation(CostScratch& scratch, const double position[3]) const
 {
-  const std::vector<Id>& rimEdges = scratch.RimEdges;
   const SurfaceFitResult& fit = scratch.Fit;
   // Over a new triangle (p, a, b) the height difference g = linear - f is quadratic, and the
   // midpoint rule (the mean of g^2 at the edge midpoints) integrates quadratics exactly; for
   // g^2, of degree four, it is an estimate that is exact where g is linear.
   double up, vp, dp;
   fit.Frame(position, up, vp, dp);
-  double deviation = 0.0;
-  for (std::size_t e = 0; e + 1 < rimEdges.size(); e += 2)
+  // g at the midpoint of each spoke (p, a), once per rim vertex.
+  std::vector<double>& spokes = scratch.RimSpokes;
+  spokes.resize(scratch.Listed.size());
+  for (const std::uint32_t i : scratch.RimPlaces)
   {
-    double ua, va, da, ub, vb, db;
-    fit.Frame(this->State.Mesh.Point(rimEdges[e]), ua, va, da);
-    fit.Frame(this->State.Mesh.Point(rimEdges[e + 1]), ub, vb, db);
-    const double area = scratch.RimWeights[e / 2] * 0.5 *
-      std::abs((ua - up) * (vb - vp) - (va - vp) * (ub - up));
-    const double pa = 0.5 * (dp + da) - fit.At(0.5 * (up + ua), 0.5 * (vp + va));
-    const double pb = 0.5 * (dp + db) - fit.At(0.5 * (up + ub), 0.5 * (vp + vb));
-    const double ab = 0.5 * (da + db) - fit.At(0.5 * (ua + ub), 0.5 * (va + vb));
+    const double* a = scratch.RimPoints.data() + CostScratch::RimPointSize * i;
+    spokes[i] = 0.5 * (dp + a[2]) - fit.At(0.5 * (up + a[0]), 0.5 * (vp + a[1]));
+  }
+  double deviation = 0.0;
+  for (std::size_t e = 0; e < scratch.RimMidpoints.size(); ++e)
+  {
+    const std::uint32_t ia = scratch.RimEnds[2 * e], ib = scratch.RimEnds[2 * e + 1];
+    const double* a = scratch.RimPoints.data() + CostScratch::RimPointSize * ia;
+    const double* b = scratch.RimPoints.data() + CostScratch::RimPointSize * ib;
+    const double area = scratch.RimWeights[e] * 0.5 *
+      std::abs((a[0] - up) * (b[1] - vp) - (a[1] - vp) * (b[0] - up));
+    const double pa = spokes[ia], pb = spokes[ib];
+    const double ab = scratch.RimMidpoints[e]; // g there with the opposite sign, squared alike
     deviation += area * (pa * pa + pb * pb + ab * ab) / 3.0;
   }
   return deviation;
+}
+
+//------------------------------------------------------------------------------
+void CollapseCostModel::FrameRim(CostScratch& scratch) const
+{
+  const SurfaceFitResult& fit = scratch.Fit;
+  const std::size_t places = scratch.Listed.size();
+  const std::size_t edges = scratch.RimWeights.size();
+  scratch.RimPoints.resize(CostScratch::RimPointSize * places);
+  scratch.RimFramed.assign(places, 0);
+  scratch.RimPlaces.clear();
+  for (const std::uint32_t i : scratch.RimEnds)
+  {
+    if (!scratch.RimFramed[i])
+    {
+      scratch.RimFramed[i] = 1;
+      scratch.RimPlaces.push_back(i);
+      double* f = scratch.RimPoints.data() + CostScratch::RimPointSize * i;
+      fit.Frame(this->State.Mesh.Point(scratch.Listed[i]), f[0], f[1], f[2]);
+      f[3] = fit.At(0.5 * f[0], 0.5 * f[1]);
+    }
+  }
+  scratch.RimMidpoints.resize(edges);
+  for (std::size_t e = 0; e < edges; ++e)
+  {
+    const double* a = scratch.RimPoints.data() + CostScratch::RimPointSize * scratch.RimEnds[2 * e];
+    const double* b =
+      scratch.RimPoints.data() + CostScratch::RimPointSize * scratch.RimEnds[2 * e + 1];
+    scratch.RimMidpoints[e] = fit.At(0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])) - 0.5 * (a[2] + b[2]);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -617,6 +653,10 @@ void CollapseCostModel::FitSurface(
   // to points spread far beyond the triangle can extrapolate wildly at its centre; the surface
   // cannot be further from the centroid than about the triangle's size.
   scratch.Fit = fit;
+  if (fit.Valid)
+  {
+    this->FrameRim(scratch);
+  }
   double height = 0.0;
   if (fit.Valid && place)
   {
@@ -638,28 +678,53 @@ void CollapseCostModel::ListStencil(const Id* tri, CostScratch& scratch) const
   // the corners and, from every triangle of their fans, the other vertices. (Only the vertices
   // that follow the corner would do around a consistently oriented closed fan, but not across
   // the seam of a non-orientable surface.)
-  std::vector<Id>& stencil = scratch.Vertices;
-  std::vector<Id>& rimEdges = scratch.RimEdges;
+  std::vector<Id>& listed = scratch.Listed;
+  std::vector<std::uint32_t>& rimEnds = scratch.RimEnds;
   std::vector<double>& rimWeights = scratch.RimWeights;
-  stencil.clear();
-  rimEdges.clear();
+  listed.clear();
+  rimEnds.clear();
   rimWeights.clear();
   const auto member = [&](Id x) { return x == tri[0] || x == tri[1] || x == tri[2]; };
   // Duplicates are dropped as they come (a dozen or so distinct vertices, most seen two to four
-  // times): sorting the list with its duplicates had been a tenth of the curvature method's
-  // time. Around a vertex of high valence (a cone's tip, a UV sphere's pole) the search would
-  // grow with the square of the valence: past LinearStencil vertices duplicates are kept and
-  // dropped by the sort. The sort puts the distinct ones in the order the fit sums them in.
-  const auto add = [&](Id x) {
-    if (stencil.size() > LinearStencil ||
-      std::find(stencil.begin(), stencil.end(), x) == stencil.end())
+  // times), by a small hash set: sorting the list with its duplicates had been a tenth of the
+  // curvature method's time, and a linear search for each a twentieth. Around a vertex of high
+  // valence (a cone's tip, a UV sphere's pole) the set would fill up: past LinearStencil
+  // vertices duplicates are listed again and dropped by the sort. add returns x's place.
+  std::vector<Id>& set = scratch.StencilSet;
+  std::vector<std::uint32_t>& setPlaces = scratch.StencilPlaces;
+  if (set.size() != StencilSlots)
+  {
+    set.assign(StencilSlots, InvalidId);
+    setPlaces.assign(StencilSlots, 0);
+  }
+  const auto slotOf = [&](Id x) {
+    std::size_t slot = (static_cast<std::uint32_t>(x) * 0x9E3779B1u >> 25) & (StencilSlots - 1);
+    while (set[slot] != InvalidId && set[slot] != x)
     {
-      stencil.push_back(x);
+      slot = (slot + 1) & (StencilSlots - 1);
     }
+    return slot;
   };
-  stencil.push_back(tri[0]);
-  stencil.push_back(tri[1]);
-  stencil.push_back(tri[2]);
+  const auto add = [&](Id x) {
+    const auto place = static_cast<std::uint32_t>(listed.size());
+    if (listed.size() > LinearStencil)
+    {
+      listed.push_back(x);
+      return place;
+    }
+    const std::size_t slot = slotOf(x);
+    if (set[slot] == x)
+    {
+      return setPlaces[slot];
+    }
+    set[slot] = x;
+    setPlaces[slot] = place;
+    listed.push_back(x);
+    return place;
+  };
+  add(tri[0]);
+  add(tri[1]);
+  add(tri[2]);
   for (int k = 0; k < 3; ++k)
   {
     const Id corner = tri[k];
@@ -673,10 +738,8 @@ void CollapseCostModel::ListStencil(const Id* tri, CostScratch& scratch) const
       const Id next = st[(c + 1) % 3], previous = st[(c + 2) % 3];
       if (!member(next) && !member(previous))
       {
-        add(next);
-        add(previous);
-        rimEdges.push_back(next); // a ring triangle: its far edge bounds a new triangle
-        rimEdges.push_back(previous);
+        rimEnds.push_back(add(next)); // a ring triangle: its far edge bounds a new triangle
+        rimEnds.push_back(add(previous));
         rimWeights.push_back(static_cast<double>(every));
       }
       else
@@ -685,6 +748,21 @@ void CollapseCostModel::ListStencil(const Id* tri, CostScratch& scratch) const
       }
     });
   }
+  // Empty the set for the next stencil: the slots of the vertices it holds, the first ones
+  // listed (each probe goes on past the slots emptied before it, to where its vertex went).
+  for (std::size_t i = 0; i < std::min(listed.size(), LinearStencil + 1); ++i)
+  {
+    std::size_t slot =
+      (static_cast<std::uint32_t>(listed[i]) * 0x9E3779B1u >> 25) & (StencilSlots - 1);
+    while (set[slot] != listed[i])
+    {
+      slot = (slot + 1) & (StencilSlots - 1);
+    }
+    set[slot] = InvalidId;
+  }
+  // The sorted stencil, the order the fit sums its points in.
+  std::vector<Id>& stencil = scratch.Vertices;
+  stencil.assign(listed.begin(), listed.end());
   std::sort(stencil.begin(), stencil.end());
   stencil.erase(std::unique(stencil.begin(), stencil.end()), stencil.end());
 }

@@ -53,10 +53,9 @@ enum VertexFlag : std::uint8_t
 ///   many, and a collapse next to it leaves their costs as they are (with every triangle of the
 ///   fan read by every fit, and re-fitted after every collapse next to it, the work grew with
 ///   the cube of the valence: a fan of 2,000 triangles took 88 s);
-/// - a star of more ring triangles is checked geometry first (CollapseMesh::IsLegal), its
-///   link's shape with a hash table rather than a sort (LinkIsSimple), a longer row is hinted
-///   in part (CollapseMesh::Prefetch), and the solved spokes of such a survivor are not kept
-///   (CostScratch::BeginSpokes);
+/// - a star of more ring triangles is checked geometry first (CollapseMesh::IsLegal), a longer
+///   row is hinted in part (CollapseMesh::Prefetch), and the solved spokes of such a survivor
+///   are not kept (CostScratch::BeginSpokes);
 /// - the parking lot looks at such a corner alone (ParkingLot::Release);
 /// - with edges allowed, a triangle with one such corner is priced by its edge away from it,
 ///   so that the corner stays in place while it is one (CollapseCostModel::HubEdgesToSkip).

@@ -30,9 +30,13 @@ SurfaceFitResult FitQuadraticHeightField(
 
   // The normal equations, summed by hand: the lower triangle of sum row row^T and sum row d for
   // row = (u^2, u v, v^2, u, v, 1). (Eigen's rank update, general for any size, took several
-  // times as long on these 6x6 sums.)
-  double lower[6][6] = {};
-  double sums[6] = { 0, 0, 0, 0, 0, 0 };
+  // times as long on these 6x6 sums.) Entries that sum the same products are summed once: the
+  // last row's are the sums of the row itself (times 1, exactly), and u u, v u and v v are the
+  // row's first three (the same products, in the same order, so the same sums to the last bit).
+  double uuuu = 0, uvuu = 0, uvuv = 0, vvuu = 0, vvuv = 0, vvvv = 0, uuuu3 = 0, uuvu = 0,
+         uvvu = 0, uuuv = 0, uvuv4 = 0, vvuv4 = 0;
+  double su2 = 0, suv = 0, sv2 = 0, su = 0, sv = 0, ones = 0;
+  double du2 = 0, duv = 0, dv2 = 0, du = 0, dv = 0, dd = 0;
   const double inverseScale = 1.0 / scale;
   for (int j = 0; j < count; ++j)
   {
@@ -42,16 +46,35 @@ SurfaceFitResult FitQuadraticHeightField(
     const double pu = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
     const double pv = p[0] * v[0] + p[1] * v[1] + p[2] * v[2];
     const double pd = p[0] * n[0] + p[1] * n[1] + p[2] * n[2];
-    const double row[6] = { pu * pu, pu * pv, pv * pv, pu, pv, 1.0 };
-    for (int r = 0; r < 6; ++r)
-    {
-      for (int q = 0; q <= r; ++q)
-      {
-        lower[r][q] += row[r] * row[q];
-      }
-      sums[r] += row[r] * pd;
-    }
+    const double r0 = pu * pu, r1 = pu * pv, r2 = pv * pv;
+    uuuu += r0 * r0;
+    uvuu += r1 * r0;
+    uvuv += r1 * r1;
+    vvuu += r2 * r0;
+    vvuv += r2 * r1;
+    vvvv += r2 * r2;
+    uuuu3 += pu * r0;
+    uuvu += pu * r1;
+    uvvu += pu * r2;
+    uuuv += pv * r0;
+    uvuv4 += pv * r1;
+    vvuv4 += pv * r2;
+    su2 += r0;
+    suv += r1;
+    sv2 += r2;
+    su += pu;
+    sv += pv;
+    ones += 1.0;
+    du2 += r0 * pd;
+    duv += r1 * pd;
+    dv2 += r2 * pd;
+    du += pu * pd;
+    dv += pv * pd;
+    dd += pd;
   }
+  const double lower[6][6] = { { uuuu }, { uvuu, uvuv }, { vvuu, vvuv, vvvv },
+    { uuuu3, uuvu, uvvu, su2 }, { uuuv, uvuv4, vvuv4, suv, sv2 }, { su2, suv, sv2, su, sv, ones } };
+  const double sums[6] = { du2, duv, dv2, du, dv, dd };
   Eigen::Matrix<double, 6, 6> normalMatrix;
   Eigen::Matrix<double, 6, 1> rhs;
   for (int r = 0; r < 6; ++r)

@@ -27,13 +27,19 @@ struct VTKFILTERSMESHLOD_EXPORT SurfaceFitResult
   /// x in the frame: (u, v) in the plane and d along the normal.
   void Frame(const double* x, double& u, double& v, double& d) const
   {
-    u = v = d = 0.0;
+    // Summed in locals: written through the references at every step, the sums went to memory
+    // and back (x may lie where they point).
+    double su = 0.0, sv = 0.0, sd = 0.0;
     for (int i = 0; i < 3; ++i)
     {
-      u += (x[i] - this->Origin[i]) * this->U[i];
-      v += (x[i] - this->Origin[i]) * this->V[i];
-      d += (x[i] - this->Origin[i]) * this->N[i];
+      const double r = x[i] - this->Origin[i];
+      su += r * this->U[i];
+      sv += r * this->V[i];
+      sd += r * this->N[i];
     }
+    u = su;
+    v = sv;
+    d = sd;
   }
   double At(double u, double v) const
   {
