@@ -170,7 +170,9 @@ bool CollapseCostModel::EvaluateTriangleOrCreaseEdge(
 {
   const bool triangle = this->EvaluateTriple(tri, c, scratch);
   CollapseCandidate edge;
-  if (!this->EvaluateBestEdge(tri, edge))
+  // (With the scratch: the edges solved lately and around a survivor are reused, as for the
+  // quadric method, to the same numbers.)
+  if (!this->EvaluateBestEdge(tri, edge, &scratch))
   {
     return triangle; // a locked corner: no edge either
   }
@@ -483,14 +485,15 @@ double CollapseCostModel::BestEdge(
   return best.Cost;
 }
 
-bool CollapseCostModel::EvaluateBestEdge(const Id* tri, CollapseCandidate& c) const
+bool CollapseCostModel::EvaluateBestEdge(
+  const Id* tri, CollapseCandidate& c, CostScratch* scratch) const
 {
   if (this->State.IsLocked(tri[0]) || this->State.IsLocked(tri[1]) || this->State.IsLocked(tri[2]))
   {
     return false;
   }
   double worst;
-  this->BestEdge(tri, this->HubEdgesToSkip(tri), c, worst, nullptr);
+  this->BestEdge(tri, this->HubEdgesToSkip(tri), c, worst, scratch);
   return true;
 }
 

@@ -168,8 +168,11 @@ public:
   /// standing for the piece's original planes by one point).
   void EvaluateVanish(const Id* members, int count, CollapseCandidate& candidate) const;
 
-  /// Quadric method: evaluate the cheapest of the triangle's three edge collapses.
-  bool EvaluateBestEdge(const Id* triangle, CollapseCandidate& candidate) const;
+  /// The cheapest of the triangle's three edge collapses (the quadric method's, and the
+  /// curvature method's edges at a crease); with a scratch, edges it has solved lately are
+  /// taken from it (see CostScratch).
+  bool EvaluateBestEdge(
+    const Id* triangle, CollapseCandidate& candidate, CostScratch* scratch = nullptr) const;
 
   /// Curvature method: kappa is normalised by the largest absolute curvature of the input
   /// (paper 000, section 5); set it once from the first evaluation of every triangle.
