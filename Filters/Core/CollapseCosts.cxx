@@ -22,8 +22,8 @@ constexpr double Infinity = std::numeric_limits<double>::infinity();
 // more than an edge along it, and without the edges such a solid cannot go below about a fifth
 // of its triangles without losing its rims.
 constexpr double CreaseEdgeFactor = 1.0e6;
-// ListStencil drops duplicate stencil vertices as they come up to this many vertices (in a set
-// of StencilSlots places), FrameRim frames each rim vertex once up to this many rim edges.
+// ListStencil drops duplicate stencil vertices as they come until it has listed more than this
+// many (in a set of StencilSlots places); past them it lists every vertex it meets.
 constexpr std::size_t LinearStencil = 32;
 constexpr std::size_t StencilSlots = 128; // a power of two, at least twice LinearStencil + 1
 
@@ -691,8 +691,9 @@ void CollapseCostModel::ListStencil(const Id* tri, CostScratch& scratch) const
   // Duplicates are dropped as they come (a dozen or so distinct vertices, most seen two to four
   // times), by a small hash set: sorting the list with its duplicates had been a tenth of the
   // curvature method's time, and a linear search for each a twentieth. Around a vertex of high
-  // valence (a cone's tip, a UV sphere's pole) the set would fill up: past LinearStencil
-  // vertices duplicates are listed again and dropped by the sort. add returns x's place.
+  // valence (a cone's tip, a UV sphere's pole) the set would fill up: once more than
+  // LinearStencil vertices are listed, duplicates are listed again (each place is framed on its
+  // own, to the same numbers) and dropped by the sort. add returns x's place.
   std::vector<Id>& set = scratch.StencilSet;
   std::vector<std::uint32_t>& setPlaces = scratch.StencilPlaces;
   if (set.size() != StencilSlots)

@@ -59,9 +59,10 @@ struct CostScratch
 {
   std::vector<Id> Vertices;
   std::vector<double> Points;
-  // Curvature method. ListStencil lists the stencil's vertices in Listed (each once, up to
-  // LinearStencil of them) and, per far edge (a, b) of a ring triangle (a rim edge), the places
-  // of a and b in that list (RimEnds) and the ring triangles it stands for (RimWeights).
+  // Curvature method. ListStencil lists the stencil's vertices in Listed (each once, but
+  // around a vertex of very high valence) and, per far edge (a, b) of a ring triangle (a rim
+  // edge), the places of a and b in that list (RimEnds) and the ring triangles it stands for
+  // (RimWeights).
   std::vector<Id> Listed;
   std::vector<std::uint32_t> RimEnds;
   std::vector<double> RimWeights;

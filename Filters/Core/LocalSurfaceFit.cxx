@@ -31,12 +31,14 @@ SurfaceFitResult FitQuadraticHeightField(
   // The normal equations, summed by hand: the lower triangle of sum row row^T and sum row d for
   // row = (u^2, u v, v^2, u, v, 1). (Eigen's rank update, general for any size, took several
   // times as long on these 6x6 sums.) Entries that sum the same products are summed once: the
-  // last row's are the sums of the row itself (times 1, exactly), and u u, v u and v v are the
-  // row's first three (the same products, in the same order, so the same sums to the last bit).
-  double uuuu = 0, uvuu = 0, uvuv = 0, vvuu = 0, vvuv = 0, vvvv = 0, uuuu3 = 0, uuvu = 0,
-         uvvu = 0, uuuv = 0, uvuv4 = 0, vvuv4 = 0;
-  double su2 = 0, suv = 0, sv2 = 0, su = 0, sv = 0, ones = 0;
-  double du2 = 0, duv = 0, dv2 = 0, du = 0, dv = 0, dd = 0;
+  // last row's are the sums of the row itself (times 1, exactly), and entries (3, 3), (4, 3)
+  // and (4, 4), u u, v u and v v, are the row's first three (the same products in the same
+  // order: the same sums, where the compiler does not fuse a product into the sum). mRQ is
+  // entry (R, Q), sK the sum of row[K], bK the right-hand side's entry K.
+  double m00 = 0, m10 = 0, m11 = 0, m20 = 0, m21 = 0, m22 = 0, m30 = 0, m31 = 0, m32 = 0,
+         m40 = 0, m41 = 0, m42 = 0;
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, count1 = 0;
+  double b0 = 0, b1 = 0, b2 = 0, b3 = 0, b4 = 0, b5 = 0;
   const double inverseScale = 1.0 / scale;
   for (int j = 0; j < count; ++j)
   {
@@ -46,35 +48,35 @@ SurfaceFitResult FitQuadraticHeightField(
     const double pu = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
     const double pv = p[0] * v[0] + p[1] * v[1] + p[2] * v[2];
     const double pd = p[0] * n[0] + p[1] * n[1] + p[2] * n[2];
-    const double r0 = pu * pu, r1 = pu * pv, r2 = pv * pv;
-    uuuu += r0 * r0;
-    uvuu += r1 * r0;
-    uvuv += r1 * r1;
-    vvuu += r2 * r0;
-    vvuv += r2 * r1;
-    vvvv += r2 * r2;
-    uuuu3 += pu * r0;
-    uuvu += pu * r1;
-    uvvu += pu * r2;
-    uuuv += pv * r0;
-    uvuv4 += pv * r1;
-    vvuv4 += pv * r2;
-    su2 += r0;
-    suv += r1;
-    sv2 += r2;
-    su += pu;
-    sv += pv;
-    ones += 1.0;
-    du2 += r0 * pd;
-    duv += r1 * pd;
-    dv2 += r2 * pd;
-    du += pu * pd;
-    dv += pv * pd;
-    dd += pd;
+    const double r0 = pu * pu, r1 = pu * pv, r2 = pv * pv; // row[3], row[4] are pu, pv
+    m00 += r0 * r0;
+    m10 += r1 * r0;
+    m11 += r1 * r1;
+    m20 += r2 * r0;
+    m21 += r2 * r1;
+    m22 += r2 * r2;
+    m30 += pu * r0;
+    m31 += pu * r1;
+    m32 += pu * r2;
+    m40 += pv * r0;
+    m41 += pv * r1;
+    m42 += pv * r2;
+    s0 += r0;
+    s1 += r1;
+    s2 += r2;
+    s3 += pu;
+    s4 += pv;
+    count1 += 1.0;
+    b0 += r0 * pd;
+    b1 += r1 * pd;
+    b2 += r2 * pd;
+    b3 += pu * pd;
+    b4 += pv * pd;
+    b5 += pd;
   }
-  const double lower[6][6] = { { uuuu }, { uvuu, uvuv }, { vvuu, vvuv, vvvv },
-    { uuuu3, uuvu, uvvu, su2 }, { uuuv, uvuv4, vvuv4, suv, sv2 }, { su2, suv, sv2, su, sv, ones } };
-  const double sums[6] = { du2, duv, dv2, du, dv, dd };
+  const double lower[6][6] = { { m00 }, { m10, m11 }, { m20, m21, m22 }, { m30, m31, m32, s0 },
+    { m40, m41, m42, s1, s2 }, { s0, s1, s2, s3, s4, count1 } };
+  const double sums[6] = { b0, b1, b2, b3, b4, b5 };
   Eigen::Matrix<double, 6, 6> normalMatrix;
   Eigen::Matrix<double, 6, 1> rhs;
   for (int r = 0; r < 6; ++r)
