@@ -120,8 +120,10 @@
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its whole
  *   hierarchy the curvature method takes 1.3-3.4x the time vtkQuadricDecimation needs for one 10%
- *   target on one thread, and 1.6-1.8x less on two (the quadric method: 0.29-0.54x over eight
- *   runs on AMD EPYC processors, 0.31-0.46x in Benchmarks/RESULTS.md's, and 1.4-1.9x less on two,
+ *   target on one thread (1.84-2.41x in Benchmarks/RESULTS.md's run), and 1.6-2.0x less on two
+ *   (the quadric method: 0.29-0.57x over nine runs on AMD EPYC processors, 0.44-0.57x in
+ *   RESULTS.md's, where vtkQuadricDecimation took 5-25% less time than in the run before and the
+ *   quadric method 3-19% more, for the same output and 1.2% fewer instructions; 1.4-1.9x less on two,
  *   the least on the 154k-triangle mesh, whose one run of half a second swings most; the
  *   ratios move with the processor, the machine's load and what ran before in the same process:
  *   on an Intel Xeon the quadric method took 0.42-0.69x over three runs, its own times about as
@@ -138,8 +140,8 @@
  * its target.) On the benchmark meshes both reach
  * about the same error per triangle (RMS within 3%, Hausdorff distances within the few tens of
  * percent by which a maximum varies between runs; Benchmarks/RESULTS.md); Greedy is the
- * default because it is faster: 1.7-2.6x on one thread, 2.2-3.3x on two. On CAD-like solids
- * (flat faces, sharp rims) Greedy is also far more accurate: IndependentSets keeps paper 000's
+ * default because it is faster: 1.7-2.6x on one thread, 2.0-3.3x on two (its last two runs).
+ * On CAD-like solids (flat faces, sharp rims) Greedy is also far more accurate: IndependentSets keeps paper 000's
  * valence rule for edge collapses too, and on the extruded text of the Python test (79,280
  * triangles) asked for 1% it stopped at 1.02% with about 40x vtkQuadricDecimation's Hausdorff
  * distance and 60x its RMS distance (Greedy: 1.3x and 1.0x).
@@ -667,8 +669,8 @@ public:
    * (611k triangles; from 1.02 to 0.79 times vtkQuadricDecimation's) and from 0.0627% to 0.0517%
    * (2.3M; 0.99 to 0.82 times), at 10% from 0.0056% to 0.0050% (2.3M; 1.03 to 0.92 times) and
    * hardly at all (611k), the RMS distances by 1-3%; on the metaballs isosurface, with hardly a
-   * saddle, the distances hardly move (RMS 0.4% lower). The whole hierarchy takes 1.3-1.4 times
-   * as long on one thread (0.47 to 0.64, 0.36 to 0.51 and 0.34 to 0.46 times
+   * saddle, the distances hardly move (RMS 0.4% lower). The whole hierarchy takes 1.35-1.5 times
+   * as long on one thread (0.57 to 0.77, 0.50 to 0.75 and 0.44 to 0.64 times
    * vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the 2.3M gyroid; 1.2-1.5
    * times over the benchmark's runs). The
    * price: a level's triangles are then no longer what the finer level's become through its

@@ -402,8 +402,8 @@ public:
    * to the input (judged by the local surface distance both ways). Points, triangle counts,
    * clusters and MorphTargetId stay as they are, and the next level is clustered from the unflipped
    * triangles. On the benchmark isosurfaces it lowers the RMS distance by 8-21% and changes the
-   * Hausdorff distance by -9% to +1%, for 1.4-1.5 times the time on one thread (1.3-1.4 times on
-   * two; Benchmarks/RESULTS.md; 1.6-1.75 and 1.6-1.7 before edges whose far corners are sharp
+   * Hausdorff distance by -9% to +1%, for 1.3-1.5 times the time on one thread and on two
+   * (Benchmarks/RESULTS.md, its last two runs; 1.6-1.75 and 1.6-1.7 before edges whose far corners are sharp
    * were left unjudged, Core/TriangulationFlips.h). On a binary mask's terraced isosurface
    * (84,380 triangles) at 1%, where the input's connectivity joins many quads of clusters the
    * wrong way, the Hausdorff and RMS distances fall from 1.51 and 1.13 to 0.97 and 0.98 times
