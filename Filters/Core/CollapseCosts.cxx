@@ -27,6 +27,12 @@ constexpr double CreaseEdgeFactor = 1.0e6;
 constexpr std::size_t LinearStencil = 32;
 constexpr std::size_t StencilSlots = 128; // a power of two, at least twice LinearStencil + 1
 
+// The slot where vertex x's probe in ListStencil's set starts.
+std::size_t StencilHome(Id x)
+{
+  return (static_cast<std::uint32_t>(x) * 0x9E3779B1u >> 25) & (StencilSlots - 1);
+}
+
 double Distance(const double* a, const double* b)
 {
   const double d[3] = { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
@@ -548,9 +554,8 @@ double CollapseCostModel::CollapseHeight(const CostScratch& scratch, bool leastD
   double weighted = 0.0, total = 0.0;
   for (std::size_t e = 0; e < scratch.RimMidpoints.size(); ++e)
   {
-    const double* a = scratch.RimPoints.data() + CostScratch::RimPointSize * scratch.RimEnds[2 * e];
-    const double* b =
-      scratch.RimPoints.data() + CostScratch::RimPointSize * scratch.RimEnds[2 * e + 1];
+    const double* a = scratch.RimPoint(scratch.RimEnds[2 * e]);
+    const double* b = scratch.RimPoint(scratch.RimEnds[2 * e + 1]);
     const double area = scratch.RimWeights[e] * 0.5 * std::abs(a[0] * b[1] - a[1] * b[0]);
     const double spokes = a[3] + b[3] - 0.5 * (a[2] + b[2]);
     weighted += area * (leastDeviation ? spokes : spokes + scratch.RimMidpoints[e]);
@@ -573,15 +578,15 @@ double CollapseCostModel::FitDeviation(CostScratch& scratch, const double positi
   spokes.resize(scratch.Listed.size());
   for (const std::uint32_t i : scratch.RimPlaces)
   {
-    const double* a = scratch.RimPoints.data() + CostScratch::RimPointSize * i;
+    const double* a = scratch.RimPoint(i);
     spokes[i] = 0.5 * (dp + a[2]) - fit.At(0.5 * (up + a[0]), 0.5 * (vp + a[1]));
   }
   double deviation = 0.0;
   for (std::size_t e = 0; e < scratch.RimMidpoints.size(); ++e)
   {
     const std::uint32_t ia = scratch.RimEnds[2 * e], ib = scratch.RimEnds[2 * e + 1];
-    const double* a = scratch.RimPoints.data() + CostScratch::RimPointSize * ia;
-    const double* b = scratch.RimPoints.data() + CostScratch::RimPointSize * ib;
+    const double* a = scratch.RimPoint(ia);
+    const double* b = scratch.RimPoint(ib);
     const double area = scratch.RimWeights[e] * 0.5 *
       std::abs((a[0] - up) * (b[1] - vp) - (a[1] - vp) * (b[0] - up));
     const double pa = spokes[ia], pb = spokes[ib];
@@ -606,7 +611,7 @@ void CollapseCostModel::FrameRim(CostScratch& scratch) const
     {
       scratch.RimFramed[i] = 1;
       scratch.RimPlaces.push_back(i);
-      double* f = scratch.RimPoints.data() + CostScratch::RimPointSize * i;
+      double* f = scratch.RimPoint(i);
       fit.Frame(this->State.Mesh.Point(scratch.Listed[i]), f[0], f[1], f[2]);
       f[3] = fit.At(0.5 * f[0], 0.5 * f[1]);
     }
@@ -614,9 +619,8 @@ void CollapseCostModel::FrameRim(CostScratch& scratch) const
   scratch.RimMidpoints.resize(edges);
   for (std::size_t e = 0; e < edges; ++e)
   {
-    const double* a = scratch.RimPoints.data() + CostScratch::RimPointSize * scratch.RimEnds[2 * e];
-    const double* b =
-      scratch.RimPoints.data() + CostScratch::RimPointSize * scratch.RimEnds[2 * e + 1];
+    const double* a = scratch.RimPoint(scratch.RimEnds[2 * e]);
+    const double* b = scratch.RimPoint(scratch.RimEnds[2 * e + 1]);
     scratch.RimMidpoints[e] = fit.At(0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])) - 0.5 * (a[2] + b[2]);
   }
 }
@@ -702,7 +706,7 @@ void CollapseCostModel::ListStencil(const Id* tri, CostScratch& scratch) const
     setPlaces.assign(StencilSlots, 0);
   }
   const auto slotOf = [&](Id x) {
-    std::size_t slot = (static_cast<std::uint32_t>(x) * 0x9E3779B1u >> 25) & (StencilSlots - 1);
+    std::size_t slot = StencilHome(x);
     while (set[slot] != InvalidId && set[slot] != x)
     {
       slot = (slot + 1) & (StencilSlots - 1);
@@ -756,8 +760,7 @@ void CollapseCostModel::ListStencil(const Id* tri, CostScratch& scratch) const
   // listed (each probe goes on past the slots emptied before it, to where its vertex went).
   for (std::size_t i = 0; i < std::min(listed.size(), LinearStencil + 1); ++i)
   {
-    std::size_t slot =
-      (static_cast<std::uint32_t>(listed[i]) * 0x9E3779B1u >> 25) & (StencilSlots - 1);
+    std::size_t slot = StencilHome(listed[i]);
     while (set[slot] != listed[i])
     {
       slot = (slot + 1) & (StencilSlots - 1);

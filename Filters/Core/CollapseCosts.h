@@ -75,6 +75,11 @@ struct CostScratch
   /// curvature method's time.
   static constexpr std::size_t RimPointSize = 4;
   std::vector<double> RimPoints;
+  double* RimPoint(std::uint32_t place) { return this->RimPoints.data() + RimPointSize * place; }
+  const double* RimPoint(std::uint32_t place) const
+  {
+    return this->RimPoints.data() + RimPointSize * place;
+  }
   std::vector<std::uint32_t> RimPlaces;
   std::vector<std::uint8_t> RimFramed;
   std::vector<double> RimMidpoints;

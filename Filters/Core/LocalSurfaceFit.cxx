@@ -33,11 +33,12 @@ SurfaceFitResult FitQuadraticHeightField(
   // times as long on these 6x6 sums.) Entries that sum the same products are summed once: the
   // last row's are the sums of the row itself (times 1, exactly), and entries (3, 3), (4, 3)
   // and (4, 4), u u, v u and v v, are the row's first three (the same products in the same
-  // order: the same sums, where the compiler does not fuse a product into the sum). mRQ is
-  // entry (R, Q), sK the sum of row[K], bK the right-hand side's entry K.
+  // order: the same sums, where the compiler does not fuse a product into the sum); entry
+  // (5, 5), the sum of 1 * 1, is the count. mRQ is entry (R, Q), sK the sum of row[K], bK the
+  // right-hand side's entry K.
   double m00 = 0, m10 = 0, m11 = 0, m20 = 0, m21 = 0, m22 = 0, m30 = 0, m31 = 0, m32 = 0,
          m40 = 0, m41 = 0, m42 = 0;
-  double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, count1 = 0;
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0;
   double b0 = 0, b1 = 0, b2 = 0, b3 = 0, b4 = 0, b5 = 0;
   const double inverseScale = 1.0 / scale;
   for (int j = 0; j < count; ++j)
@@ -66,7 +67,6 @@ SurfaceFitResult FitQuadraticHeightField(
     s2 += r2;
     s3 += pu;
     s4 += pv;
-    count1 += 1.0;
     b0 += r0 * pd;
     b1 += r1 * pd;
     b2 += r2 * pd;
@@ -75,7 +75,7 @@ SurfaceFitResult FitQuadraticHeightField(
     b5 += pd;
   }
   const double lower[6][6] = { { m00 }, { m10, m11 }, { m20, m21, m22 }, { m30, m31, m32, s0 },
-    { m40, m41, m42, s1, s2 }, { s0, s1, s2, s3, s4, count1 } };
+    { m40, m41, m42, s1, s2 }, { s0, s1, s2, s3, s4, static_cast<double>(count) } };
   const double sums[6] = { b0, b1, b2, b3, b4, b5 };
   Eigen::Matrix<double, 6, 6> normalMatrix;
   Eigen::Matrix<double, 6, 1> rhs;
