@@ -145,9 +145,9 @@ void RegisterMeshLODMethods(std::vector<Method>& methods)
     "quadric's value, paper 002's cost, not divided by the surface it stands for)",
     [](vtkTriangleCollapseDecimation* d) { d->SetAreaNormalization(0.0); }));
   methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation flipped edges",
-    "as vtkTriangleCollapseDecimation, with FlipEdges on (the edges of each level with at most a "
-    "quarter of the input's triangles flipped towards the input; for discrete levels, see the "
-    "class docs)",
+    "as vtkTriangleCollapseDecimation, with FlipEdges on (the sharply bent edges of each level "
+    "with at most a quarter of the input's triangles flipped towards the input, and the "
+    "collapses going on from them; vtkLODGeomorph turns the flips continuously)",
     [](vtkTriangleCollapseDecimation* d) { d->FlipEdgesOn(); }));
   methods.push_back(TriangleCollapse("vtkTriangleCollapseDecimation independent sets",
     "quadric method, IndependentSets schedule (LevelFraction 0.025), triangles and edges, 8 levels",

@@ -50,16 +50,8 @@ vtkMTimeType HierarchyTime(vtkMultiBlockDataSet* input)
   }
   return time;
 }
-} // namespace geomorph
-} // namespace meshlod
 
-namespace
-{
-using meshlod::Id;
-using namespace meshlod::geomorph;
-
-// The level's polygons as 32-bit triangles; false when a cell is not a triangle or the level
-// has vertices, lines or strips.
+//------------------------------------------------------------------------------
 bool ReadTriangles(vtkPolyData* poly, std::vector<Id>& triangles)
 {
   triangles.clear();
@@ -86,6 +78,13 @@ bool ReadTriangles(vtkPolyData* poly, std::vector<Id>& triangles)
   meshlod::WithCellStorage(polys, visit);
   return ok;
 }
+} // namespace geomorph
+} // namespace meshlod
+
+namespace
+{
+using meshlod::Id;
+using namespace meshlod::geomorph;
 
 // The TCoords of a level with a texture atlas of its own (names::TextureAtlasLevel), or null.
 vtkAbstractArray* UnblendedTCoords(vtkPolyData* level)
@@ -480,7 +479,7 @@ bool vtkLODGeomorph::Internals::EnsureTriangles(
   LevelCache& cache = this->Levels[level];
   if (!cache.TrianglesRead)
   {
-    cache.AllTriangles = ReadTriangles(cache.Poly, cache.Triangles);
+    cache.AllTriangles = meshlod::geomorph::ReadTriangles(cache.Poly, cache.Triangles);
     cache.TrianglesRead = true;
   }
   if (!cache.AllTriangles)

@@ -56,6 +56,12 @@ struct LevelCache
   bool AllTriangles = false;
   std::vector<Id> Triangles;
 
+  // The next level's edge flips against the images of this level's triangles (a hierarchy
+  // made with FlipEdges; MeshLODGeomorphFlips.cxx): per lone flipped quad, a, b, c, d (the
+  // old diagonal (a, b), the new (c, d)) and the next level's triangles (c, a, d), (d, b, c).
+  bool FlipsFound = false;
+  std::vector<Id> FlipQuads;
+
   std::unique_ptr<meshlod::CollapseSchedule> Schedule; // exact count
   // Level point -> schedule point, for a level split per texture square (its copies of a point
   // welded into one); empty when the schedule's points are the level's.
@@ -82,6 +88,10 @@ struct ExactTopology
 
 /// Latest modification time over the hierarchy and its levels (their points, cells, arrays).
 vtkMTimeType HierarchyTime(vtkMultiBlockDataSet* input);
+
+/// The level's polygons as triangles; false when a cell is not a triangle or the level has
+/// vertices, lines or strips.
+bool ReadTriangles(vtkPolyData* poly, std::vector<Id>& triangles);
 } // namespace geomorph
 } // namespace meshlod
 
@@ -111,6 +121,10 @@ struct vtkLODGeomorph::Internals
   vtkPointData* TargetData(int level);
   void ProduceLevel(int level, vtkPolyData* output);
   bool ProducePartialCollapse(vtkLODGeomorph* self, int level, double t, vtkPolyData* output);
+  // Whether level + 1 has lone flipped quads against the images of level's triangles (found
+  // once); the morph across them at fraction t (MeshLODGeomorphFlips.cxx).
+  bool EnsureFlips(int level);
+  void ProduceFlipMorph(int level, double t, vtkPolyData* output);
   bool ProduceNearestBlend(vtkLODGeomorph* self, int level, double t, vtkPolyData* output);
   bool ProduceExactCount(
     vtkLODGeomorph* self, vtkIdType count, double fraction, vtkPolyData* output, double& lod);

@@ -87,6 +87,7 @@ set(meshlod_sources
   Filters/Core/TriangleMesh.cxx
   Filters/Core/TriangulationFlips.cxx
   Filters/MeshLODBlend.cxx
+  Filters/MeshLODGeomorphFlips.cxx
   Filters/MeshLODGeomorphInternals.cxx
   Filters/MeshLODHierarchy.cxx
   Filters/MeshLODInputArrays.cxx

@@ -25,6 +25,9 @@ namespace
 constexpr const char* LevelOfDetailName = "LevelOfDetail";
 // A pipeline time within this many levels of a level's time step is that level.
 constexpr double LevelSnapTolerance = 1e-9;
+// Between two levels whose triangles differ by edge flips (FlipEdges), the share of the interval
+// that turns the flipped quads' diagonals, after the collapses.
+constexpr double FlipShare = 0.25;
 using meshlod::geomorph::HierarchyTime;
 
 // The level of detail at pipeline time `time`, in [0, levels - 1]. The advertised time steps,
@@ -280,6 +283,17 @@ bool vtkLODGeomorph::Produce(double& lod, vtkPolyData* output)
   {
     impl.ProduceLevel(level, output);
     return true;
+  }
+  if (impl.Mode == MORPH_ARRAYS && impl.EnsureFlips(level))
+  {
+    // The collapses in the first part of the interval, the flips in the rest (see the header).
+    constexpr double collapses = 1.0 - FlipShare;
+    if (t >= collapses)
+    {
+      impl.ProduceFlipMorph(level, (t - collapses) / FlipShare, output);
+      return true;
+    }
+    return impl.ProducePartialCollapse(this, level, t / collapses, output);
   }
   return impl.Mode == MORPH_ARRAYS ? impl.ProducePartialCollapse(this, level, t, output)
                                    : impl.ProduceNearestBlend(this, level, t, output);

@@ -24,13 +24,24 @@
  * output equals level i (its arrays are shared); as t -> 1 its geometry tends to level i + 1's
  * (the collapsing triangles shrink to their collapse points and are kept, with vanishing area:
  * the output stays a valid mesh with fixed connectivity). DropDegenerateTriangles removes the
- * triangles whose corners coincide in the output up to rounding. A hierarchy made with FlipEdges
- * on (either filter) is not smooth across levels: its levels' triangles are no longer the images
- * of the finer level's, so as t -> 1 the output tends to those images, and at L = i + 1 it jumps
- * to level i + 1 where quads were flipped, by 0.5-1.9 times the level's own Hausdorff distance
- * to the input on the benchmark isosurfaces (see their FlipEdges). With FlipEdges off (the
- * default) the output at L -> i + 1 is level i + 1 (Benchmarks/RESULTS.md, "vtkLODGeomorph at
- * the levels").
+ * triangles whose corners coincide in the output up to rounding. With FlipEdges off (both
+ * filters' default) the output at L -> i + 1 is level i + 1 (Benchmarks/RESULTS.md,
+ * "vtkLODGeomorph at the levels").
+ *
+ * @par Edge flips between levels
+ * A hierarchy made with FlipEdges on has levels whose triangles are not all the images of the
+ * finer level's: some quads' diagonals are flipped. Where every such difference between level
+ * i + 1 and the images of level i's triangles is a lone quad, no two sharing a point
+ * (vtkTriangleCollapseDecimation's FlipEdges), the transition is made in two parts: the
+ * collapses above, at t / 0.75, for t < 0.75; then, on level i + 1's points, each flipped quad
+ * turns its diagonal about a point in its middle that moves from the middle of the old
+ * diagonal to the middle of the new one (four triangles around it: two more per quad), so that
+ * the output is continuous at t = 0.75 and tends to level i + 1 as t -> 1. The quads are found
+ * once per level (kept until the input changes). Other differences (vtkVertexClusterOctree's
+ * FlipEdges, whose next level is cut from the unflipped clusters) are left as they were: as
+ * t -> 1 the output tends to the images, and at L = i + 1 it jumps to level i + 1 where quads
+ * were flipped, by 0.5-1.9 times the level's own Hausdorff distance to the input on the
+ * benchmark isosurfaces (see the octree's FlipEdges).
  *
  * @par Without morph data (Correspondence NearestVertices)
  * The correspondence between level i and level i + 1 is built by nearest vertices, as in Pan,

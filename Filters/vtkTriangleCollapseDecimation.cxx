@@ -309,7 +309,8 @@ int vtkTriangleCollapseDecimation::RequestData(
   }
   ErrorJumpWatch jumps(diagonal, mesh.Mesh.GetNumberOfTriangles());
   meshlod::TriangleCollapseCallbacks callbacks;
-  callbacks.EmitLevel = [&](meshlod::LevelData& level) {
+  std::vector<meshlod::Id> flipped;
+  callbacks.EmitLevel = [&](meshlod::LevelData& level, meshlod::LevelRetriangulation& changed) {
     jumps.AddLevel(level.EstimatedError, level.Mesh.GetNumberOfTriangles());
     if (throughLevelZero)
     {
@@ -322,7 +323,16 @@ int vtkTriangleCollapseDecimation::RequestData(
     }
     if (this->FlipEdges)
     {
-      this->NumberOfFlips += flips.Apply(level.Mesh, level.EstimatedError);
+      // The collapses go on from the flipped triangles, so that the geomorph from this level
+      // ends on the next level's triangles before its flips (see vtkLODGeomorph).
+      flipped.clear();
+      this->NumberOfFlips += flips.Apply(level.Mesh, level.EstimatedError, &flipped);
+      for (const meshlod::Id j : flipped)
+      {
+        changed.Triangles.push_back(level.LevelZeroTriangle[j]);
+        const meshlod::Id* corners = level.Mesh.Triangle(j);
+        changed.Corners.insert(changed.Corners.end(), corners, corners + 3);
+      }
     }
     builder.AppendLevel(std::move(level));
   };

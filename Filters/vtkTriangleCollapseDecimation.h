@@ -661,34 +661,31 @@ public:
   /**
    * Flip the edges of every level with at most a quarter of the input's triangles where the
    * quad's other diagonal lies closer to the input, judged on the input surface both ways
-   * (Core/LevelEdgeFlips.h, the judge of vtkVertexClusterOctree's FlipEdges). Points, triangle
-   * counts, MorphTargetId and CollapseRank stay as they are, and the next level is made from
-   * the unflipped triangles. It removes the long edges across a saddle that the collapses
-   * sometimes leave. On the gyroid isosurfaces of Benchmarks/RESULTS.md
-   * the Hausdorff distance at 1% of the triangles falls from 0.243% to 0.188% of the diagonal
-   * (611k triangles; from 1.02 to 0.79 times vtkQuadricDecimation's) and from 0.0627% to 0.0517%
-   * (2.3M; 0.99 to 0.82 times), at 10% from 0.0056% to 0.0050% (2.3M; 1.03 to 0.92 times) and
-   * hardly at all (611k), the RMS distances by 1-3%; on the metaballs isosurface, with hardly a
-   * saddle, the distances hardly move (RMS 0.4% lower). The whole hierarchy takes 1.35-1.5 times
-   * as long on one thread (0.57 to 0.77, 0.50 to 0.75 and 0.44 to 0.64 times
-   * vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the 2.3M gyroid; 1.2-1.5
-   * times over the benchmark's runs). The
-   * price: a level's triangles are then no longer what the finer level's become through its
-   * collapses, so a geomorph from level i ends (as L tends to i + 1) on those images, not on
-   * level i + 1, and jumps at L = i + 1 where quads were flipped. The jump is as large as the
-   * level's own error there: between vtkLODGeomorph at L = i + 1 - 1e-7 and level i + 1 the
-   * Hausdorff distance was 1.0-1.7 times level i + 1's Hausdorff distance to the input on the
-   * metaballs isosurface and 1.45-1.6 times on the 611k gyroid (the RMS distance 0.1-0.2 and
-   * 0.25-0.5 times the level's; the six levels of at most a quarter of the input's triangles,
-   * no jump into the others; Benchmarks/RESULTS.md, "vtkLODGeomorph at the levels"). Where level i is flipped too, the morph's end also keeps a few
-   * pairs of coincident triangles (up to 16 triangles more than the level's 34,352), and so may
-   * the exact-count mode of vtkLODGeomorph applied to a flipped level where a collapse meets a
-   * flipped quad (on a gyroid isosurface of 46,660 triangles, 67 such pairs over 292 counts
-   * between its levels of 4,666 and 2,623 triangles; every count was reached). For discrete
-   * levels (no geomorph) turn it on; for geomorphs leave it off (then the geomorph at
-   * L -> i + 1 is level i + 1 exactly). Memory: the input is read in place (the output's level 0), and its
-   * adjacency is kept for the run, 14-15 bytes more per input triangle (215 instead of 200 on the
-   * 2.3M gyroid, 0.46 times vtkQuadricDecimation's growth). Default off.
+   * (Core/LevelEdgeFlips.h, the judge of vtkVertexClusterOctree's FlipEdges), at most one flip
+   * per point, and only for quads bent by at least 1.5 times the judge's error scale (twice the
+   * level's estimated error): the long edges across a saddle that the collapses sometimes
+   * leave, whose two triangles bend sharply against each other. Points, triangle counts and
+   * MorphTargetId stay as they are; the collapses towards the next level go on from the
+   * flipped triangles. On the 611k-triangle gyroid isosurface of Benchmarks/RESULTS.md the
+   * Hausdorff distance at 1% of the triangles falls from 0.243% to 0.188% of the diagonal (1.02
+   * to 0.79 times vtkQuadricDecimation's), at 10% it stays at 0.0186%, the RMS distances fall by
+   * 0.6%, and the hierarchy takes about 5% longer.
+   * On the metaballs isosurface, with hardly a saddle, no quad is bent that much and the levels
+   * are those without flips. Judging every quad bent by 0.3 times the scale (with several
+   * flips per point, on a copy the collapses did not go on from) took 1.35-1.5 times as long
+   * for RMS distances 1-3% lower, and the geomorph jumped at the flipped levels.
+   *
+   * The geomorph stays continuous: level i + 1's triangles differ from the images of level
+   * i's (what its collapses make of them) by lone flipped quads, no two sharing a point, which
+   * vtkLODGeomorph turns in the last quarter of the transition, each about a point in its
+   * middle (two triangles more per quad meanwhile), so that at L -> i + 1 it is level i + 1
+   * (Benchmarks/RESULTS.md, "vtkLODGeomorph at the levels"). What changes: the triangles of
+   * level i + 1 are not all images of level i's (the flipped quads' are not), and
+   * vtkLODGeomorph's exact-count mode, which applies level i's collapses in CollapseRank order,
+   * ends the transition on the images and steps to level i + 1's flipped quads at its count.
+   * Memory: the input is read in place (the output's level 0), and its adjacency is kept for the
+   * run, 14-15 bytes more per input triangle (215 instead of 200 on the 2.3M gyroid, 0.46 times
+   * vtkQuadricDecimation's growth). Default off.
    */
   vtkSetMacro(FlipEdges, bool);
   vtkGetMacro(FlipEdges, bool);

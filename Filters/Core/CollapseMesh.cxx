@@ -177,6 +177,21 @@ void CollapseMesh::RebuildRows()
 }
 
 //------------------------------------------------------------------------------
+void CollapseMesh::SetCorners(Id t, const Id corners[3])
+{
+  Id* tri = this->Mesh.Triangle(t);
+  for (int k = 0; k < 3; ++k)
+  {
+    --this->TriangleCounts[tri[k]];
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    tri[k] = corners[k];
+    ++this->TriangleCounts[tri[k]];
+  }
+}
+
+//------------------------------------------------------------------------------
 void CollapseMesh::Prefetch(Id t, int stage) const
 {
   const Id* tri = this->Mesh.Triangle(t);

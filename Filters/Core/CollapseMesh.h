@@ -333,6 +333,10 @@ public:
   /// Rebuild the rows from the live triangles (resets the chains).
   void RebuildRows();
 
+  /// Give live triangle t new corners (an edge flip: the same vertices, counted again around
+  /// each). The rows still list it at its old corners: RebuildRows() before they are read.
+  void SetCorners(Id t, const Id corners[3]);
+
 private:
   // The other two parts of IsLegal (the third is ApexValences): the merged vertex's link is one
   // simple cycle or path (and, where that is not enough, the link condition holds); no ring

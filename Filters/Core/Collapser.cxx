@@ -424,10 +424,79 @@ void Collapser::EmitLevel()
   }
   this->LastEmitted = this->State.AliveTriangles;
   ++this->Result.LevelsEmitted;
+  this->Retriangulation.Clear();
+  this->Reweighed.clear();
   if (this->Callbacks.EmitLevel)
   {
-    this->Callbacks.EmitLevel(level);
+    this->Callbacks.EmitLevel(level, this->Retriangulation);
   }
+  if (!this->Retriangulation.Triangles.empty())
+  {
+    this->Retriangulate();
+  }
+}
+
+void Collapser::Retriangulate()
+{
+  const LevelRetriangulation& flips = this->Retriangulation;
+  std::vector<Id> corners; // of the flipped triangles, before and after
+  for (std::size_t k = 0; k < flips.Triangles.size(); ++k)
+  {
+    const Id t = flips.Triangles[k];
+    const Id* before = this->State.Mesh.Triangle(t);
+    corners.insert(corners.end(), before, before + 3);
+    Id after[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      after[i] = this->Tracker.LevelVertex(flips.Corners[3 * k + i]);
+    }
+    this->State.SetCorners(t, after);
+    corners.insert(corners.end(), after, after + 3);
+  }
+  this->State.RebuildRows();
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  std::vector<Id>& reweighed = this->Reweighed;
+  std::vector<Id> touched;
+  for (const Id v : corners)
+  {
+    this->State.ForEachTriangle(v, [&](Id s) {
+      this->Lot.Touch(this->State.Mesh.Triangle(s), this->Clock);
+      reweighed.push_back(s);
+    });
+    if (this->RefitsLazily())
+    {
+      this->ForEachTriangleOneRingOut(v, touched, [&](Id s) { reweighed.push_back(s); });
+    }
+  }
+  std::sort(reweighed.begin(), reweighed.end());
+  reweighed.erase(std::unique(reweighed.begin(), reweighed.end()), reweighed.end());
+  CostScratch scratch;
+  for (const Id s : reweighed)
+  {
+    this->Lot.Unpark(s);
+    if (!this->Stale.empty())
+    {
+      this->Stale[s] = 0;
+    }
+    this->Costs[s] = this->EvaluateCost(s, scratch);
+  }
+}
+
+void Collapser::UpdateAfterRetriangulation(IndexedHeap& heap)
+{
+  for (const Id s : this->Reweighed)
+  {
+    if (this->Costs[s] < InfiniteCost)
+    {
+      heap.Update(s);
+    }
+    else
+    {
+      heap.Remove(s);
+    }
+  }
+  this->Reweighed.clear();
 }
 
 bool Collapser::AfterProgress()

@@ -479,6 +479,13 @@ private:
   // Emit levels whose target is reached; returns false on abort.
   bool AfterProgress();
   void EmitLevel();
+  // The receiver's flips of the level just emitted (Retriangulation) made in the mesh, so that
+  // the collapses go on from the flipped triangles; every triangle around a flipped one's
+  // corners gets its cost again (for the curvature method also one ring further out, whose
+  // stencils changed), listed in Reweighed for a heap that holds them.
+  void Retriangulate();
+  // A heap held across a level's emission takes the costs Retriangulate changed.
+  void UpdateAfterRetriangulation(IndexedHeap& heap);
   // When the run stops before the last target (nothing collapsible left, or MaximumError),
   // the coarsest mesh reached still becomes a level.
   TriangleCollapseResult FinishRun();
@@ -526,6 +533,8 @@ private:
   std::int64_t Sequence = 0; // numbers the collapses (CollapseRank order)
   std::int64_t Clock = 0;    // the parking lot's time
   Id LastEmitted = 0;        // triangles of the last level handed over
+  LevelRetriangulation Retriangulation; // what the receiver flipped in the last level
+  std::vector<Id> Reweighed;            // the triangles whose costs its flips changed
   TriangleCollapseResult Result;
 
   // Partitioned greedy (PartitionedGreedy.cxx): storage kept between rounds.

@@ -129,6 +129,7 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
     {
       return StepsEnd::Stopped;
     }
+    this->UpdateAfterRetriangulation(heap);
   }
   return StepsEnd::Reached;
 }

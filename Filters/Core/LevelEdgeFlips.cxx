@@ -19,7 +19,7 @@ void LevelEdgeFlips::SetLevelZero(const LevelZeroCorrespondence& levelZero)
 }
 
 //------------------------------------------------------------------------------
-Id LevelEdgeFlips::Apply(TriangleMesh& level, double estimatedError)
+Id LevelEdgeFlips::Apply(TriangleMesh& level, double estimatedError, std::vector<Id>* flipped)
 {
   const LevelZeroView& input = this->LevelZero->Input;
   if (level.GetNumberOfTriangles() > LargestFraction * input.Triangles)
@@ -55,9 +55,10 @@ Id LevelEdgeFlips::Apply(TriangleMesh& level, double estimatedError)
     }
   });
   TriangulationFlipOptions options;
+  options.MaximumSweeps = 1;
   options.MinimumOppositeAngles = MinimumOppositeAngles;
   options.MinimumSeparation = MinimumSeparation;
   return ImproveTriangulation(
-    input, this->InputTriangles, start, ErrorScale * estimatedError, level, options);
+    input, this->InputTriangles, start, ErrorScale * estimatedError, level, options, flipped);
 }
 } // namespace meshlod

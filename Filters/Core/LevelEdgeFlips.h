@@ -6,25 +6,32 @@
 // point from the input is the middle of such an edge (triangles 85 degrees apart), 0.24% of the
 // diagonal, while the quad's other diagonal lies within 0.08%. The flips of TriangulationFlips.h,
 // judged on the input surface itself, replace such diagonals; they move no point and change no
-// count, so MorphTargetId and CollapseRank stay as they are.
+// count, so MorphTargetId stays as it is.
 //
-// Each level is flipped as it is emitted (after its centring), on a copy: the collapses go on
-// from the unflipped triangles, so the next level is what it would be without flips. The walks
-// over the input start at the input vertex nearest each level point among those it stands for
-// (the chained MorphTargetId correspondence; ties: the lowest id). The judge's scale is twice
-// the level's estimated error (the largest RMS distance of a vertex to its merged planes, which
-// on the benchmark isosurfaces is a third to a quarter of the level's Hausdorff distance): flips
-// whose configurations differ by less than a tenth of that are not judged, and a quad farther
-// than twice that from the input is taken for a lost walk.
+// Each level is flipped as it is emitted (after its centring), in one sweep that flips at most
+// one edge per point, and the collapses towards the next level go on from the flipped
+// triangles (TriangleCollapseCallbacks, LevelRetriangulation): the next level's triangles then
+// differ from the images of this level's by lone quads, which vtkLODGeomorph turns continuously
+// (MeshLODGeomorphFlips.cxx). (Flipped on a copy, with the collapses going on from the
+// unflipped triangles, the images of a flipped level ended on neither the next level nor its
+// flips, and the geomorph jumped there by about the level's own error.) The walks over the
+// input start at the input vertex nearest each level point among those it stands for (the
+// chained MorphTargetId correspondence; ties: the lowest id). The judge's scale is twice the
+// level's estimated error (the largest RMS distance of a vertex to its merged planes, which on
+// the benchmark isosurfaces is a third to a quarter of the level's Hausdorff distance), and a
+// quad farther than twice that from the input is taken for a lost walk.
 //
-// Which edges are judged: the collapses leave well-shaped triangles, and judging only edges whose
-// facing angles add up to 150 degrees or more (the long diagonals) whose quads bend by at least
-// 0.3 of the error scale took 0.8 s instead of 1.4 s on the 611k gyroid (one thread, the
-// hierarchy's own time 2.0 s) for the same Hausdorff distances, the RMS distances about 1%
-// higher than when judging as vtkVertexClusterOctree does (from 120 degrees and 0.1). Levels
-// with more than LargestFraction of the input's triangles are not flipped: on the 611k gyroid
-// the two finest of eight levels (56% and 32%) took most of the flips' time (all eight flipped:
-// 6.2 s for the run, against 3.8 s) and their distances are small.
+// Which edges are judged: only edges whose facing angles add up to 150 degrees or more (the long
+// diagonals) whose quads bend by at least MinimumSeparation (1.5) of the error scale, the sharp
+// saddle edges that set the Hausdorff distance. From 0.3 of the scale (and up to four sweeps)
+// the flips took a quarter to a third of the hierarchy's time (0.11 s of 0.45 s on the 154k
+// metaballs, one thread, for 190 flips that left its Hausdorff distances as they were) and
+// lowered RMS distances by 1-3%; from 1.5 the metaballs get no flip and the 611k gyroid's
+// hierarchy takes about 5% longer, with the same gain in Hausdorff distance at 1% (0.243% ->
+// 0.188% of the diagonal). Levels with more than LargestFraction of the input's triangles are
+// not flipped: on the 611k gyroid the two finest of eight levels (56% and 32%) took most of the
+// flips' time (all eight flipped: 6.2 s for the run, against 3.8 s) and their distances are
+// small.
 //
 // Memory: the input is read in place, as the hierarchy's level 0 holds it (LevelZeroView.h); its
 // vertex-to-triangle adjacency is kept for the whole run (about 14 bytes per input triangle),
@@ -54,7 +61,7 @@ public:
   /// where the quad's two configurations lie this fraction of the error scale apart or more
   /// (TriangulationFlipOptions; vtkVertexClusterOctree judges from 120 degrees and 0.1).
   static constexpr double MinimumOppositeAngles = 150.0;
-  static constexpr double MinimumSeparation = 0.3;
+  static constexpr double MinimumSeparation = 1.5;
 
   /// The input (level 0) and where its points have gone (it must outlive this object, and be
   /// advanced to each level before Apply): the level's points must be in the same coordinates.
@@ -62,8 +69,9 @@ public:
 
   /// Flip the edges of the next level, after advancing the correspondence to it;
   /// `estimatedError` is the level's estimated error in world units. Returns the number of
-  /// flips made.
-  Id Apply(TriangleMesh& level, double estimatedError);
+  /// flips made; `flipped`, when given, gets the two triangles of each (no triangle is flipped
+  /// twice: one sweep, at most one flip per vertex).
+  Id Apply(TriangleMesh& level, double estimatedError, std::vector<Id>* flipped = nullptr);
 
 private:
   const LevelZeroCorrespondence* LevelZero = nullptr;

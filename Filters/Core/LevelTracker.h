@@ -63,6 +63,8 @@ public:
     }
   }
   Id AncestorCount(Id v) const { return this->AncestorTotal[v]; }
+  /// The mesh vertex of point p of the last level built.
+  Id LevelVertex(Id p) const { return this->PreviousVertices[p]; }
 
 private:
   // Snapshot's steps (LevelTracker.cxx).

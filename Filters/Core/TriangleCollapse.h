@@ -119,13 +119,26 @@ struct TriangleCollapseOptions
   const long long* InputPointIds = nullptr;
 };
 
+/// Triangles of an emitted level that its receiver re-triangulated (edge flips that keep every
+/// point and the count): the collapses towards the next level go on from them.
+struct LevelRetriangulation
+{
+  std::vector<Id> Triangles; // those that changed, each once, as LevelData::LevelZeroTriangle names them
+  std::vector<Id> Corners;   // their new corners, three per triangle, in the level's point ids
+  void Clear()
+  {
+    this->Triangles.clear();
+    this->Corners.clear();
+  }
+};
+
 struct TriangleCollapseCallbacks
 {
   /// Called on the calling thread with the fraction done; returns false to abort.
   std::function<bool(double)> Progress;
   /// Receives each level as soon as it is complete; it may take the level's arrays (the engine
-  /// does not use them afterwards).
-  std::function<void(LevelData&)> EmitLevel;
+  /// does not use them afterwards), and may fill the retriangulation (empty when called).
+  std::function<void(LevelData&, LevelRetriangulation&)> EmitLevel;
 };
 
 struct TriangleCollapseResult

@@ -601,9 +601,10 @@ void JudgeEdges(const TriangleMesh& level, const TriangleTopology& topology,
 
 // The flips judged worth making, best gain first, at most one per vertex and sweep: the
 // triangles around an untouched vertex are as they were judged, so is every edge test below.
-// The triangles flipped are marked in `changedNext`; returns the number of flips.
+// The triangles flipped are marked in `changedNext` (and listed in `flipped`, when given);
+// returns the number of flips.
 Id MakeFlips(TriangleMesh& level, const TriangleTopology& topology, std::vector<float>& gain,
-  std::vector<std::uint8_t>& changedNext)
+  std::vector<std::uint8_t>& changedNext, std::vector<Id>* flipped)
 {
   std::vector<Id> candidates;
   for (Id e = 0; e < 3 * level.GetNumberOfTriangles(); ++e)
@@ -637,6 +638,11 @@ Id MakeFlips(TriangleMesh& level, const TriangleTopology& topology, std::vector<
     std::copy_n(flippedU, 3, level.Triangle(u));
     used[a] = used[b] = used[c] = used[d] = 1;
     changedNext[t] = changedNext[u] = 1;
+    if (flipped)
+    {
+      flipped->push_back(t);
+      flipped->push_back(u);
+    }
     gain[e] = -1.0f;
     ++made;
   }
@@ -645,7 +651,8 @@ Id MakeFlips(TriangleMesh& level, const TriangleTopology& topology, std::vector<
 
 // Sweeps of judging and flipping until one flips nothing (at most MaximumSweeps).
 template <typename Judge>
-Id MakeSweeps(TriangleMesh& level, const Judge& judge, const TriangulationFlipOptions& options)
+Id MakeSweeps(TriangleMesh& level, const Judge& judge, const TriangulationFlipOptions& options,
+  std::vector<Id>* flipped)
 {
   const Id nt = level.GetNumberOfTriangles();
   std::vector<float> gain(3 * static_cast<size_t>(nt), -1.0f);
@@ -659,7 +666,7 @@ Id MakeSweeps(TriangleMesh& level, const Judge& judge, const TriangulationFlipOp
     topology.Build(level);
     JudgeEdges(level, topology, judge, options, changed, gain);
     std::fill(changedNext.begin(), changedNext.end(), 0);
-    const Id made = MakeFlips(level, topology, gain, changedNext);
+    const Id made = MakeFlips(level, topology, gain, changedNext, flipped);
     flips += made;
     changed.swap(changedNext);
     if (made == 0)
@@ -677,7 +684,8 @@ Id ImproveTriangulation(const LevelZeroView& input,
   const std::vector<Id>& startVertex,
   double errorBound,
   TriangleMesh& level,
-  const TriangulationFlipOptions& options)
+  const TriangulationFlipOptions& options,
+  std::vector<Id>* flipped)
 {
   if (!(errorBound > 0.0) || !std::isfinite(errorBound))
   {
@@ -688,7 +696,7 @@ Id ImproveTriangulation(const LevelZeroView& input,
     using Surface = decltype(surface);
     const FlipJudge<Surface> judge{ SurfaceWalk<Surface>{ surface, inputTriangles }, startVertex,
       4.0 * errorBound * errorBound, std::pow(options.MinimumSeparation * errorBound, 2) };
-    flips = MakeSweeps(level, judge, options);
+    flips = MakeSweeps(level, judge, options, flipped);
   });
   return flips;
 }

@@ -7,7 +7,8 @@
 // correspondence (MorphTargetId) while lying closer to the input.
 //
 // vtkTriangleCollapseDecimation's FlipEdges applies the same flips to its levels (LevelEdgeFlips.h),
-// where the greedy collapses sometimes leave a long edge across a saddle.
+// where the greedy collapses sometimes leave a long edge across a saddle: one sweep there, so
+// that no triangle is flipped twice and the geomorph can turn each flip on its own.
 //
 // A flip of the edge (a, b) between triangles (a, b, c) and (b, a, d) to (c, a, d), (d, b, c) is
 // judged on the input surface itself, locally: points on the four triangles (their centroids and
@@ -63,13 +64,15 @@ struct VTKFILTERSMESHLOD_EXPORT TriangulationFlipOptions
 /// Flip edges of `level` towards `input` (see above; read in place, LevelZeroView.h).
 /// `startVertex[p]` is an input vertex near level point p (of the input part p represents);
 /// `errorBound` is the level's largest cluster error in world units. Returns the number of
-/// flips made.
+/// flips made; `flipped`, when given, gets the two triangles of each flip (a triangle flipped
+/// again in a later sweep is listed again).
 VTKFILTERSMESHLOD_EXPORT Id ImproveTriangulation(const LevelZeroView& input,
   const VertexTriangleAdjacency& inputTriangles,
   const std::vector<Id>& startVertex,
   double errorBound,
   TriangleMesh& level,
-  const TriangulationFlipOptions& options = TriangulationFlipOptions());
+  const TriangulationFlipOptions& options = TriangulationFlipOptions(),
+  std::vector<Id>* flipped = nullptr);
 
 /// Closest point of triangle (a, b, c) to p; returns the squared distance. Exact to rounding
 /// on triangles of any shape, thin caps, needles, segments (two corners equal) and points
