@@ -23,12 +23,6 @@ bool IsReal(vtkAbstractArray* array)
     (array->GetDataType() == VTK_FLOAT || array->GetDataType() == VTK_DOUBLE);
 }
 
-bool IsMorphArray(const char* name)
-{
-  return name &&
-    (!std::strcmp(name, names::MorphTarget) || !std::strcmp(name, names::MorphTargetId) ||
-      !std::strcmp(name, names::CollapseRank));
-}
 
 // Output rows: which finer-level row (A), coarser row (B) and weight output point q takes.
 // Specialised on the plan's indirections, so the common cases have no branch per point.
@@ -456,6 +450,14 @@ void GatherPointData(vtkPointData* fine, vtkPointData* coarse, const Id* map,
       out->AddArray(SwitchArray(a, b, gather));
     }
   }
+}
+
+//------------------------------------------------------------------------------
+bool IsMorphArray(const char* name)
+{
+  return name &&
+    (!std::strcmp(name, names::MorphTarget) || !std::strcmp(name, names::MorphTargetId) ||
+      !std::strcmp(name, names::CollapseRank));
 }
 
 } // namespace meshlod

@@ -72,6 +72,9 @@ VTKFILTERSMESHLOD_EXPORT void GatherPointData(
   vtkPointData* fine, vtkPointData* coarse, const Id* map, vtkIdType numberOfPoints,
   vtkPointData* out);
 
+/// Whether the array is one of the hierarchy's morph arrays (MorphTarget, MorphTargetId,
+/// CollapseRank), which a geomorph's output does not carry.
+VTKFILTERSMESHLOD_EXPORT bool IsMorphArray(const char* name);
 } // namespace meshlod
 
 #endif

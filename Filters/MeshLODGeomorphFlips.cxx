@@ -9,11 +9,14 @@
 // and (b, a, d), split at m on their shared edge, are four triangles around m, and as m moves
 // from the middle of (a, b) to the middle of (c, d) they become the halves of the new
 // triangles (c, a, d) and (d, b, c). Nothing else moves meanwhile: the collapses have finished.
-// Other differences (vtkVertexClusterOctree's flips, which its next level does not start from,
-// chain across levels) leave the level to jump at its end, as without this.
+// Any other difference (vtkVertexClusterOctree's flips, which its next level is not cut from,
+// mostly differ in other ways) leaves the level to jump at its end, as without this.
 #include "MeshLODGeomorphInternals.h"
 
+#include "MeshLODBlend.h"
+
 #include "vtkDataArray.h"
+#include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 
@@ -22,6 +25,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <numeric>
 #include <utility>
 
 namespace
@@ -129,25 +133,24 @@ bool HasDirectedEdge(const Triangle& t, Id from, Id to, Id& apex)
   return false;
 }
 
-// Copies the tuples of `from` and appends, per midpoint, the values at its weighted corners:
-// floating-point arrays blended (the Normals renormalised), others taken from the corner of
-// the largest weight (ids and labels are not interpolated).
-void AppendMidpointData(const std::vector<Id>& corners,
-  const std::vector<double>& weights, bool normals, vtkAbstractArray* source,
-  vtkAbstractArray* result)
+// `source` with, per midpoint, the values at its weighted corners appended: floating-point
+// arrays blended (the Normals renormalised), others taken from the corner of the largest weight
+// (ids and labels are not interpolated).
+vtkSmartPointer<vtkAbstractArray> WithMidpoints(vtkAbstractArray* source, bool normals,
+  const std::vector<Id>& corners, const std::vector<double>& weights)
 {
   const vtkIdType n = source->GetNumberOfTuples();
   const vtkIdType added = static_cast<vtkIdType>(corners.size() / 4);
-  result->SetNumberOfComponents(source->GetNumberOfComponents());
+  vtkSmartPointer<vtkAbstractArray> result;
+  result.TakeReference(source->NewInstance());
+  result->DeepCopy(source); // one bulk copy; the midpoints go after
+  result->Resize(n + added);
   result->SetNumberOfTuples(n + added);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    result->SetTuple(i, i, source);
-  }
   auto* values = vtkDataArray::FastDownCast(source);
   auto* out = vtkDataArray::FastDownCast(result);
+  const bool blend =
+    values && (values->GetDataType() == VTK_FLOAT || values->GetDataType() == VTK_DOUBLE);
   const int components = source->GetNumberOfComponents();
-  const bool blend = values && (values->GetDataType() == VTK_FLOAT || values->GetDataType() == VTK_DOUBLE);
   std::vector<double> tuple(components);
   for (vtkIdType q = 0; q < added; ++q)
   {
@@ -167,21 +170,19 @@ void AppendMidpointData(const std::vector<Id>& corners,
         tuple[j] += w[k] * values->GetComponent(c[k], j);
       }
     }
-    if (normals)
+    double length = 0.0;
+    for (const double v : tuple)
     {
-      double length = 0.0;
-      for (const double v : tuple)
-      {
-        length += v * v;
-      }
-      length = std::sqrt(length);
-      for (double& v : tuple)
-      {
-        v = length > 0.0 ? v / length : v;
-      }
+      length += v * v;
+    }
+    length = std::sqrt(length);
+    for (double& v : tuple)
+    {
+      v = normals && length > 0.0 ? v / length : v;
     }
     out->SetTuple(n + q, tuple.data());
   }
+  return result;
 }
 } // namespace
 
@@ -301,16 +302,99 @@ bool vtkLODGeomorph::Internals::EnsureFlips(int level)
 }
 
 //------------------------------------------------------------------------------
-void vtkLODGeomorph::Internals::ProduceFlipMorph(int level, double t, vtkPolyData* output)
+void vtkLODGeomorph::Internals::BuildFlipCells(int level)
 {
-  const meshlod::geomorph::LevelCache& cache = this->Levels[level];
+  meshlod::geomorph::LevelCache& cache = this->Levels[level];
   const meshlod::geomorph::LevelCache& next = this->Levels[level + 1];
-  vtkPolyData* poly = next.Poly;
   const std::vector<Id>& quads = cache.FlipQuads;
   const Id count = static_cast<Id>(quads.size() / 6);
-  const vtkIdType n = poly->GetNumberOfPoints();
+  const vtkIdType n = next.Poly->GetNumberOfPoints();
+  const vtkIdType triangles = static_cast<vtkIdType>(next.Triangles.size() / 3);
+  // The next level's triangles, each flipped pair replaced by the four around its midpoint
+  // (point n + q of quad q): (a, m, c) in X's place and (m, a, d) at the end, (m, b, c) in Y's
+  // and (b, m, d) at the end. At m on (c, d), X = (c, a, d) and Y = (d, b, c) exactly.
+  std::vector<Id> replaced(triangles, meshlod::InvalidId); // triangle -> 2 q (X) or 2 q + 1 (Y)
+  for (Id q = 0; q < count; ++q)
+  {
+    replaced[quads[6 * q + 4]] = 2 * q;
+    replaced[quads[6 * q + 5]] = 2 * q + 1;
+  }
+  auto quadTriangle = [&](Id q, int which, vtkIdType cell[3]) {
+    const Id* v = quads.data() + 6 * q; // a, b, c, d
+    const vtkIdType m = n + q;
+    const vtkIdType shapes[4][3] = { { v[0], m, v[2] }, { m, v[1], v[2] }, { m, v[0], v[3] },
+      { v[1], m, v[3] } };
+    std::copy_n(shapes[which], 3, cell);
+  };
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(triangles + 2 * count, 3 * (triangles + 2 * count));
+  vtkNew<vtkIdList> sources; // the next level's triangle each output triangle's data comes from
+  sources->SetNumberOfIds(triangles + 2 * count);
+  for (vtkIdType j = 0; j < triangles; ++j)
+  {
+    vtkIdType cell[3];
+    if (replaced[j] == meshlod::InvalidId)
+    {
+      std::copy_n(next.Triangles.data() + 3 * j, 3, cell);
+    }
+    else
+    {
+      quadTriangle(replaced[j] / 2, static_cast<int>(replaced[j] % 2), cell);
+    }
+    polys->InsertNextCell(3, cell);
+    sources->SetId(j, j);
+  }
+  for (Id q = 0; q < count; ++q)
+  {
+    for (const int which : { 2, 3 })
+    {
+      vtkIdType cell[3];
+      quadTriangle(q, which, cell);
+      polys->InsertNextCell(3, cell);
+      sources->SetId(triangles + 2 * q + (which - 2), quads[6 * q + (which == 2 ? 4 : 5)]);
+    }
+  }
+  cache.FlipCells = polys;
+  // Every cell array, copied tuple by tuple from its source triangle (global ids included: the
+  // copy flags of vtkCellData::CopyData would leave them out).
+  vtkCellData* from = next.Poly->GetCellData();
+  cache.FlipCellData = vtkSmartPointer<vtkCellData>::New();
+  vtkNew<vtkIdList> destinations;
+  destinations->SetNumberOfIds(sources->GetNumberOfIds());
+  std::iota(destinations->begin(), destinations->end(), vtkIdType(0));
+  for (int i = 0; i < from->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* source = from->GetAbstractArray(i);
+    vtkSmartPointer<vtkAbstractArray> result;
+    result.TakeReference(source->NewInstance());
+    result->SetName(source->GetName());
+    result->SetNumberOfComponents(source->GetNumberOfComponents());
+    result->SetNumberOfTuples(sources->GetNumberOfIds());
+    result->InsertTuples(destinations, sources, source);
+    const int attribute = from->IsArrayAnAttribute(i);
+    if (attribute >= 0)
+    {
+      cache.FlipCellData->SetAttribute(result, attribute);
+    }
+    else
+    {
+      cache.FlipCellData->AddArray(result);
+    }
+  }
+}
 
+//------------------------------------------------------------------------------
+void vtkLODGeomorph::Internals::ProduceFlipMorph(int level, double t, vtkPolyData* output)
+{
+  meshlod::geomorph::LevelCache& cache = this->Levels[level];
+  vtkPolyData* poly = this->Levels[level + 1].Poly;
+  if (!cache.FlipCells)
+  {
+    this->BuildFlipCells(level);
+  }
   // The midpoints: from the middle of (a, b) at t = 0 to the middle of (c, d) at t = 1.
+  const std::vector<Id>& quads = cache.FlipQuads;
+  const Id count = static_cast<Id>(quads.size() / 6);
   std::vector<Id> corners(4 * static_cast<std::size_t>(count));
   std::vector<double> weights(4 * static_cast<std::size_t>(count));
   for (Id q = 0; q < count; ++q)
@@ -320,20 +404,21 @@ void vtkLODGeomorph::Internals::ProduceFlipMorph(int level, double t, vtkPolyDat
     std::copy_n(w, 4, weights.data() + 4 * q);
   }
   vtkNew<vtkPoints> points;
-  points->SetDataType(poly->GetPoints()->GetDataType());
-  AppendMidpointData(corners, weights, false, poly->GetPoints()->GetData(), points->GetData());
+  points->SetData(vtkDataArray::SafeDownCast(
+    WithMidpoints(poly->GetPoints()->GetData(), false, corners, weights)));
   output->SetPoints(points);
-
+  // The next level's point arrays, as at L = level + 1 (the morph arrays left out).
   vtkPointData* from = poly->GetPointData();
   vtkPointData* to = output->GetPointData();
   to->Initialize();
   for (int i = 0; i < from->GetNumberOfArrays(); ++i)
   {
     vtkAbstractArray* source = from->GetAbstractArray(i);
-    vtkSmartPointer<vtkAbstractArray> result;
-    result.TakeReference(source->NewInstance());
-    result->SetName(source->GetName());
-    AppendMidpointData(corners, weights, source == from->GetNormals(), source, result);
+    if (meshlod::IsMorphArray(source->GetName()))
+    {
+      continue;
+    }
+    const auto result = WithMidpoints(source, source == from->GetNormals(), corners, weights);
     const int attribute = from->IsArrayAnAttribute(i);
     if (attribute >= 0)
     {
@@ -344,57 +429,6 @@ void vtkLODGeomorph::Internals::ProduceFlipMorph(int level, double t, vtkPolyDat
       to->AddArray(result);
     }
   }
-
-  // The next level's triangles, each flipped pair replaced by the four around its midpoint:
-  // (a, m, c) and (m, a, d) in X's place and at the end, (m, b, c) and (b, m, d) in Y's.
-  vtkNew<vtkCellArray> polys;
-  const vtkIdType triangles = static_cast<vtkIdType>(next.Triangles.size() / 3);
-  polys->AllocateExact(triangles + 2 * count, 3 * (triangles + 2 * count));
-  std::vector<Id> replaced(triangles, meshlod::InvalidId); // triangle -> its quad, 0 X, 1 Y
-  for (Id q = 0; q < count; ++q)
-  {
-    replaced[quads[6 * q + 4]] = 2 * q;
-    replaced[quads[6 * q + 5]] = 2 * q + 1;
-  }
-  std::vector<vtkIdType> cellSource;
-  cellSource.reserve(triangles + 2 * count);
-  auto quadTriangle = [&](Id q, int which, vtkIdType cell[3]) {
-    const Id* v = quads.data() + 6 * q; // a, b, c, d
-    const vtkIdType m = n + q;
-    const vtkIdType shapes[4][3] = { { v[0], m, v[2] }, { m, v[1], v[2] }, { m, v[0], v[3] },
-      { v[1], m, v[3] } };
-    std::copy_n(shapes[which], 3, cell);
-  };
-  for (vtkIdType j = 0; j < triangles; ++j)
-  {
-    vtkIdType cell[3];
-    if (replaced[j] == meshlod::InvalidId)
-    {
-      std::copy_n(next.Triangles.data() + 3 * j, 3, cell);
-    }
-    else
-    {
-      quadTriangle(replaced[j] / 2, replaced[j] % 2 == 0 ? 0 : 1, cell);
-    }
-    polys->InsertNextCell(3, cell);
-    cellSource.push_back(j);
-  }
-  for (Id q = 0; q < count; ++q)
-  {
-    for (int which : { 2, 3 })
-    {
-      vtkIdType cell[3];
-      quadTriangle(q, which, cell);
-      polys->InsertNextCell(3, cell);
-      cellSource.push_back(quads[6 * q + (which == 2 ? 4 : 5)]);
-    }
-  }
-  output->SetPolys(polys);
-  vtkCellData* cellsFrom = poly->GetCellData();
-  vtkCellData* cellsTo = output->GetCellData();
-  cellsTo->CopyAllocate(cellsFrom, static_cast<vtkIdType>(cellSource.size()));
-  for (std::size_t i = 0; i < cellSource.size(); ++i)
-  {
-    cellsTo->CopyData(cellsFrom, cellSource[i], static_cast<vtkIdType>(i));
-  }
+  output->SetPolys(cache.FlipCells);
+  output->GetCellData()->ShallowCopy(cache.FlipCellData);
 }

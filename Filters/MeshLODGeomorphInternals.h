@@ -61,6 +61,10 @@ struct LevelCache
   // old diagonal (a, b), the new (c, d)) and the next level's triangles (c, a, d), (d, b, c).
   bool FlipsFound = false;
   std::vector<Id> FlipQuads;
+  // The morph's triangles and their cell data (the same at every fraction), built at its first
+  // frame.
+  vtkSmartPointer<vtkCellArray> FlipCells;
+  vtkSmartPointer<vtkCellData> FlipCellData;
 
   std::unique_ptr<meshlod::CollapseSchedule> Schedule; // exact count
   // Level point -> schedule point, for a level split per texture square (its copies of a point
@@ -124,6 +128,7 @@ struct vtkLODGeomorph::Internals
   // Whether level + 1 has lone flipped quads against the images of level's triangles (found
   // once); the morph across them at fraction t (MeshLODGeomorphFlips.cxx).
   bool EnsureFlips(int level);
+  void BuildFlipCells(int level);
   void ProduceFlipMorph(int level, double t, vtkPolyData* output);
   bool ProduceNearestBlend(vtkLODGeomorph* self, int level, double t, vtkPolyData* output);
   bool ProduceExactCount(

@@ -36,11 +36,12 @@
  * collapses above, at t / 0.75, for t < 0.75; then, on level i + 1's points, each flipped quad
  * turns its diagonal about a point in its middle that moves from the middle of the old
  * diagonal to the middle of the new one (four triangles around it: two more per quad), so that
- * the output is continuous at t = 0.75 and tends to level i + 1 as t -> 1. The quads are found
- * once per level (kept until the input changes). Other differences (vtkVertexClusterOctree's
- * FlipEdges, whose next level is cut from the unflipped clusters) are left as they were: as
- * t -> 1 the output tends to the images, and at L = i + 1 it jumps to level i + 1 where quads
- * were flipped, by 0.5-1.9 times the level's own Hausdorff distance to the input on the
+ * the output is continuous at t = 0.75 and tends to level i + 1 as t -> 1 (its point arrays are
+ * level i + 1's, the midpoints' blended from the quad's corners). The quads are found
+ * once per level (kept until the input changes). A level that differs in any other way (as
+ * with vtkVertexClusterOctree's FlipEdges, whose next level is cut from the unflipped clusters)
+ * is left as it was: as t -> 1 the output tends to the images, and at L = i + 1 it jumps to
+ * level i + 1 where quads were flipped, by 0.5-1.9 times the level's own Hausdorff distance to the input on the
  * benchmark isosurfaces (see the octree's FlipEdges).
  *
  * @par Without morph data (Correspondence NearestVertices)

@@ -327,6 +327,8 @@ int vtkTriangleCollapseDecimation::RequestData(
       // ends on the next level's triangles before its flips (see vtkLODGeomorph).
       flipped.clear();
       this->NumberOfFlips += flips.Apply(level.Mesh, level.EstimatedError, &flipped);
+      std::sort(flipped.begin(), flipped.end()); // (each triangle once: one sweep flips it once)
+      flipped.erase(std::unique(flipped.begin(), flipped.end()), flipped.end());
       for (const meshlod::Id j : flipped)
       {
         changed.Triangles.push_back(level.LevelZeroTriangle[j]);

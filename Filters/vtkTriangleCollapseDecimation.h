@@ -664,9 +664,10 @@ public:
    * (Core/LevelEdgeFlips.h, the judge of vtkVertexClusterOctree's FlipEdges), at most one flip
    * per point, and only for quads bent by at least 1.5 times the judge's error scale (twice the
    * level's estimated error): the long edges across a saddle that the collapses sometimes
-   * leave, whose two triangles bend sharply against each other. Points, triangle counts and
-   * MorphTargetId stay as they are; the collapses towards the next level go on from the
-   * flipped triangles. On the 611k-triangle gyroid isosurface of Benchmarks/RESULTS.md the
+   * leave, whose two triangles bend sharply against each other. A flip moves no point and
+   * changes no count and no MorphTargetId of its level; the collapses towards the next level go
+   * on from the flipped triangles, so the coarser levels are not those made without flips (their
+   * counts may differ by a triangle or two). On the 611k-triangle gyroid isosurface of Benchmarks/RESULTS.md the
    * Hausdorff distance at 1% of the triangles falls from 0.243% to 0.188% of the diagonal (1.02
    * to 0.79 times vtkQuadricDecimation's), at 10% it stays at 0.0186%, the RMS distances fall by
    * 0.6%, and the hierarchy takes about 5% longer.

@@ -438,6 +438,9 @@ void Collapser::EmitLevel()
 
 void Collapser::Retriangulate()
 {
+  // The flips come after every collapse so far: a triangle parked now (in the pass that reached
+  // the level) sees its neighbourhood changed after it was parked.
+  ++this->Clock;
   const LevelRetriangulation& flips = this->Retriangulation;
   std::vector<Id> corners; // of the flipped triangles, before and after
   for (std::size_t k = 0; k < flips.Triangles.size(); ++k)

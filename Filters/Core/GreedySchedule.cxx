@@ -60,6 +60,7 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
 {
   IndexedHeap heap;
   this->BuildGreedyHeap(heap);
+  this->Reweighed.clear(); // (the heap has their costs: it was built after them)
 
   Star star;
   CostScratch scratch;

@@ -13,6 +13,7 @@
 #include "vtkVertexClusterOctree.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
@@ -686,6 +687,27 @@ void CheckGeomorphThroughFlips(vtkMultiBlockDataSet* hierarchy)
     }
     const auto middle = at(i + 0.9);
     MESHLOD_CHECK_EQ(middle->GetNumberOfPolys(), next->GetNumberOfPolys() + 2 * quads);
+    // The arrays of the level it turns into (no morph arrays), one value per point and cell.
+    const auto landed = at(i + 1);
+    MESHLOD_CHECK_EQ(
+      middle->GetPointData()->GetNumberOfArrays(), landed->GetPointData()->GetNumberOfArrays());
+    MESHLOD_CHECK(!middle->GetPointData()->GetArray("MorphTargetId"));
+    MESHLOD_CHECK_EQ(
+      middle->GetCellData()->GetNumberOfArrays(), landed->GetCellData()->GetNumberOfArrays());
+    MESHLOD_CHECK_EQ(middle->GetPointData()->GetNumberOfArrays(), 2);
+    for (int a = 0; a < middle->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      MESHLOD_CHECK_EQ(middle->GetPointData()->GetAbstractArray(a)->GetNumberOfTuples(),
+        middle->GetNumberOfPoints());
+    }
+    vtkDataArray* normals = middle->GetPointData()->GetNormals();
+    MESHLOD_CHECK(normals != nullptr);
+    for (vtkIdType p = next->GetNumberOfPoints(); normals && p < middle->GetNumberOfPoints(); ++p)
+    {
+      double n[3];
+      normals->GetTuple(p, n);
+      MESHLOD_CHECK_LT(std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0), 1e-6);
+    }
     const testing::MeshReport report = testing::InspectMesh(middle);
     MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
     MESHLOD_CHECK_EQ(report.DuplicateTriangles, 0);
@@ -757,7 +779,10 @@ void TestTriangleCollapseFlips()
   MESHLOD_CHECK_GT(testing::CountCorrespondenceViolations(flipped), 0);
   CheckFlipsThreadIndependent([&] { return Collapse(mesh, true, nullptr); }, levels);
   CheckFlipsStorageIndependent(mesh, flipped, flips);
-  CheckGeomorphThroughFlips(flipped);
+  // The same surface with normals and scalars, carried by the geomorph through the flips.
+  const auto withData = testing::MakeIsosurface(testing::Field::Gyroid, 50, true, true);
+  MESHLOD_CHECK_EQ(withData->GetPointData()->GetNumberOfArrays(), 2);
+  CheckGeomorphThroughFlips(Collapse(withData, true, nullptr));
 }
 } // namespace
 
