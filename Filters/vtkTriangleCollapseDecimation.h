@@ -120,10 +120,10 @@
  *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
  *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its whole
  *   hierarchy the curvature method takes 1.3-3.4x the time vtkQuadricDecimation needs for one 10%
- *   target on one thread (1.84-2.41x in Benchmarks/RESULTS.md's run), and 1.6-2.0x less on two
- *   (the quadric method: 0.29-0.57x over nine runs on AMD EPYC processors, 0.44-0.57x in
- *   RESULTS.md's, where vtkQuadricDecimation took 5-25% less time than in the run before and the
- *   quadric method 3-19% more, for the same output and 1.2% fewer instructions; 1.4-1.9x less on two,
+ *   target on one thread (1.82-2.60x in Benchmarks/RESULTS.md's run), and 1.6-2.75x less on two
+ *   (the quadric method: 0.29-0.57x over ten runs on AMD EPYC processors, 0.41-0.43x in
+ *   RESULTS.md's, where vtkQuadricDecimation's times moved by -20% to +17% and the quadric
+ *   method's by -14% to -23% from the run before, on the same output; 1.4-1.9x less on two,
  *   the least on the 154k-triangle mesh, whose one run of half a second swings most; the
  *   ratios move with the processor, the machine's load and what ran before in the same process:
  *   on an Intel Xeon the quadric method took 0.42-0.69x over three runs, its own times about as
@@ -667,14 +667,18 @@ public:
    * leave, whose two triangles bend sharply against each other. A flip moves no point and
    * changes no count and no MorphTargetId of its level; the collapses towards the next level go
    * on from the flipped triangles, so the coarser levels are not those made without flips (their
-   * counts may differ by a triangle or two). On the 611k-triangle gyroid isosurface of Benchmarks/RESULTS.md the
-   * Hausdorff distance at 1% of the triangles falls from 0.243% to 0.188% of the diagonal (1.02
-   * to 0.79 times vtkQuadricDecimation's), at 10% it stays at 0.0186%, the RMS distances fall by
-   * 0.6%, and the hierarchy takes about 5% longer.
+   * counts may differ by a triangle or two). On the gyroid isosurfaces of Benchmarks/RESULTS.md
+   * the Hausdorff distance at 1% of the triangles falls from 0.243% to 0.188% of the diagonal
+   * (611k triangles; 1.02 to 0.79 times vtkQuadricDecimation's) and from 0.0627% to 0.0519%
+   * (2.3M; 0.99 to 0.82 times); at 10% it stays (0.89 and 1.03 times), and the RMS distances
+   * fall by 0.2-0.6%. The whole hierarchy took 0.98-1.06 times as long on one thread (0.44,
+   * 0.44 and 0.42 times vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the
+   * 2.3M gyroid, against 0.42, 0.41 and 0.43 without flips).
    * On the metaballs isosurface, with hardly a saddle, no quad is bent that much and the levels
    * are those without flips. Judging every quad bent by 0.3 times the scale (with several
    * flips per point, on a copy the collapses did not go on from) took 1.35-1.5 times as long
-   * for RMS distances 1-3% lower, and the geomorph jumped at the flipped levels.
+   * for RMS distances 1-3% lower and also brought the 2.3M gyroid's 10% level to 0.92 times
+   * vtkQuadricDecimation's Hausdorff distance, but the geomorph jumped at the flipped levels.
    *
    * The geomorph stays continuous: level i + 1's triangles differ from the images of level
    * i's (what its collapses make of them) by lone flipped quads, no two sharing a point, which

@@ -26,12 +26,13 @@
 // saddle edges that set the Hausdorff distance. From 0.3 of the scale (and up to four sweeps)
 // the flips took a quarter to a third of the hierarchy's time (0.11 s of 0.45 s on the 154k
 // metaballs, one thread, for 190 flips that left its Hausdorff distances as they were) and
-// lowered RMS distances by 1-3%; from 1.5 the metaballs get no flip and the 611k gyroid's
-// hierarchy takes about 5% longer, with the same gain in Hausdorff distance at 1% (0.243% ->
-// 0.188% of the diagonal). Levels with more than LargestFraction of the input's triangles are
-// not flipped: on the 611k gyroid the two finest of eight levels (56% and 32%) took most of the
-// flips' time (all eight flipped: 6.2 s for the run, against 3.8 s) and their distances are
-// small.
+// lowered RMS distances by 1-3%; from 1.5 the metaballs get no flip, the hierarchy takes about
+// as long (0.98-1.06 times on the benchmark's isosurfaces) and the gyroids' Hausdorff distances
+// at 1% fall as much as before (611k: 0.243% -> 0.188% of the diagonal), but at 10% no longer
+// (2.3M: 0.0056%, where 0.3 gave 0.0050%). Levels with more than LargestFraction of the input's
+// triangles are not flipped: on the 611k gyroid the two finest of eight levels (56% and 32%)
+// took most of the flips' time (all eight flipped: 6.2 s for the run, against 3.8 s) and their
+// distances are small.
 //
 // Memory: the input is read in place, as the hierarchy's level 0 holds it (LevelZeroView.h); its
 // vertex-to-triangle adjacency is kept for the whole run (about 14 bytes per input triangle),
