@@ -477,12 +477,7 @@ void Collapser::Retriangulate()
   CostScratch scratch;
   for (const Id s : reweighed)
   {
-    this->Lot.Unpark(s);
-    if (!this->Stale.empty())
-    {
-      this->Stale[s] = 0;
-    }
-    this->Costs[s] = this->EvaluateCost(s, scratch);
+    this->Reweigh(s, scratch);
   }
 }
 
@@ -490,14 +485,7 @@ void Collapser::UpdateAfterRetriangulation(IndexedHeap& heap)
 {
   for (const Id s : this->Reweighed)
   {
-    if (this->Costs[s] < InfiniteCost)
-    {
-      heap.Update(s);
-    }
-    else
-    {
-      heap.Remove(s);
-    }
+    this->PlaceInHeap(s, heap);
   }
   this->Reweighed.clear();
 }

@@ -219,6 +219,11 @@ private:
   void ReweighInHeap(Id s, IndexedHeap& heap, CostScratch& scratch)
   {
     this->Reweigh(s, scratch);
+    this->PlaceInHeap(s, heap);
+  }
+  // Triangle s at its cost in the heap, or out of it when it cannot collapse any more.
+  void PlaceInHeap(Id s, IndexedHeap& heap) const
+  {
     if (this->Costs[s] < InfiniteCost)
     {
       heap.Update(s);

@@ -48,7 +48,7 @@ bool Collapser::MarkStale(Id s)
 void Collapser::Reweigh(Id s, CostScratch& scratch)
 {
   this->Lot.Unpark(s);
-  if (this->RefitsLazily())
+  if (!this->Stale.empty()) // (the curvature method's, once a greedy loop has sized it)
   {
     this->Stale[s] = 0;
   }

@@ -415,9 +415,28 @@ void TestSharpQuadNotJudged()
 }
 
 //------------------------------------------------------------------------------
-// A level made with flips against the same level made without: the same points and counts, a
-// manifold, consistently oriented level with no triangle turned against the finer flipped
-// level's; returns how many triangles the flips changed.
+// A manifold, consistently oriented mesh without degenerate or duplicate triangles.
+void CheckValidMesh(vtkPolyData* mesh)
+{
+  const testing::MeshReport report = testing::InspectMesh(mesh);
+  MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
+  MESHLOD_CHECK_EQ(report.DuplicateTriangles, 0);
+  MESHLOD_CHECK_EQ(report.DegenerateTriangles, 0);
+  MESHLOD_CHECK(report.ConsistentlyOriented);
+}
+
+// A valid flipped level (CheckValidMesh) with the Euler characteristic of the level made
+// without flips and no triangle turned against the finer flipped level's.
+void CheckValidFlippedLevel(vtkPolyData* plain, vtkPolyData* flipped, vtkPolyData* finer)
+{
+  CheckValidMesh(flipped);
+  MESHLOD_CHECK_EQ(testing::InspectMesh(flipped).EulerCharacteristic,
+    testing::InspectMesh(plain).EulerCharacteristic);
+  MESHLOD_CHECK_EQ(testing::CountFlippedTriangles(finer, flipped), 0);
+}
+
+// A level made with flips against the same level made without: the same points and counts, and
+// a valid flipped level (CheckValidFlippedLevel); returns how many triangles the flips changed.
 vtkIdType CheckFlippedLevel(vtkPolyData* plain, vtkPolyData* flipped, vtkPolyData* finer)
 {
   MESHLOD_CHECK_EQ(plain->GetNumberOfPoints(), flipped->GetNumberOfPoints());
@@ -432,13 +451,7 @@ vtkIdType CheckFlippedLevel(vtkPolyData* plain, vtkPolyData* flipped, vtkPolyDat
     moved += (x[0] != y[0] || x[1] != y[1] || x[2] != y[2]) ? 1 : 0;
   }
   MESHLOD_CHECK_EQ(moved, 0);
-  const testing::MeshReport report = testing::InspectMesh(flipped);
-  MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
-  MESHLOD_CHECK_EQ(report.DuplicateTriangles, 0);
-  MESHLOD_CHECK_EQ(report.DegenerateTriangles, 0);
-  MESHLOD_CHECK(report.ConsistentlyOriented);
-  MESHLOD_CHECK_EQ(report.EulerCharacteristic, testing::InspectMesh(plain).EulerCharacteristic);
-  MESHLOD_CHECK_EQ(testing::CountFlippedTriangles(finer, flipped), 0);
+  CheckValidFlippedLevel(plain, flipped, finer);
   vtkIdType changed = 0;
   const auto ta = testing::Triangles(plain), tb = testing::Triangles(flipped);
   for (size_t t = 0; t < ta.size() && ta.size() == tb.size(); ++t)
@@ -708,11 +721,7 @@ void CheckGeomorphThroughFlips(vtkMultiBlockDataSet* hierarchy)
       normals->GetTuple(p, n);
       MESHLOD_CHECK_LT(std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0), 1e-6);
     }
-    const testing::MeshReport report = testing::InspectMesh(middle);
-    MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
-    MESHLOD_CHECK_EQ(report.DuplicateTriangles, 0);
-    MESHLOD_CHECK_EQ(report.DegenerateTriangles, 0);
-    MESHLOD_CHECK(report.ConsistentlyOriented);
+    CheckValidMesh(middle);
     ++turning;
   }
   MESHLOD_CHECK_GE(turning, 4);
@@ -751,17 +760,13 @@ void TestTriangleCollapseFlips()
     if (firstFlipped)
     {
       // The collapses up to the first flipped level are those without flips.
-      const vtkIdType changed = CheckFlippedLevel(a, b, testing::Level(flipped, i - 1));
-      MESHLOD_CHECK_GT(changed, 0);
+      MESHLOD_CHECK_GT(CheckFlippedLevel(a, b, testing::Level(flipped, i - 1)), 0);
       firstFlipped = false;
     }
-    const testing::MeshReport report = testing::InspectMesh(b);
-    MESHLOD_CHECK_EQ(report.NonManifoldEdges, 0);
-    MESHLOD_CHECK_EQ(report.DuplicateTriangles, 0);
-    MESHLOD_CHECK_EQ(report.DegenerateTriangles, 0);
-    MESHLOD_CHECK(report.ConsistentlyOriented);
-    MESHLOD_CHECK_EQ(report.EulerCharacteristic, testing::InspectMesh(a).EulerCharacteristic);
-    MESHLOD_CHECK_EQ(testing::CountFlippedTriangles(testing::Level(flipped, i - 1), b), 0);
+    else
+    {
+      CheckValidFlippedLevel(a, b, testing::Level(flipped, i - 1));
+    }
     MESHLOD_CHECK_LE(std::abs(a->GetNumberOfPolys() - b->GetNumberOfPolys()), 2);
     const vtkIdType quads = CountLoneFlippedQuads(testing::Level(flipped, i - 1), b);
     MESHLOD_CHECK_GT(quads, 0);
