@@ -571,22 +571,37 @@ bool vtkLODGeomorph::Internals::EnsureSchedule(vtkLODGeomorph* self, int level)
   // groups, and between a group's steps no count can be stopped at (two levels 97% apart: 8 of
   // 22 counts out of reach). The schedule that keeps 98% of the counts reachable or more wins;
   // when no collapse waited, the two are the same and the second is not built.
+  // An abort stops a build (null): none is kept, and the next update builds it again.
   const auto build = [&](bool waitForFolds) {
     auto schedule = std::unique_ptr<meshlod::CollapseSchedule>(new meshlod::CollapseSchedule);
-    schedule->Build(scheduleTriangles->data(), static_cast<Id>(scheduleTriangles->size() / 3),
-      schedulePoints, scheduleTargets, rank.data(), atTarget.data(), from.data(), to.data(),
-      waitForFolds);
+    schedule->AbortCheck = [self]() { return self->GetAbortExecute() != 0; };
+    if (!schedule->Build(scheduleTriangles->data(),
+          static_cast<Id>(scheduleTriangles->size() / 3), schedulePoints, scheduleTargets,
+          rank.data(), atTarget.data(), from.data(), to.data(), waitForFolds))
+    {
+      schedule.reset();
+    }
     return schedule;
   };
-  cache.Schedule = build(true);
-  if (cache.Schedule->WaitedForFolds)
+  std::unique_ptr<meshlod::CollapseSchedule> waiting = build(true);
+  if (!waiting)
   {
+    return false;
+  }
+  if (waiting->WaitedForFolds)
+  {
+    self->UpdateProgress(0.5);
     std::unique_ptr<meshlod::CollapseSchedule> plain = build(false);
-    if (cache.Schedule->NumberOfReachableCounts() < 0.98 * plain->NumberOfReachableCounts())
+    if (!plain)
     {
-      cache.Schedule = std::move(plain);
+      return false;
+    }
+    if (waiting->NumberOfReachableCounts() < 0.98 * plain->NumberOfReachableCounts())
+    {
+      waiting = std::move(plain);
     }
   }
+  cache.Schedule = std::move(waiting);
   return true;
 }
 

@@ -7,6 +7,7 @@
 #include "vtkAOSDataArrayTemplate.h"
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
@@ -735,6 +736,59 @@ vtkIdType TrianglesOfCells(vtkCellArray* cells, bool strip)
   return count;
 }
 
+// The polygons with a point repeated next to itself ([a, b, b, c]: a triangle stored as a quad)
+// without the repeats, or null when no polygon has one. vtkTriangleFilter cuts such a polygon into
+// a degenerate triangle, losing the real one, unless the repeat comes last. A polygon left with
+// fewer than three points stays as it was (it makes no triangle either way).
+vtkSmartPointer<vtkCellArray> WithoutAdjacentRepeats(vtkCellArray* polys)
+{
+  auto repeats = [](vtkIdType n, const vtkIdType* pts)
+  {
+    for (vtkIdType i = 0; i < n && n > 1; ++i)
+    {
+      if (pts[i] == pts[(i + 1) % n])
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  vtkIdType n;
+  const vtkIdType* pts;
+  bool any = false;
+  auto cells = vtk::TakeSmartPointer(polys->NewIterator());
+  for (cells->GoToFirstCell(); !any && !cells->IsDoneWithTraversal(); cells->GoToNextCell())
+  {
+    cells->GetCurrentCell(n, pts);
+    any = repeats(n, pts);
+  }
+  if (!any)
+  {
+    return nullptr;
+  }
+  auto kept = vtkSmartPointer<vtkCellArray>::New();
+  kept->AllocateExact(polys->GetNumberOfCells(), polys->GetNumberOfConnectivityIds());
+  std::vector<vtkIdType> ids;
+  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
+  {
+    cells->GetCurrentCell(n, pts);
+    ids.clear();
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      if (pts[i] != pts[(i + 1) % n])
+      {
+        ids.push_back(pts[i]);
+      }
+    }
+    if (ids.size() < 3)
+    {
+      ids.assign(pts, pts + n);
+    }
+    kept->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+  }
+  return kept;
+}
+
 // The input's polygons and strips as triangles, with their point data and the cell data of
 // polygons and strips (the cells from `firstPolyCellId` on: the verts and lines in front of
 // them are skipped).
@@ -742,7 +796,8 @@ vtkSmartPointer<vtkPolyData> Triangulate(vtkPolyData* input, vtkIdType firstPoly
 {
   vtkNew<vtkPolyData> surface;
   surface->SetPoints(input->GetPoints());
-  surface->SetPolys(input->GetPolys());
+  const vtkSmartPointer<vtkCellArray> polys = WithoutAdjacentRepeats(input->GetPolys());
+  surface->SetPolys(polys != nullptr ? polys.Get() : input->GetPolys());
   surface->SetStrips(input->GetStrips());
   surface->GetPointData()->ShallowCopy(input->GetPointData());
   const vtkIdType numberOfSurfaceCells = input->GetNumberOfPolys() + input->GetNumberOfStrips();

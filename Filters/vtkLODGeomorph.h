@@ -122,7 +122,8 @@
  * triangles), 0.9 s for a UV sphere's 636,800 -> 540, 3.6 s for a single level of 0.1% made
  * straight from a 610,880-triangle isosurface (of whose counts most cannot be stopped at, as
  * above: asked for 310,745 triangles, it gives 14,865; from a single level of 1%, whose
- * waiting groups are smaller, 310,744); later counts take milliseconds.
+ * waiting groups are smaller, 310,744); later counts take milliseconds. An abort stops the
+ * build (the output is empty), which is then made again at the next update.
  *
  * @par Point and cell data
  * Every point-data array of level i is carried to the output. Floating-point arrays are
@@ -282,7 +283,8 @@ public:
   ///@{
   /**
    * Results of the last execution: number of levels of the input, level of detail produced
-   * (-1 when the execution failed), triangles in the output, correspondence used
+   * (-1 when the execution failed or was aborted, and for a piece other than 0, which is empty:
+   * see Pieces), triangles in the output, correspondence used
    * (MORPH_ARRAYS or NEAREST_VERTICES).
    */
   vtkGetMacro(NumberOfLevels, int);

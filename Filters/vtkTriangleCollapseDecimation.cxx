@@ -234,8 +234,12 @@ int vtkTriangleCollapseDecimation::RequestData(
 {
   vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(outputVector);
   output->Initialize();
+  // Every after-execution count is reset first, so that a run that fails or ends early reports
+  // none of the run before.
   this->NumberOfLevelsProduced = 0;
   this->ActualReduction = 0.0;
+  this->NumberOfSwaps = 0;
+  this->NumberOfFlips = 0;
   vtkPolyData* input = nullptr;
   if (!meshlod::SurfaceInput(inputVector[0], this, input))
   {
@@ -274,7 +278,6 @@ int vtkTriangleCollapseDecimation::RequestData(
   meshlod::TriangleCollapseOptions options = this->CollapseOptions();
   LetFitsReadInputPoints(mesh, options);
   const std::int64_t inputTriangles = mesh.Mesh.GetNumberOfTriangles();
-  this->NumberOfSwaps = 0;
   options.LevelTargets = LevelTargets(this->LevelReductionsToMake(), inputTriangles);
 
   meshlod::HierarchyBuilder builder;
@@ -294,7 +297,6 @@ int vtkTriangleCollapseDecimation::RequestData(
     centering.SetLevelZero(levelZero);
   }
   meshlod::LevelEdgeFlips flips;
-  this->NumberOfFlips = 0;
   if (this->FlipEdges)
   {
     flips.SetLevelZero(levelZero);

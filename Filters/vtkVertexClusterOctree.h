@@ -443,8 +443,9 @@ public:
 
   ///@{
   /**
-   * Recompute point normals (named "Normals", the Normals attribute) on every simplified level
-   * from its triangles, replacing interpolated input normals. Default off.
+   * Recompute point normals (the Normals attribute) on every simplified level from its
+   * triangles, replacing interpolated input normals: named as the input's Normals attribute,
+   * "Normals" when the input has none. Default off.
    */
   vtkSetMacro(ComputeNormals, bool);
   vtkGetMacro(ComputeNormals, bool);

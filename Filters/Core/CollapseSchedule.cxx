@@ -376,14 +376,19 @@ bool CollapseScheduleBuilder::WholeIsValid(size_t c)
 // The collapses in order; one whose whole merge would leave its target without one fan waits
 // for a neighbour's merge (see the header). After each collapse made, the waiting ones next
 // to it are tried again.
-void CollapseScheduleBuilder::MakeCollapsesInOrder()
+bool CollapseScheduleBuilder::MakeCollapsesInOrder()
 {
   const size_t collapses = this->Collapses.size();
   std::vector<size_t> waitingOfTarget(this->NumberOfTargets, collapses);
   std::vector<size_t> triedAfter(collapses, collapses); // at most once per made
   std::vector<size_t> retry;
+  const std::function<bool()>& aborted = this->Schedule.AbortCheck;
   for (size_t c = 0; c < collapses; ++c)
   {
+    if (c % CollapseSchedule::AbortCheckInterval == 0 && aborted && aborted())
+    {
+      return false;
+    }
     const Id t = this->Target[this->Moving[this->Collapses[c].first]];
     if (waitingOfTarget[t] < collapses || !this->WholeIsValid(c))
     {
@@ -428,6 +433,7 @@ void CollapseScheduleBuilder::MakeCollapsesInOrder()
       }
     }
   }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -437,15 +443,20 @@ void CollapseScheduleBuilder::MakeCollapsesInOrder()
 // level, so the steps between groups can be stopped at (made in plain order, one broken
 // target kept every later step unstoppable: an extruded text's 19,820-triangle level was the
 // only count below 31,579).
-void CollapseScheduleBuilder::MakeWaitingGroups()
+bool CollapseScheduleBuilder::MakeWaitingGroups()
 {
   if (this->WaitingNow > 0)
   {
     this->GroupIndex.assign(this->NumberOfPoints, -1);
     this->StarterSeen.assign(this->NumberOfTargets, 0);
   }
+  const std::function<bool()>& aborted = this->Schedule.AbortCheck;
   for (size_t c = 0; c < this->Collapses.size(); ++c)
   {
+    if (c % CollapseSchedule::AbortCheckInterval == 0 && aborted && aborted())
+    {
+      return false;
+    }
     if (!this->Waiting[c])
     {
       continue;
@@ -468,6 +479,7 @@ void CollapseScheduleBuilder::MakeWaitingGroups()
     }
     this->SettleInterleaved(largest);
   }
+  return true;
 }
 
 // Waiting collapse c and the waiting collapses reached from it over their points' triangles,
@@ -600,15 +612,17 @@ void CollapseScheduleBuilder::SettleInterleaved(size_t largest)
 }
 
 //------------------------------------------------------------------------------
-void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints,
+bool CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints,
   const Id* target, const std::int64_t* rank, const std::uint8_t* atTarget,
   const double* positions, const double* targetPositions, bool waitForFolds)
 {
   {
     CollapseScheduleBuilder builder(*this, triangles, numberOfTriangles, numberOfPoints, target,
       rank, atTarget, positions, targetPositions, waitForFolds);
-    builder.MakeCollapsesInOrder();
-    builder.MakeWaitingGroups();
+    if (!builder.MakeCollapsesInOrder() || !builder.MakeWaitingGroups())
+    {
+      return false;
+    }
     const std::vector<std::uint8_t>& valid = builder.ValidSteps();
     this->Stops.clear();
     for (size_t step = 0; step < valid.size(); ++step)
@@ -655,6 +669,7 @@ void CollapseSchedule::Build(const Id* triangles, Id numberOfTriangles, Id numbe
     removed += this->CountAfter[k];
     this->CountAfter[k] = numberOfTriangles - removed;
   }
+  return true;
 }
 
 //------------------------------------------------------------------------------

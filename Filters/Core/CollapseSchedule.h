@@ -49,6 +49,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace meshlod
@@ -70,6 +71,11 @@ struct VTKFILTERSMESHLOD_EXPORT CollapseSchedule
   /// less for a few points and about m^2 for m points (a UV sphere's octree levels of 636,800
   /// -> 540 triangles took 44 s). The schedule is the same either way. Range [1, any], default 8.
   size_t TrackedCollapsePoints = 8;
+  /// Asked between collapses while the order is made (every AbortCheckInterval collapses):
+  /// true stops the build, and Build returns false with the schedule left unusable. Empty: never
+  /// asked.
+  std::function<bool()> AbortCheck;
+  static constexpr std::size_t AbortCheckInterval = 1024;
 
   /// `target` and `rank` hold one entry per point; `atTarget[p]` is non-zero when point p is
   /// already at its target position. With `positions` and `targetPositions` (x, y, z per point:
@@ -77,7 +83,8 @@ struct VTKFILTERSMESHLOD_EXPORT CollapseSchedule
   /// no triangle over (see IsFolded, CollapseScheduleFans.cxx); with `waitForFolds` too, a collapse
   /// whose whole merge would fold a triangle waits like one that would leave its target without one
   /// fan.
-  void Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints, const Id* target,
+  /// Returns false when AbortCheck stopped it.
+  bool Build(const Id* triangles, Id numberOfTriangles, Id numberOfPoints, const Id* target,
     const std::int64_t* rank, const std::uint8_t* atTarget, const double* positions = nullptr,
     const double* targetPositions = nullptr, bool waitForFolds = false);
 

@@ -63,10 +63,11 @@ public:
     const double* positions, const double* targetPositions, bool waitForFolds);
 
   // The collapses in rank order; one whose whole merge would leave its target without one fan
-  // waits for a neighbour's merge.
-  void MakeCollapsesInOrder();
-  // Those still waiting at the end, by groups of neighbours.
-  void MakeWaitingGroups();
+  // waits for a neighbour's merge. False when the schedule's AbortCheck stopped it.
+  bool MakeCollapsesInOrder();
+  // Those still waiting at the end, by groups of neighbours. False when the schedule's
+  // AbortCheck stopped it.
+  bool MakeWaitingGroups();
   // Per step (0 first): whether the mesh after it is valid to stop at.
   const std::vector<std::uint8_t>& ValidSteps() const { return this->Valid; }
 

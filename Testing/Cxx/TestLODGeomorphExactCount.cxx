@@ -1,6 +1,7 @@
 // vtkLODGeomorph's exact triangle count: a sweep of counts on a closed icosphere hierarchy
 // (exact counts, valid closed manifolds), the geomorph of the next collapse, the end of a
-// transition equal to the next level, a hand-made cluster collapse on an open grid, clamping.
+// transition equal to the next level, a hand-made cluster collapse on an open grid, clamping,
+// an abort while the order is built.
 #include "vtkLODGeomorph.h"
 
 #include "Core/TriangleMesh.h"
@@ -11,7 +12,9 @@
 #include "MeshLODTestHierarchies.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
+#include "vtkCommand.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkIntArray.h"
@@ -298,6 +301,24 @@ void TestCluster()
   MESHLOD_CHECK_EQ(filter->GetTargetNumberOfTriangles(), -1);
 }
 
+// An abort requested at the first progress report stops the build of the transition's order:
+// the output is empty, no order is kept, and the next update builds it and gives the count.
+void TestAbort(vtkMultiBlockDataSet* h)
+{
+  vtkNew<vtkLODGeomorph> filter;
+  filter->SetInputData(h);
+  const vtkIdType count = Level(h, 1)->GetNumberOfPolys() + 40;
+  vtkNew<vtkCallbackCommand> abort;
+  abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*)
+    { static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn(); });
+  const unsigned long tag = filter->AddObserver(vtkCommand::ProgressEvent, abort);
+  MESHLOD_CHECK_EQ(Run(filter, count)->GetNumberOfPoints(), 0);
+  filter->RemoveObserver(tag);
+  filter->AbortExecuteOff();
+  filter->Modified();
+  MESHLOD_CHECK_EQ(Run(filter, count)->GetNumberOfPolys(), count);
+}
+
 void TestBackends(vtkMultiBlockDataSet* h)
 {
   const auto runs = testing::RunWithBothBackends([&] {
@@ -337,5 +358,6 @@ int TestLODGeomorphExactCount(int, char*[])
   TestFraction(h);
   TestCluster();
   TestBackends(h);
+  TestAbort(h);
   return testing::Result();
 }

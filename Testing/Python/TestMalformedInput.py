@@ -8,7 +8,8 @@ vtkTriangleCollapseDecimation, vtkVertexClusterOctree and vtkLODGeomorph:
 - a NaN point used only by a quad: the error a NaN point of a triangle gets (the triangulation
   used to drop the quad, leaving a hole);
 - a quad that crosses itself, which vtkTriangleFilter cannot triangulate: a warning with the
-  number of triangles missing; none for triangles stored as quads with a repeated point;
+  number of triangles missing; none for triangles stored as quads with a repeated point, and
+  none of them lost wherever the repeat stands;
 - a point array with +inf and -inf: no level and no geomorph output holds a NaN;
 - a texture whose scalars are shorter than its points: an error; a texture in the XZ plane is
   baked like one in the XY plane; int colours count 0-255 like unsigned char ones;
@@ -175,8 +176,10 @@ for name in FILTERS:
     check(levels and levels[0].GetNumberOfPolys() == 198,
           "%s: level 0 of the grid with a bow-tie quad" % name)
 
-# Triangles stored as quads with a repeated point ([a, b, c, c]), as some exporters pad them:
-# vtkTriangleFilter makes one triangle of each, and no triangle is missing.
+# Triangles stored as quads with a repeated point, as some exporters pad them, the repeat last
+# ([a, b, c, c]) or not ([a, b, b, c], [a, a, b, c]: vtkTriangleFilter alone cut these into a
+# degenerate triangle, and the surface lost one triangle each without a warning): one triangle
+# of each, and no triangle is missing.
 for name in FILTERS:
     mesh = quad_grid()
     polys = vtkCellArray()
@@ -186,6 +189,9 @@ for name in FILTERS:
         if c == 55:
             polys.InsertNextCell(4, [quad[0], quad[1], quad[2], quad[2]])
             polys.InsertNextCell(4, [quad[0], quad[2], quad[3], quad[3]])
+        elif c == 33:
+            polys.InsertNextCell(4, [quad[0], quad[1], quad[1], quad[2]])
+            polys.InsertNextCell(4, [quad[0], quad[0], quad[2], quad[3]])
         else:
             polys.InsertNextCell(4, quad)
     mesh.SetPolys(polys)

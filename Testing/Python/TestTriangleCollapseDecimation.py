@@ -2,7 +2,8 @@
 hierarchy's levels, block names, morph arrays and field data, then vtkLODGeomorph driven by the
 pipeline time, compared with the explicit LevelOfDetail and an exact triangle count."""
 
-from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet, vtkImplicitBoolean, vtkSphere
+from vtkmodules.vtkCommonDataModel import (vtkCompositeDataSet, vtkImplicitBoolean, vtkPolyData,
+                                            vtkSphere)
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
 from vtkmodules.vtkImagingHybrid import vtkSampleFunction
@@ -209,6 +210,23 @@ for i in range(LEVELS + 1):
           "level %d: count kept" % i)
     changed_levels += triangles_of(plain_level) != triangles_of(flipped_level)
 check(changed_levels > 0, "%d levels flipped" % changed_levels)
+
+# The after-execution counts are the last run's: a run on an empty input, and one refused for a
+# bad setting, report no flips and no swaps (they kept the run before's).
+flipped.SetInputData(vtkPolyData())
+flipped.Update()
+check(flipped.GetNumberOfFlips() == 0 and flipped.GetNumberOfSwaps() == 0,
+      "empty input after a run: %d flips, %d swaps"
+      % (flipped.GetNumberOfFlips(), flipped.GetNumberOfSwaps()))
+refused = contour_filter()
+refused.FlipEdgesOn()
+refused.Update()
+check(refused.GetNumberOfFlips() > 0, "%d flips before the refused run" % refused.GetNumberOfFlips())
+refused.SetTargetReduction(float("nan"))
+refused.Update()
+check(refused.GetNumberOfFlips() == 0 and refused.GetNumberOfSwaps() == 0,
+      "refused run after a run: %d flips, %d swaps"
+      % (refused.GetNumberOfFlips(), refused.GetNumberOfSwaps()))
 
 
 def unused_points(poly):
