@@ -966,6 +966,20 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
     warnIfFar(trianglesOf(level + 1));
     return true;
   }
+  const vtkIdType next = trianglesOf(level + 1);
+  if (steps == schedule.NumberOfSteps() && schedule.CountAfter[steps] == next)
+  {
+    // Only the whole transition reaches the count: its end is the next level, produced as the
+    // next level's own count is (L = level + 1, its own point data, a fraction moving its
+    // first collapse), not as this level's points at their targets, whose TCoords address this
+    // level's baked texture while floor(L) names the next one's.
+    if (!this->ProduceExactCount(self, next, fraction, output, lod))
+    {
+      return false;
+    }
+    warnIfFar(next);
+    return true;
+  }
   const Id nextStep = schedule.NextRemovingStep(steps);
   this->ProduceSteps(level, steps, nextStep, fraction, output);
   warnIfFar(output->GetNumberOfPolys());
