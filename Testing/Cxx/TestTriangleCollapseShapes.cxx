@@ -564,6 +564,37 @@ void TestSurfaceWithHoles()
   }
 }
 
+// BoundaryWeight's largest value holds a terrain's boundary about as well as the default: the
+// range ends at 10, where the surface planes still count in the placement. (Up to 1e6 before:
+// there the boundary planes swamped them, collapse points slid towards their vertices'
+// centroid, and at 1e6 the coarsest level of this terrain was 3.1 times as far from the input
+// as with the default, two thirds as far as with boundaries free to move; now 1.3 times.)
+void TestLargestBoundaryWeight()
+{
+  vtkSmartPointer<vtkPolyData> input = testing::MakeTerrain(50);
+  auto coarsestDistance = [&](double weight)
+  {
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->SetInputData(input);
+    filter->SetBoundaryWeight(weight);
+    filter->Update();
+    vtkMultiBlockDataSet* h = filter->GetHierarchy();
+    vtkPolyData* coarsest = Level(h, h->GetNumberOfBlocks() - 1);
+    MESHLOD_CHECK_LE(coarsest->GetNumberOfPolys(), input->GetNumberOfPolys() / 100 + 3);
+    return MeasureSurfaceDistance(input, coarsest).Hausdorff;
+  };
+  vtkNew<vtkTriangleCollapseDecimation> clamped;
+  clamped->SetBoundaryWeight(1.0e6);
+  MESHLOD_CHECK_EQ(clamped->GetBoundaryWeight(), 10.0);
+  const double byDefault = coarsestDistance(0.3);
+  const double largest = coarsestDistance(1.0e6);
+  const double free = coarsestDistance(0.0);
+  std::cerr << "  terrain's coarsest level, Hausdorff distance: BoundaryWeight 0.3 " << byDefault
+            << ", the largest " << largest << ", 0 " << free << "\n";
+  MESHLOD_CHECK_LE(largest, 2.0 * byDefault);
+  MESHLOD_CHECK_LE(2.0 * largest, free);
+}
+
 // The curvature method's triangle collapses must also pass paper 000's star-shape test, which
 // on a noisy surface refuses most of them once triangles are large: on the sphere with radii
 // perturbed by up to 8% it stopped at 5,144 of 19,600 triangles, asked for 196. A run that
@@ -933,6 +964,7 @@ int TestTriangleCollapseShapes(int, char*[])
   TestFarFromOrigin();
   TestNoisySurface();
   TestSurfaceWithHoles();
+  TestLargestBoundaryWeight();
   TestNoisySurfaceCurvature(vtkTriangleCollapseDecimation::WEIGHT, 4.0, 4.0);
   TestCurvatureReadsInputPoints();
   TestNoisySurfaceCurvature(vtkTriangleCollapseDecimation::FIT_DEVIATION, 5.0, 6.0);
