@@ -9,8 +9,9 @@
 // --frames          frames per level transition in the time series (default 8)
 // --no-render       skip the picture (it needs an X display; run-demo.sh provides one with Xvfb)
 //
-// Each hierarchy producer (HierarchyProducers() below; today vtkTriangleCollapseDecimation,
-// named triangle_collapse) makes levels of detail of the same isosurface, and the demo writes
+// Each hierarchy producer (HierarchyProducers() below: vtkTriangleCollapseDecimation, named
+// triangle_collapse, and vtkVertexClusterOctree, named vertex_cluster_octree) makes levels of
+// detail of the same isosurface, and the demo writes
 // into the output directory, <name> being the producer's name:
 //   <name>.vtm + <name>/           the hierarchy: block i = "Level i", level 0 = the isosurface
 //                                  (flying edges at 0 of the field), with the morph arrays and
@@ -129,7 +130,8 @@ std::vector<HierarchyProducer> HierarchyProducers()
       "edge collapses, 8 levels down to 1%)",
       ProduceTriangleCollapse },
     { "vertex_cluster_octree",
-      "vtkVertexClusterOctree (adaptive octree clustering, levels at the same triangle counts)",
+      "vtkVertexClusterOctree (adaptive octree clustering, levels at about the same triangle "
+      "counts)",
       ProduceVertexClusterOctree },
   };
 }

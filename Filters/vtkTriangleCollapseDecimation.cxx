@@ -121,8 +121,9 @@ public:
     this->PreviousTriangles = triangles;
   }
 
-  // A warning on `caller` about the first level whose error jumped, if one did.
-  void WarnIfJumped(vtkObject* caller) const
+  // A warning on `caller` about the first level whose error jumped, if one did. With
+  // `piecesMayVanish` (PreserveTopology off) the warning names the other cause.
+  void WarnIfJumped(vtkObject* caller, bool piecesMayVanish) const
   {
     if (this->JumpLevel > 0)
     {
@@ -143,7 +144,12 @@ public:
         << ", far more than its triangle count explains: its last collapses had only "
            "costly choices left, and it may be badly distorted. Inputs with locked "
            "seams or non-manifold parts do this when pushed to a low count; ask for "
-           "a smaller TargetReduction.");
+           "a smaller TargetReduction."
+          << (piecesMayVanish
+                 ? " (With PreserveTopology off, a closed piece that vanishes at that level "
+                   "raises its estimated error to about the piece's size, as it should: then "
+                   "the level is not distorted.)"
+                 : ""));
     }
   }
 
@@ -352,7 +358,7 @@ int vtkTriangleCollapseDecimation::RequestData(
     return 1; // aborted: the output stays empty
   }
   this->WarnIfTargetMissed(options, result);
-  jumps.WarnIfJumped(this);
+  jumps.WarnIfJumped(this, !this->PreserveTopology);
   if (this->ComputeLevelError)
   {
     this->UpdateProgress(MeasureStart);

@@ -13,6 +13,7 @@
 #include "MeshLODTestMeshes.h"
 
 #include "vtkAdaptiveSubdivisionFilter.h"
+#include "vtkAppendPolyData.h"
 #include "vtkCellArray.h"
 #include "vtkCleanPolyData.h"
 #include "vtkCommand.h"
@@ -764,6 +765,37 @@ void TestErrorJumpWarning()
     std::cerr << "  Moebius strip " << (normals ? "with" : "without") << " normals: "
               << (jump ? "error-jump warning" : "no error-jump warning") << "\n";
     MESHLOD_CHECK_EQ(jump, normals);
+  }
+  // With PreserveTopology off a small closed piece vanishes, and its level's estimated error
+  // jumps to about the piece's size: the warning names that cause (it named broken inputs
+  // alone), and only then.
+  // (A sphere of 16 x 16 and four small ones of the same resolution beside it.)
+  vtkNew<vtkAppendPolyData> both;
+  const double balls[5][4] = { { 0, 0, 0, 1.0 }, { 3, 0, 0, 0.05 }, { 0, 3, 0, 0.05 },
+    { 0, 0, 3, 0.1 }, { 3, 3, 3, 0.02 } };
+  for (const auto& ball : balls)
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetCenter(ball[0], ball[1], ball[2]);
+    sphere->SetRadius(ball[3]);
+    sphere->SetThetaResolution(16);
+    sphere->SetPhiResolution(16);
+    both->AddInputConnection(sphere->GetOutputPort());
+  }
+  vtkSmartPointer<vtkPolyData> pieces = testing::TriangulateAndClean(both);
+  for (const bool preserve : { true, false })
+  {
+    vtkNew<vtkTest::ErrorObserver> warnings;
+    vtkNew<vtkTriangleCollapseDecimation> filter;
+    filter->AddObserver(vtkCommand::WarningEvent, warnings);
+    filter->SetInputData(pieces);
+    filter->SetPreserveTopology(preserve);
+    filter->SetTargetReduction(0.99);
+    filter->Update();
+    const std::string text = warnings->GetWarningMessage();
+    std::cerr << "  sphere and small spheres, PreserveTopology " << preserve << ": "
+              << (text.empty() ? "no warning" : text) << "\n";
+    MESHLOD_CHECK_EQ(text.find("closed piece that vanishes") != std::string::npos, !preserve);
   }
 }
 
