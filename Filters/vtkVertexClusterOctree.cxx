@@ -782,12 +782,17 @@ std::vector<LevelRequest> vtkVertexClusterOctree::LevelMaker::Requests(double un
 {
   const vtkVertexClusterOctree* self = this->Self;
   std::vector<LevelRequest> requests;
+  // An epsilon that overflows (Epsilon * EpsilonFactor^i * diagonal past the largest double)
+  // is the largest double: an infinite one would also merge the nodes refused or over a limit,
+  // whose threshold is infinite (a sphere kept at 12 triangles by every finite epsilon
+  // vanished, and MaximumPointsPerCell 1 merged points).
+  auto finite = [](double epsilon) { return std::min(epsilon, VTK_DOUBLE_MAX); };
   switch (self->LevelMode)
   {
     case EPSILON_LIST:
       for (const double e : self->EpsilonValues)
       {
-        requests.push_back({ false, e * unit, 0 });
+        requests.push_back({ false, finite(e * unit), 0 });
       }
       break;
     case TARGET_TRIANGLE_COUNTS:
@@ -799,7 +804,8 @@ std::vector<LevelRequest> vtkVertexClusterOctree::LevelMaker::Requests(double un
     default:
       for (int i = 0; i < self->NumberOfLevels; ++i)
       {
-        requests.push_back({ false, self->Epsilon * std::pow(self->EpsilonFactor, i) * unit, 0 });
+        requests.push_back(
+          { false, finite(self->Epsilon * std::pow(self->EpsilonFactor, i) * unit), 0 });
       }
   }
   return requests;

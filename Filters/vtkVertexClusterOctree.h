@@ -249,7 +249,9 @@ public:
    * Bound on the cluster error (not on the distance to the input: see the class docs) of the
    * first simplified level in GEOMETRIC_EPSILON mode, as a fraction of the
    * bounding-box diagonal (RelativeUnits on) or in world units. Range [0, VTK_DOUBLE_MAX],
-   * default 0.002.
+   * default 0.002. A level's epsilon that overflows (Epsilon * EpsilonFactor^(i - 1) times the
+   * diagonal, or an EpsilonList value times it) is taken as VTK_DOUBLE_MAX, which merges every
+   * cluster that may merge.
    */
   vtkSetClampMacro(Epsilon, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Epsilon, double);
@@ -300,7 +302,12 @@ public:
   ///@{
   /**
    * Largest octree cell a cluster may span (§2.4 case a), same units as Epsilon; 0 means no
-   * limit. Range [0, VTK_DOUBLE_MAX], default 0.
+   * limit. Range [0, VTK_DOUBLE_MAX], default 0. It bounds the cell, not quite the cluster: a
+   * group of at most 4 vertices cut off at a cell face counts as lying in its neighbour's cell
+   * (see the class docs), at every finer depth too, so a cluster may reach past its cell by
+   * about the input's edge length there (on a UV sphere of radius 1 and 12,480 triangles, with
+   * MaximumCellSize 0.05 in world units and epsilon 0.01, 32 of 5,400 clusters spanned more than
+   * 0.05, the widest 0.115: 5 vertices over four cells of 0.031).
    */
   vtkSetClampMacro(MaximumCellSize, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MaximumCellSize, double);
@@ -399,9 +406,11 @@ public:
   ///@{
   /**
    * Flip edges of every simplified level where the other diagonal of the two triangles lies closer
-   * to the input (judged by the local surface distance both ways). Points, triangle counts,
-   * clusters and MorphTargetId stay as they are, and the next level is clustered from the unflipped
-   * triangles. On the benchmark isosurfaces it lowers the RMS distance by 8-21% and changes the
+   * to the input (judged by the local surface distance both ways). Triangle counts, clusters and
+   * MorphTargetId stay as they are, and the next level is clustered from the unflipped
+   * triangles; so do the points, but for CenterOnInput (default on), which centres the flipped
+   * triangles on the input, so its shifts differ (on a UV sphere by up to a third of the
+   * level's epsilon). On the benchmark isosurfaces it lowers the RMS distance by 8-21% and changes the
    * Hausdorff distance by -9% to +1%, for 1.3-1.5 times the time on one thread and on two
    * (Benchmarks/RESULTS.md, its last two runs; 1.6-1.75 and 1.6-1.7 before edges whose far corners are sharp
    * were left unjudged, Core/TriangulationFlips.h). On a binary mask's terraced isosurface

@@ -2,7 +2,8 @@
 random by up to 0.77 of an edge. With PreserveTopology on (default) the repairs of folded and
 pinched clusters keep the first level far above its target; with it off (the paper's
 conditions alone) both levels come within the filter's tolerance of their targets, and the
-levels still nest (every MorphTargetId is a point of the next level)."""
+levels still nest (every MorphTargetId is a point of the next level). Epsilons that overflow a
+double merge what may merge and nothing more."""
 
 from vtkmodules.vtkCommonCore import vtkMinimalStandardRandomSequence
 from vtkmodules.vtkCommonDataModel import vtkPolyData
@@ -76,6 +77,32 @@ def main():
             check(low >= 0 and high < coarse.GetNumberOfPoints(), "MorphTargetId in range")
 
 
+def overflowing_epsilons():
+    """Epsilon 1e299 and EpsilonFactor 1000, both in range, overflow a double from level 4 on:
+    such an epsilon is the largest double, which merges what may merge and nothing more (an
+    infinite one also merged the nodes over a limit: with MaximumPointsPerCell 1 the hierarchy
+    ended at level 3, 'would keep no triangle')."""
+    source = vtkSphereSource()
+    source.SetThetaResolution(40)
+    source.SetPhiResolution(40)
+    source.Update()
+    for per_cell, coarsest in ((1, source.GetOutput().GetNumberOfPolys()), (0, 12)):
+        octree = meshlod.vtkVertexClusterOctree()
+        octree.SetInputData(source.GetOutput())
+        octree.SetEpsilon(1e299)
+        octree.SetEpsilonFactor(1000.0)
+        octree.SetNumberOfLevels(5)
+        octree.SetMaximumPointsPerCell(per_cell)
+        octree.Update()
+        hierarchy = octree.GetHierarchy()
+        counts = [hierarchy.GetBlock(i).GetNumberOfPolys()
+                  for i in range(hierarchy.GetNumberOfBlocks())]
+        print("MaximumPointsPerCell %d, overflowing epsilons:" % per_cell, counts)
+        check(counts[1:] == [coarsest] * 5,
+              "MaximumPointsPerCell %d: levels %s, expected 5 of %d" % (per_cell, counts, coarsest))
+
+
 main()
+overflowing_epsilons()
 finish()
 print("all checks passed")
