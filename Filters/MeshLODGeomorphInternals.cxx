@@ -788,6 +788,7 @@ bool vtkLODGeomorph::Internals::ProduceNearestBlend(
   {
     this->MergeShortEdges(self, level, shortEdge);
   }
+  this->WarnIfMergedTooFar(self, level);
   plan.NumberOfPoints = static_cast<vtkIdType>(merged.Source.size());
   plan.Source = merged.Source.data();
   output->SetPoints(PointsFrom(meshlod::BlendRealArray(finePoints, coarsePoints, plan, false)));
@@ -833,18 +834,23 @@ void vtkLODGeomorph::Internals::MergeShortEdges(
     cache.Triangles, [&](Id p) { return newId[p]; }, [](vtkIdType) { return true; },
     keptTriangles);
   merged.CellData = SubsetCellData(poly->GetCellData(), keptTriangles);
-  // Merging only has to remove about what the coarser level removed; far below that it eats
-  // the surface (a tolerance near the mesh's size merges every edge). Half is the limit: the
-  // default tolerance near t = 1 can go a little below (0.2% on a 2M-triangle benchmark
-  // transition). Said once per tolerance value.
-  const vtkIdType coarseTriangles = coarse->GetNumberOfPolys();
-  if (merged.Cells->GetNumberOfCells() < coarseTriangles / 2 &&
-    merged.WarnedTolerance != self->MergeTolerance)
+}
+
+// Merging only has to remove about what the coarser level removed; far below that it eats the
+// surface (a tolerance near the mesh's size merges every edge). Half is the limit: the default
+// tolerance near t = 1 can go a little below (0.2% on a 2M-triangle benchmark transition). Said
+// once per tolerance value, whether or not the merged edges changed with it.
+void vtkLODGeomorph::Internals::WarnIfMergedTooFar(vtkLODGeomorph* self, int level)
+{
+  MergedTopology& merged = this->Levels[level].Merged;
+  const vtkIdType kept = merged.Cells->GetNumberOfCells();
+  const vtkIdType coarseTriangles = this->Levels[level + 1].Poly->GetNumberOfPolys();
+  if (2 * kept < coarseTriangles && merged.WarnedTolerance != self->MergeTolerance)
   {
     merged.WarnedTolerance = self->MergeTolerance;
     vtkWarningWithObjectMacro(self,
       "MergeTolerance " << self->MergeTolerance << " merged the blend of levels " << level
-                        << " and " << level + 1 << " down to " << merged.Cells->GetNumberOfCells()
+                        << " and " << level + 1 << " down to " << kept
                         << " triangles, under half of level " << level + 1 << "'s ("
                         << coarseTriangles << "): the tolerance is too large for this mesh "
                         << "(the default 1e-4 merges only edges shorter than a pixel).");
@@ -985,6 +991,10 @@ bool vtkLODGeomorph::Internals::ProduceExactCount(
   warnIfFar(output->GetNumberOfPolys());
   const double moved = nextStep > 0 ? fraction * (nextStep - steps) : 0.0;
   lod = level + (steps + moved) / std::max<Id>(1, schedule.NumberOfSteps());
+  // Below level + 1 even where the fraction moves the transition's last step all the way: the
+  // output is level `level`'s points and data (a baked level's TCoords address texture block
+  // floor(L)).
+  lod = std::min(lod, std::nextafter(static_cast<double>(level + 1), 0.0));
   return true;
 }
 

@@ -140,6 +140,7 @@ struct vtkLODGeomorph::Internals
     int level, meshlod::Id steps, meshlod::Id nextStep, double fraction, vtkPolyData* output);
   void MergeShortEdges(vtkLODGeomorph* self, int level, std::vector<std::uint8_t>& shortEdge);
   void BuildExactTopology(int level, meshlod::Id steps, meshlod::Id nextStep);
+  void WarnIfMergedTooFar(vtkLODGeomorph* self, int level);
 };
 
 #endif

@@ -232,7 +232,7 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
     lod = LevelAtTime(time, this->TimeScale, n);
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), time);
   }
-  else if (lod > n - 1)
+  else if (lod > n - 1 && this->TargetNumberOfTriangles < 0) // (an exact count overrides it)
   {
     // All the digits: 4.000000000000001 must not read "4 is beyond the coarsest level 4".
     std::ostringstream asked;

@@ -37,8 +37,12 @@
  * turns its diagonal about a point in its middle that moves from the middle of the old
  * diagonal to the middle of the new one (four triangles around it: two more per quad), so that
  * the output is continuous at t = 0.75 and tends to level i + 1 as t -> 1 (its point arrays are
- * level i + 1's, the midpoints' blended from the quad's corners). The quads are found
- * once per level (kept until the input changes). A level that differs in any other way (as
+ * level i + 1's, the midpoints' blended from the quad's corners, and so is its cell data; the
+ * rules of "Point and cell data" below hold in the first part for its own fraction t / 0.75, so
+ * an integer array switches at t = 0.375, and an array level i + 1 lacks ends at t = 0.75).
+ * The quads are found once per level (kept until the input changes). The exact-count mode has
+ * no such second part: between a flipped level's last counts and its own, the quads' diagonals
+ * turn at once (by 1.7% of the diagonal on a gyroid's coarse level). A level that differs in any other way (as
  * with vtkVertexClusterOctree's FlipEdges, whose next level is cut from the unflipped clusters)
  * is left as it was: as t -> 1 the output tends to the images, and at L = i + 1 it jumps to
  * level i + 1 where quads were flipped, by 0.5-1.9 times the level's own Hausdorff distance to the input on the
@@ -166,8 +170,11 @@
  * components, MorphTargetId and CollapseRank with 1, MorphTargetId a point of the next level,
  * CollapseRank -1 or an integer from 0 to 2^53), a cell array with invalid
  * offsets or a cell referring to a point a level does not have, a NaN or infinite point or
- * MorphTarget, an exact count, NearestVertices or DropDegenerateTriangles on levels that are
- * not all triangles: an error and an empty output. Point or
+ * MorphTarget, a NaN setting (whether or not the mode uses it), an exact count, NearestVertices
+ * or DropDegenerateTriangles made from the triangles of a level that is not all triangles (a
+ * whole level, at an integer L or at its own count, is passed as it is, whatever its cells; so
+ * is the coarser level of a NearestVertices blend, of which only the points are read): an error
+ * and an empty output. Point or
  * cell arrays of the wrong length are left out with a warning. A level without points gives an
  * empty output without error.
  *
@@ -190,7 +197,8 @@ public:
 
   enum CorrespondenceModes
   {
-    AUTOMATIC = 0,       // MORPH_ARRAYS when level 0 has any morph array, else NEAREST_VERTICES
+    AUTOMATIC = 0, // MORPH_ARRAYS with two levels or more, level 0 with any morph array;
+                   // else NEAREST_VERTICES
     MORPH_ARRAYS = 1,    // MorphTarget / MorphTargetId / CollapseRank (an error when missing)
     NEAREST_VERTICES = 2 // nearest-vertex correspondence, morph arrays ignored
   };

@@ -171,6 +171,10 @@ void TestFraction(vtkMultiBlockDataSet* h)
   vtkPolyData* end = Run(filter, nextLevel + 2, 1.0);
   MESHLOD_CHECK_EQ(end->GetNumberOfPolys(), nextLevel + 2);
   MESHLOD_CHECK(Positions(end) == Positions(Level(h, 1)));
+  // Still level 0's points and data: L below 1 (it read 1 when the fraction moved the last
+  // step all the way, naming level 1's texture block for level 0's TCoords).
+  MESHLOD_CHECK_LT(filter->GetActualLevelOfDetail(), 1.0);
+  MESHLOD_CHECK_GT(filter->GetActualLevelOfDetail(), 0.99);
 
   // Point data: a settled point has the next level's values (Height = z of the collapse
   // point, interpolated by the hierarchy with float weights), a still one keeps its own.
@@ -319,6 +323,20 @@ void TestAbort(vtkMultiBlockDataSet* h)
   MESHLOD_CHECK_EQ(Run(filter, count)->GetNumberOfPolys(), count);
 }
 
+// An exact count overrides LevelOfDetail: one beyond the coarsest level draws no warning then.
+void TestOverriddenLevelOfDetail(vtkMultiBlockDataSet* h)
+{
+  vtkNew<vtkLODGeomorph> filter;
+  filter->SetInputData(h);
+  filter->UsePipelineTimeOff();
+  filter->SetLevelOfDetail(7.0);
+  vtkNew<vtkTest::ErrorObserver> observer;
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  const vtkIdType count = Level(h, 1)->GetNumberOfPolys() + 40;
+  MESHLOD_CHECK_EQ(Run(filter, count)->GetNumberOfPolys(), count);
+  MESHLOD_CHECK(!observer->GetWarning());
+}
+
 void TestBackends(vtkMultiBlockDataSet* h)
 {
   const auto runs = testing::RunWithBothBackends([&] {
@@ -359,5 +377,6 @@ int TestLODGeomorphExactCount(int, char*[])
   TestCluster();
   TestBackends(h);
   TestAbort(h);
+  TestOverriddenLevelOfDetail(h);
   return testing::Result();
 }

@@ -358,6 +358,12 @@ void TestDecimatedPair()
   observer->Clear();
   Run(filter, 0.6);
   MESHLOD_CHECK(!observer->GetWarning());
+  // Another tolerance too large, though it merges the same edges: warned for that value too
+  // (the check ran only when the merged edges changed).
+  filter->SetMergeTolerance(0.9);
+  Run(filter, 0.6);
+  MESHLOD_CHECK(observer->GetWarningMessage().find("MergeTolerance 0.9") != std::string::npos);
+  observer->Clear();
   filter->SetMergeTolerance(1e-4);
   // The input changed: built again.
   coarse->GetPoints()->Modified();
