@@ -72,8 +72,10 @@
  * @par Exact triangle count (TargetNumberOfTriangles >= 0, needs the morph arrays)
  * The output has exactly TargetNumberOfTriangles triangles when that count is reachable. A
  * count equal to a level's own gives that level itself, and so does one that only the whole
- * transition into that level reaches (then L is that level, and a baked level's TCoords are
- * its own, for its texture block floor(L)); otherwise the transition from the
+ * transition into that level reaches, where that transition ends on the level's count (then L
+ * is that level, and a baked level's TCoords are its own, for its texture block floor(L); where
+ * it ends above it, as between levels with PreserveTopology off whose triangles do not all
+ * merge, the output is that end with L just below the level); otherwise the transition from the
  * coarsest level with more triangles (level i) to the next one is used, and level i's
  * collapses are applied in CollapseRank order, one point at a time (Core/CollapseSchedule.h):
  * a point that reaches its MorphTarget merges with the points already there, and a triangle

@@ -355,7 +355,8 @@ int vtkTriangleCollapseDecimation::RequestData(
     std::move(mesh.Mesh), std::move(mesh.Topology), options, callbacks);
   if (result.Aborted)
   {
-    return 1; // aborted: the output stays empty
+    this->NumberOfFlips = 0; // (counted as levels were made, none of which is output)
+    return 1;                // aborted: the output stays empty
   }
   this->WarnIfTargetMissed(options, result);
   jumps.WarnIfJumped(this, !this->PreserveTopology);

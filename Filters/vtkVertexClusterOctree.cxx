@@ -27,6 +27,7 @@
 #include "vtkPolyData.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -786,7 +787,8 @@ std::vector<LevelRequest> vtkVertexClusterOctree::LevelMaker::Requests(double un
   // is the largest double: an infinite one would also merge the nodes refused or over a limit,
   // whose threshold is infinite (a sphere kept at 12 triangles by every finite epsilon
   // vanished, and MaximumPointsPerCell 1 merged points).
-  auto finite = [](double epsilon) { return std::min(epsilon, VTK_DOUBLE_MAX); };
+  auto finite = [](double epsilon)
+  { return std::min(epsilon, std::numeric_limits<double>::max()); };
   switch (self->LevelMode)
   {
     case EPSILON_LIST:

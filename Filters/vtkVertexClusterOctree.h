@@ -250,8 +250,8 @@ public:
    * first simplified level in GEOMETRIC_EPSILON mode, as a fraction of the
    * bounding-box diagonal (RelativeUnits on) or in world units. Range [0, VTK_DOUBLE_MAX],
    * default 0.002. A level's epsilon that overflows (Epsilon * EpsilonFactor^(i - 1) times the
-   * diagonal, or an EpsilonList value times it) is taken as VTK_DOUBLE_MAX, which merges every
-   * cluster that may merge.
+   * diagonal, or an EpsilonList value times it) is taken as the largest double, which merges
+   * every cluster that may merge.
    */
   vtkSetClampMacro(Epsilon, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Epsilon, double);

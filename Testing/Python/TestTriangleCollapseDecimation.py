@@ -2,6 +2,7 @@
 hierarchy's levels, block names, morph arrays and field data, then vtkLODGeomorph driven by the
 pipeline time, compared with the explicit LevelOfDetail and an exact triangle count."""
 
+from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import (vtkCompositeDataSet, vtkImplicitBoolean, vtkPolyData,
                                             vtkSphere)
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
@@ -227,6 +228,21 @@ refused.Update()
 check(refused.GetNumberOfFlips() == 0 and refused.GetNumberOfSwaps() == 0,
       "refused run after a run: %d flips, %d swaps"
       % (refused.GetNumberOfFlips(), refused.GetNumberOfSwaps()))
+# An aborted run outputs no level, and counts no flip of the levels it made before the abort.
+aborted = contour_filter()
+aborted.FlipEdgesOn()
+
+
+def abort_late(algorithm, event):
+    if algorithm.GetProgress() > 0.6:
+        algorithm.AbortExecuteOn()
+
+
+aborted.AddObserver(vtkCommand.ProgressEvent, abort_late)
+aborted.Update()
+check(aborted.GetHierarchy().GetNumberOfBlocks() == 0 and aborted.GetNumberOfFlips() == 0,
+      "aborted run: %d blocks, %d flips"
+      % (aborted.GetHierarchy().GetNumberOfBlocks(), aborted.GetNumberOfFlips()))
 
 
 def unused_points(poly):

@@ -78,10 +78,10 @@ def main():
 
 
 def overflowing_epsilons():
-    """Epsilon 1e299 and EpsilonFactor 1000, both in range, overflow a double from level 4 on:
+    """Epsilon 1e299 and EpsilonFactor 1000, both in range, overflow a double at level 5:
     such an epsilon is the largest double, which merges what may merge and nothing more (an
     infinite one also merged the nodes over a limit: with MaximumPointsPerCell 1 the hierarchy
-    ended at level 3, 'would keep no triangle')."""
+    ended before it, 'would keep no triangle')."""
     source = vtkSphereSource()
     source.SetThetaResolution(40)
     source.SetPhiResolution(40)
