@@ -203,7 +203,8 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
   const bool pipelineTime =
     this->UsePipelineTime && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
   if (!meshlod::SettingsAreNumbers(this,
-        { { "LevelOfDetail", pipelineTime ? 0.0 : this->LevelOfDetail },
+        { { "LevelOfDetail",
+            pipelineTime || this->TargetNumberOfTriangles >= 0 ? 0.0 : this->LevelOfDetail },
           { "TimeScale", this->TimeScale },
           { "CollapseFraction", this->CollapseFraction },
           { "MergeTolerance", this->MergeTolerance },

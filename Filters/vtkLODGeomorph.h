@@ -142,7 +142,7 @@
  * exact-count mode: once it has settled, or moved at least half way). An array level i + 1
  * lacks keeps level i's values. The morph arrays themselves are not passed. Cell data: level
  * i's, for the triangles kept. Field data: LevelOfDetail (double), the L produced (for an
- * exact count: i + the fraction of level i's steps applied).
+ * exact count: i + the fraction of level i's steps applied, just below i + 1 when all are).
  *
  * @par Time
  * With UsePipelineTime on (the default), RequestInformation publishes TIME_STEPS = {0, s, 2s, ...,
@@ -172,11 +172,13 @@
  * components, MorphTargetId and CollapseRank with 1, MorphTargetId a point of the next level,
  * CollapseRank -1 or an integer from 0 to 2^53), a cell array with invalid
  * offsets or a cell referring to a point a level does not have, a NaN or infinite point or
- * MorphTarget, a NaN setting (whether or not the mode uses it), an exact count, NearestVertices
- * or DropDegenerateTriangles made from the triangles of a level that is not all triangles (a
- * whole level, at an integer L or at its own count, is passed as it is, whatever its cells; so
- * is the coarser level of a NearestVertices blend, of which only the points are read): an error
- * and an empty output. Point or
+ * MorphTarget, a NaN setting (whether or not the mode uses it, but for LevelOfDetail where the
+ * pipeline time or an exact count overrides it), an exact count on a hierarchy with a level
+ * that has vertex, line or strip cells (levels are told apart by their counts), an exact
+ * count, NearestVertices or DropDegenerateTriangles made from the triangles of a level of
+ * other polygons than triangles (a whole level, at an integer L, or an exact count's at its
+ * own count, is passed as it is; so is the coarser level of a NearestVertices blend, of which
+ * only the points are read): an error and an empty output. Point or
  * cell arrays of the wrong length are left out with a warning. A level without points gives an
  * empty output without error.
  *

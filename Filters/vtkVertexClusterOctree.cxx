@@ -806,8 +806,12 @@ std::vector<LevelRequest> vtkVertexClusterOctree::LevelMaker::Requests(double un
     default:
       for (int i = 0; i < self->NumberOfLevels; ++i)
       {
-        requests.push_back(
-          { false, finite(self->Epsilon * std::pow(self->EpsilonFactor, i) * unit), 0 });
+        const double epsilon = self->Epsilon * std::pow(self->EpsilonFactor, i) * unit;
+        // (Multiplied in this order, a product may overflow on the way though it does not.)
+        requests.push_back({ false,
+          finite(std::isinf(epsilon) ? self->Epsilon * unit * std::pow(self->EpsilonFactor, i)
+                                     : epsilon),
+          0 });
       }
   }
   return requests;

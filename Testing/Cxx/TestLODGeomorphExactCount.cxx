@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
@@ -323,7 +324,8 @@ void TestAbort(vtkMultiBlockDataSet* h)
   MESHLOD_CHECK_EQ(Run(filter, count)->GetNumberOfPolys(), count);
 }
 
-// An exact count overrides LevelOfDetail: one beyond the coarsest level draws no warning then.
+// An exact count overrides LevelOfDetail: one beyond the coarsest level draws no warning then,
+// and a NaN one no error.
 void TestOverriddenLevelOfDetail(vtkMultiBlockDataSet* h)
 {
   vtkNew<vtkLODGeomorph> filter;
@@ -335,6 +337,14 @@ void TestOverriddenLevelOfDetail(vtkMultiBlockDataSet* h)
   const vtkIdType count = Level(h, 1)->GetNumberOfPolys() + 40;
   MESHLOD_CHECK_EQ(Run(filter, count)->GetNumberOfPolys(), count);
   MESHLOD_CHECK(!observer->GetWarning());
+  // Nor is a NaN LevelOfDetail an error then (it is without the exact count).
+  filter->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->SetLevelOfDetail(std::numeric_limits<double>::quiet_NaN());
+  MESHLOD_CHECK_EQ(Run(filter, count)->GetNumberOfPolys(), count);
+  MESHLOD_CHECK(!observer->GetError());
+  filter->SetTargetNumberOfTriangles(-1);
+  filter->Update();
+  MESHLOD_CHECK(observer->GetError());
 }
 
 void TestBackends(vtkMultiBlockDataSet* h)
