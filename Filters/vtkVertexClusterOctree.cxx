@@ -877,8 +877,11 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevel(meshlod::OctreeClustering& cl
     vtkWarningWithObjectMacro(self,
       "Level " << i + 1 << " keeps the " << previousTriangles << " triangles of level " << i
                << ": its epsilon (" << requests[i].Epsilon
-               << " in world units) merges nothing more (a larger "
-                  "EpsilonFactor or larger epsilon values give coarser levels).");
+               << " in world units) merges nothing more: a larger EpsilonFactor or larger "
+                  "epsilon values give coarser levels, unless nothing left may merge (with "
+                  "PreserveTopology on a closed piece keeps at least a tetrahedron and vanishes "
+                  "only within twice the epsilon of the level's other triangles; locked "
+                  "non-manifold vertices never merge).");
   }
   return true;
 }
