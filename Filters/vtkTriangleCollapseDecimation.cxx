@@ -303,6 +303,7 @@ int vtkTriangleCollapseDecimation::RequestData(
     centering.SetLevelZero(levelZero);
   }
   meshlod::LevelEdgeFlips flips;
+  vtkIdType flipCount = 0; // NumberOfFlips once the run has finished (an aborted one has none)
   if (this->FlipEdges)
   {
     flips.SetLevelZero(levelZero);
@@ -334,7 +335,7 @@ int vtkTriangleCollapseDecimation::RequestData(
       // The collapses go on from the flipped triangles, so that the geomorph from this level
       // ends on the next level's triangles before its flips (see vtkLODGeomorph).
       flipped.clear();
-      this->NumberOfFlips += flips.Apply(level.Mesh, level.EstimatedError, &flipped);
+      flipCount += flips.Apply(level.Mesh, level.EstimatedError, &flipped);
       std::sort(flipped.begin(), flipped.end()); // (each triangle once: one sweep flips it once)
       flipped.erase(std::unique(flipped.begin(), flipped.end()), flipped.end());
       for (const meshlod::Id j : flipped)
@@ -355,8 +356,7 @@ int vtkTriangleCollapseDecimation::RequestData(
     std::move(mesh.Mesh), std::move(mesh.Topology), options, callbacks);
   if (result.Aborted)
   {
-    this->NumberOfFlips = 0; // (counted as levels were made, none of which is output)
-    return 1;                // aborted: the output stays empty
+    return 1; // aborted: the output stays empty
   }
   this->WarnIfTargetMissed(options, result);
   jumps.WarnIfJumped(this, !this->PreserveTopology);
@@ -367,6 +367,7 @@ int vtkTriangleCollapseDecimation::RequestData(
   }
   this->NumberOfLevelsProduced = builder.GetNumberOfLevels();
   this->NumberOfSwaps = result.Swaps;
+  this->NumberOfFlips = flipCount;
   this->ActualReduction = inputTriangles > 0
     ? 1.0 - static_cast<double>(result.FinalTriangles) / static_cast<double>(inputTriangles)
     : 0.0;

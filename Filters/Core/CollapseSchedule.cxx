@@ -382,10 +382,9 @@ bool CollapseScheduleBuilder::MakeCollapsesInOrder()
   std::vector<size_t> waitingOfTarget(this->NumberOfTargets, collapses);
   std::vector<size_t> triedAfter(collapses, collapses); // at most once per made
   std::vector<size_t> retry;
-  const std::function<bool()>& aborted = this->Schedule.AbortCheck;
   for (size_t c = 0; c < collapses; ++c)
   {
-    if (c % CollapseSchedule::AbortCheckInterval == 0 && aborted && aborted())
+    if (this->AbortedAt(c))
     {
       return false;
     }
@@ -450,10 +449,9 @@ bool CollapseScheduleBuilder::MakeWaitingGroups()
     this->GroupIndex.assign(this->NumberOfPoints, -1);
     this->StarterSeen.assign(this->NumberOfTargets, 0);
   }
-  const std::function<bool()>& aborted = this->Schedule.AbortCheck;
   for (size_t c = 0; c < this->Collapses.size(); ++c)
   {
-    if (c % CollapseSchedule::AbortCheckInterval == 0 && aborted && aborted())
+    if (this->AbortedAt(c))
     {
       return false;
     }

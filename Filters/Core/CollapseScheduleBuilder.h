@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -72,6 +73,13 @@ public:
   const std::vector<std::uint8_t>& ValidSteps() const { return this->Valid; }
 
 private:
+  // Whether the schedule's AbortCheck, asked before every AbortCheckInterval-th collapse c,
+  // says to stop.
+  bool AbortedAt(size_t c) const
+  {
+    const std::function<bool()>& aborted = this->Schedule.AbortCheck;
+    return c % CollapseSchedule::AbortCheckInterval == 0 && aborted && aborted();
+  }
   void ListCollapses();
   // Target t's sheets: those meeting at the one of its points on a curve where more than two
   // meet, else 1.
