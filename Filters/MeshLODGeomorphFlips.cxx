@@ -40,6 +40,23 @@ Triangle Turned(const Id* t)
   return { t[first], t[(first + 1) % 3], t[(first + 2) % 3] };
 }
 
+// Triangle t (its three corners) mapped through `map` when given and turned; false when the
+// mapped triangle is degenerate (two corners the same).
+bool MappedTurned(const Id* t, const Id* map, Triangle& turned)
+{
+  Id corners[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    corners[k] = map ? map[t[k]] : t[k];
+  }
+  if (corners[0] == corners[1] || corners[1] == corners[2] || corners[0] == corners[2])
+  {
+    return false;
+  }
+  turned = Turned(corners);
+  return true;
+}
+
 // The triangles of `of` (indices) that `in` does not have, as multisets: `of` and `in` sorted.
 std::vector<std::size_t> Missing(
   const std::vector<std::pair<Triangle, Id>>& of, const std::vector<std::pair<Triangle, Id>>& in)
@@ -70,17 +87,12 @@ std::vector<std::pair<Triangle, Id>> Sorted(const std::vector<Id>& triangles, co
   std::vector<std::pair<Triangle, Id>> sorted;
   const Id n = static_cast<Id>(triangles.size() / 3);
   sorted.reserve(n);
+  Triangle turned;
   for (Id t = 0; t < n; ++t)
   {
-    Id corners[3];
-    for (int k = 0; k < 3; ++k)
+    if (MappedTurned(triangles.data() + 3 * static_cast<std::size_t>(t), map, turned))
     {
-      const Id p = triangles[3 * static_cast<std::size_t>(t) + k];
-      corners[k] = map ? map[p] : p;
-    }
-    if (corners[0] != corners[1] && corners[1] != corners[2] && corners[0] != corners[2])
-    {
-      sorted.emplace_back(Turned(corners), t);
+      sorted.emplace_back(turned, t);
     }
   }
   std::sort(sorted.begin(), sorted.end());
@@ -93,18 +105,13 @@ std::vector<std::pair<Triangle, Id>> Sorted(const std::vector<Id>& triangles, co
 std::uint64_t TriangleSetHash(const std::vector<Id>& triangles, const Id* map)
 {
   std::uint64_t sum = 0;
+  Triangle turned;
   for (std::size_t t = 0; t + 2 < triangles.size(); t += 3)
   {
-    Id corners[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      corners[k] = map ? map[triangles[t + k]] : triangles[t + k];
-    }
-    if (corners[0] == corners[1] || corners[1] == corners[2] || corners[0] == corners[2])
+    if (!MappedTurned(triangles.data() + t, map, turned))
     {
       continue;
     }
-    const Triangle turned = Turned(corners);
     std::uint64_t h = 0x9e3779b97f4a7c15ull;
     for (const Id v : turned)
     {
