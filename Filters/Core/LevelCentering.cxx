@@ -270,7 +270,7 @@ void LevelCentering::Apply(TriangleMesh& level,
 
 //------------------------------------------------------------------------------
 // The samples of each point (every stride-th input triangle, grouped by the point its first
-// corner became, in input order), each projected into a triangle around its point (the first
+// corner became, in input order), each projected into a triangle around its point (the nearest
 // such; on a smooth fan projections fall into one triangle, or two that share the edge they lie
 // on), its distance spread over that triangle's corners with the barycentric weights. Blocks of
 // points in parallel, the sums in a fixed order.
@@ -350,9 +350,12 @@ void LevelCentering::SumProjections(const TriangleMesh& level,
 }
 
 // Point p's `count` samples projected into its triangles (`frames`: room for MaximumValence),
-// into `projections` (Triangle InvalidId where a sample projects into none), and the point's
-// own distance to the input: to the plane of its nearest sample (in the plane's direction),
-// along the plane's normal.
+// each into the nearest triangle whose interior it projects into (a search that stops at one the
+// sample lies on): where a fan bends sharply, a sample on one side also projects into the
+// triangles of the other, at a distance, and counted there it moved the flat sides' points off
+// a faceted input. Into `projections` (Triangle InvalidId where a sample projects into none),
+// and the point's own distance to the input: to the plane of its nearest sample (in the
+// plane's direction), along the plane's normal.
 void LevelCentering::ProjectSamples(const TriangleMesh& level,
   const VertexTriangleAdjacency& around, Id p, const Id* samples, Id count, double areaUnit,
   ProjectionFrame* frames, Projection* projections, float& distance) const
@@ -385,6 +388,7 @@ void LevelCentering::ProjectSamples(const TriangleMesh& level,
       nearestSample = along;
       distance = static_cast<float>(-across);
     }
+    double nearest = std::numeric_limits<double>::infinity();
     for (Id k = 0; k < triangles; ++k)
     {
       const ProjectionFrame& f = frames[k];
@@ -400,10 +404,19 @@ void LevelCentering::ProjectSamples(const TriangleMesh& level,
         continue;
       }
       const double d = Dot(w, f.Unit);
+      if (!(std::abs(d) < nearest))
+      {
+        continue;
+      }
+      nearest = std::abs(d);
+      const bool on = std::abs(d) <= OnSurface * f.Size;
       projections[s] = Projection{ around.Of(p)[k], static_cast<float>(area * areaUnit),
-        static_cast<float>(std::abs(d) <= OnSurface * f.Size ? 0.0 : d),
-        static_cast<float>(std::max(0.0, lb)), static_cast<float>(std::max(0.0, lc)) };
-      break;
+        static_cast<float>(on ? 0.0 : d), static_cast<float>(std::max(0.0, lb)),
+        static_cast<float>(std::max(0.0, lc)) };
+      if (on)
+      {
+        break;
+      }
     }
   }
 }

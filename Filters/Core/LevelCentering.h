@@ -11,7 +11,7 @@
 // For a level, the input triangles' centroids (every stride-th: every second, or fewer so that
 // there are SamplesPerPoint per point of the level on average) are projected onto the triangles
 // around the point the triangle's first corner became (the chained MorphTargetId correspondence),
-// into the first one whose interior they project into. Each signed distance, weighted by the input
+// into the nearest of those whose interior they project into. Each signed distance, weighted by the input
 // triangle's area, is spread over that triangle's corners with the barycentric weights of the
 // projection; each point's weighted mean is the shift along its normal that zeroes it (the first
 // step of a least-squares fit of per-point offsets: a uniform offset is removed exactly, a varying
