@@ -193,13 +193,6 @@ public:
   /// Normalising factor m_v of the valence term |val - 6| / m_v.
   static constexpr double ValenceNormalization = 12.0;
 
-private:
-  // TrianglesAndEdges: fill the candidate with the triangle collapse or, when that costs more
-  // than TriangleCostFactor times the cheapest edge collapse, with that edge.
-  bool EvaluateTriangleOrEdge(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const;
-  // Curvature method (FitDeviation), TrianglesAndEdges: the triangle collapse, or its cheapest
-  // edge where the triangle costs CreaseEdgeFactor times more (a crease) or cannot collapse.
-  bool EvaluateTriangleOrCreaseEdge(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const;
   // Around a hub (a vertex of more than FanTriangleLimit triangles: a fan's centre, a cone's
   // tip, a UV sphere's pole) a collapse that moves the hub changes every triangle of its fan,
   // and the fan's triangles, re-weighed and re-checked against all of it after each such
@@ -210,6 +203,14 @@ private:
   // triangles meet there. Returns a bit per edge to skip (edge k joins corners k and k + 1), 0
   // for a triangle with no hub or with more than one (every edge touches a hub then).
   int HubEdgesToSkip(const Id* tri) const;
+
+private:
+  // TrianglesAndEdges: fill the candidate with the triangle collapse or, when that costs more
+  // than TriangleCostFactor times the cheapest edge collapse, with that edge.
+  bool EvaluateTriangleOrEdge(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const;
+  // Curvature method (FitDeviation), TrianglesAndEdges: the triangle collapse, or its cheapest
+  // edge where the triangle costs CreaseEdgeFactor times more (a crease) or cannot collapse.
+  bool EvaluateTriangleOrCreaseEdge(const Id* tri, CollapseCandidate& c, CostScratch& scratch) const;
   // The cheapest edge of the triangle, of those not in `skip` (bits as HubEdgesToSkip's), into
   // c; returns its cost, and the largest of the solved edges' quadric values in worst.
   double BestEdge(

@@ -104,6 +104,12 @@ double Collapser::EvaluateCost(Id t, CostScratch& scratch)
     return InfiniteCost;
   }
   this->Choices[t] = static_cast<std::uint8_t>(c.Choice);
+  this->Spreads[t] = this->SpreadOf(c);
+  return c.Cost;
+}
+
+float Collapser::SpreadOf(const CollapseCandidate& c) const
+{
   double spread = 0.0;
   for (int m = 0; m < c.MemberCount; ++m)
   {
@@ -113,8 +119,7 @@ double Collapser::EvaluateCost(Id t, CostScratch& scratch)
       spread += (p[i] - c.Position[i]) * (p[i] - c.Position[i]);
     }
   }
-  this->Spreads[t] = static_cast<float>(spread * this->SpreadUnit);
-  return c.Cost;
+  return static_cast<float>(spread * this->SpreadUnit);
 }
 
 void Collapser::EvaluateAll()
@@ -222,6 +227,59 @@ Legality Collapser::Check(Id t, Star& star, CollapseCandidate& c, CostScratch& s
     return Legality::Legal;
   }
   return star.Foreign ? Legality::Foreign : Legality::Illegal;
+}
+
+bool Collapser::OtherLegalEdge(Id t, Star& star, CollapseCandidate& c) const
+{
+  if (this->Options.Method != CollapseMethod::Quadric ||
+    this->Options.Operator != CollapseOperator::TrianglesAndEdges || c.Choice == VanishChoice)
+  {
+    return false;
+  }
+  const int refused = c.MemberCount == 2 ? c.Choice : -1;
+  const int skip = this->Model.HubEdgesToSkip(this->State.Mesh.Triangle(t));
+  CollapseCandidate edges[3];
+  float spreads[3];
+  int order[3], count = 0;
+  CostScratch unused;
+  for (int k = 0; k < 3; ++k)
+  {
+    if (k != refused && (skip & (1 << k)) == 0 &&
+      this->Model.EvaluateChoice(t, k, edges[k], unused))
+    {
+      spreads[k] = this->SpreadOf(edges[k]);
+      order[count++] = k;
+    }
+  }
+  // Cheapest first, and of equal costs (a flat part's, all zero) the shortest: taking the
+  // first edge of the triangle among equals instead left the geomorph's exact counts between a
+  // faceted cylinder's levels of 48,128 and 4,812 triangles short by up to 9,096 triangles.
+  std::sort(order, order + count, [&](int a, int b) {
+    return edges[a].Cost < edges[b].Cost ||
+      (edges[a].Cost == edges[b].Cost && (spreads[a] < spreads[b] ||
+        (spreads[a] == spreads[b] && a < b)));
+  });
+  for (int i = 0; i < count; ++i)
+  {
+    const Legality legality = this->Legal(star, edges[order[i]]);
+    if (legality == Legality::Legal)
+    {
+      c = edges[order[i]];
+      return true;
+    }
+    if (legality == Legality::Foreign)
+    {
+      return false;
+    }
+  }
+  return false;
+}
+
+void Collapser::Requeue(Id t, const CollapseCandidate& c)
+{
+  this->Costs[t] = c.Cost;
+  this->Choices[t] = static_cast<std::uint8_t>(c.Choice);
+  this->Spreads[t] = this->SpreadOf(c);
 }
 
 // A triangle collapse removes four triangles, an edge collapse two (one on a boundary): with

@@ -89,7 +89,14 @@ Collapser::StepsEnd Collapser::GreedySteps(std::int64_t until)
     }
     const UpcomingCandidates upcoming(heap, this->State);
     upcoming.Prefetch(0);
-    if (this->Check(t, star, c, scratch) != Legality::Legal)
+    const Legality legality = this->Check(t, star, c, scratch);
+    if (legality == Legality::Illegal && this->OtherLegalEdge(t, star, c))
+    {
+      this->Requeue(t, c);
+      heap.Update(t);
+      continue;
+    }
+    if (legality != Legality::Legal)
     {
       this->Lot.Park(t, this->Clock);
       continue;

@@ -517,6 +517,15 @@ void Collapser::CellSteps(CellRound& round, Id b, std::int64_t quota, CellScratc
     const UpcomingCandidates upcoming(heap, this->State);
     upcoming.Prefetch(0);
     const Legality legality = this->Check(t, star, c, mine.Cost);
+    if (legality == Legality::Illegal && this->OtherLegalEdge(t, star, c))
+    {
+      this->Requeue(t, c); // (above the threshold: a later round's candidate)
+      if (c.Cost <= round.Threshold)
+      {
+        heap.Update(t);
+      }
+      continue;
+    }
     upcoming.Prefetch(1);
     if (legality == Legality::Foreign)
     {
