@@ -109,16 +109,21 @@
  *
  * Two schedules order the collapses (SetSchedule):
  * - Greedy (the default): one collapse at a time from a priority queue, cheapest first, with the
- *   costs around each collapse updated (paper 002, section 2.4). With PartitionedGreedy on (the
- *   default) the greedy order runs in parallel rounds: each round cuts space into the cells of
- *   a grid and runs the greedy loop in every cell at once, up to a cost threshold shared by all
- *   cells; a collapse that would reach into another cell waits for the next round, whose grid
- *   is shifted by half a cell. The curvature method re-fits the triangles one ring out from a
- *   collapse lazily, when they come to the top of the queue (exactly the same order wherever no
- *   cost falls below half its old value); in the rounds, those with a corner in another cell
- *   are marked for re-fitting at the end of the round, and a fit reads only its own cell's
- *   vertices' neighbourhoods. (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy
- *   order stays serial: in rounds it lost much of its accuracy on a noisy surface.) For its whole
+ *   costs around each collapse updated (paper 002, section 2.4). With the quadric method a
+ *   triangle whose collapse is refused goes back into the queue at the cost of its cheapest
+ *   legal other edge (the shortest of equal costs), so that a refused edge does not hold back
+ *   a free one (on flat parts every edge costs nothing: a subdivided 3 x 1 x 1 box asked for
+ *   12 triangles comes out exact, where triangles waiting on their refused edge left it 20% of
+ *   its diagonal off). With PartitionedGreedy on (the default) the greedy order runs in
+ *   parallel rounds: each round cuts space into the cells of a grid and runs the greedy loop in
+ *   every cell at once, up to a cost threshold shared by all cells; a collapse that would reach
+ *   into another cell waits for the next round, whose grid is shifted by half a cell. The
+ *   curvature method re-fits the triangles one ring out from a collapse lazily, when they come
+ *   to the top of the queue (exactly the same order wherever no cost falls below half its old
+ *   value); in the rounds, those with a corner in another cell are marked for re-fitting at
+ *   the end of the round, and a fit reads only its own cell's vertices' neighbourhoods.
+ *   (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy order stays serial: in
+ *   rounds it lost much of its accuracy on a noisy surface.) For its whole
  *   hierarchy the curvature method takes 1.3-3.4x the time vtkQuadricDecimation needs for one 10%
  *   target on one thread (1.82-2.60x in Benchmarks/RESULTS.md's run), and 1.6-2.75x less on two
  *   (the quadric method: 0.29-0.57x over ten runs on AMD EPYC processors, 0.41-0.43x in
