@@ -123,13 +123,13 @@
  *   value); in the rounds, those with a corner in another cell are marked for re-fitting at
  *   the end of the round, and a fit reads only its own cell's vertices' neighbourhoods.
  *   (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy order stays serial: in
- *   rounds it lost much of its accuracy on a noisy surface.) For its whole
- *   hierarchy the curvature method takes 1.3-3.4x the time vtkQuadricDecimation needs for one 10%
- *   target on one thread (1.82-2.60x in Benchmarks/RESULTS.md's run), and 1.6-2.75x less on two
- *   (the quadric method: 0.29-0.57x over ten runs on AMD EPYC processors, 0.41-0.43x in
- *   RESULTS.md's, where vtkQuadricDecimation's times moved by -20% to +17% and the quadric
- *   method's by -14% to -23% from the run before, on the same output; 1.4-1.9x less on two,
- *   the least on the 154k-triangle mesh, whose one run of half a second swings most; the
+ *   rounds it lost much of its accuracy on a noisy surface.) For its whole hierarchy the
+ *   curvature method takes 1.3-3.4x the time vtkQuadricDecimation needs for one 10% target on
+ *   one thread (1.70-1.75x in Benchmarks/RESULTS.md's run), and 1.6-2.75x less on two (the
+ *   quadric method: 0.29-0.57x over eleven runs on AMD EPYC processors, 0.38-0.47x in
+ *   RESULTS.md's, where the run before on nearly the same output gave 0.41-0.43x; 1.4-1.9x
+ *   less on two, 1.63-1.72x in RESULTS.md's, the least on the 154k-triangle mesh, whose one
+ *   run of half a second swings most; the
  *   ratios move with the processor, the machine's load and what ran before in the same process:
  *   on an Intel Xeon the quadric method took 0.42-0.69x over three runs, its own times about as
  *   on the EPYC, vtkQuadricDecimation's 1.3-2.0x shorter; on one EPYC the 154k mesh's 0.54 was
@@ -145,7 +145,7 @@
  * its target.) On the benchmark meshes both reach
  * about the same error per triangle (RMS within 3%, Hausdorff distances within the few tens of
  * percent by which a maximum varies between runs; Benchmarks/RESULTS.md); Greedy is the
- * default because it is faster: 1.7-2.6x on one thread, 2.0-3.3x on two (its last two runs).
+ * default because it is faster: 1.7-2.8x on one thread, 1.9-3.8x on two (its last three runs).
  * On CAD-like solids (flat faces, sharp rims) Greedy is also far more accurate: IndependentSets keeps paper 000's
  * valence rule for edge collapses too, and on the extruded text of the Python test (79,280
  * triangles) asked for 1% it stopped at 1.02% with about 40x vtkQuadricDecimation's Hausdorff
@@ -160,7 +160,7 @@
  * mesh reached is then the last level. By default every connected piece stays, each at least
  * a tetrahedron, with its genus: on the isosurface of a noisy volume (103,940 triangles, 328
  * specks around single noisy samples besides the main surface, 312 of them of 8 triangles) the
- * levels stopped at 2,072 triangles for a target of 1,039, most of them specks, and that level was
+ * levels stopped at 2,016 triangles for a target of 1,039, most of them specks, and that level was
  * 5.2 times as far from the input (Hausdorff distance) as vtkQuadricDecimation's output of the
  * same count, which drops the specks. With PreserveTopology off small closed pieces vanish and the
  * levels reach their counts (Benchmarks/RESULTS.md, "Beyond isosurfaces"). A warning reports a
@@ -368,12 +368,12 @@ public:
    * three edge midpoints (for an edge collapse: the midpoint and the two ends; ties go to the
    * centroid, then the vertices). On the benchmark isosurfaces (Benchmarks/RESULTS.md, the
    * "paper placement" rows, one thread): the same RMS distance to within 1%; at 10% of the
-   * triangles the same Hausdorff distance on the metaballs, more on the 611k gyroid (0.95x
-   * vtkQuadricDecimation's against 0.89x) and less on the 2.3M gyroid (0.96x against 1.03x);
-   * at 1% the candidates' was 0.98, 0.93 and 1.04x vtkQuadricDecimation's against the
-   * default's 0.92, 1.02 and 0.99x: more on the metaballs and the 2.3M gyroid, less on the 611k
-   * gyroid (each is the distance at one spot, which moves by chance: see AreaNormalization),
-   * and the whole hierarchy took 1.2-1.45 times as long (an
+   * triangles the same Hausdorff distance on the metaballs and the 611k gyroid, less on the
+   * 2.3M gyroid (0.92x vtkQuadricDecimation's against 1.03x); at 1% the candidates' was 0.98,
+   * 0.82 and 1.05x vtkQuadricDecimation's against the default's 0.92, 1.02 and 0.99x: more on
+   * the metaballs and the 2.3M gyroid, less on the 611k gyroid (each is the distance at one
+   * spot, which moves by chance: see AreaNormalization), and the whole hierarchy took 1.3-1.45
+   * times as long (an
    * eigendecomposition per solve, against one L D L^T factorisation). On faceted solids both
    * keep the faces exactly. Curvature method: not used (its collapse point comes from the fit).
    */
@@ -541,16 +541,15 @@ public:
    * attention. Measured at 1% against vtkQuadricDecimation (Benchmarks/RESULTS.md, Beyond
    * isosurfaces; Hausdorff distance ratio, AREA_WEIGHTS -> UNIFORM_WEIGHTS, with the default
    * AreaNormalization): lower on some rough meshes and some with graded triangle sizes (very
-   * noisy sphere 0.96 -> 0.69, superquadric 1.07 -> 0.86, terrain 1.11 -> 1.04, two of three
-   * noisy UV spheres 1.08 -> 0.83 and 0.77 -> 0.62), about the same on Boy's surface
-   * (0.72 -> 0.73), higher on the third noisy sphere (0.79 -> 0.94), the parametric torus
-   * (0.70 -> 0.80) and the sphere with holes (1.06 -> 1.32); the RMS distance rises on most
-   * (superquadric 0.72 -> 1.13, noisy UV spheres 0.80-0.83 -> 0.85-0.88). On the benchmark's
+   * noisy sphere 1.02 -> 0.75, superquadric 1.07 -> 0.86, terrain 1.11 -> 1.04, Boy's surface
+   * 0.78 -> 0.73, one of three noisy UV spheres 0.93 -> 0.62), about the same on another
+   * (0.93 -> 0.94), higher on the third (0.79 -> 0.83), the parametric torus (0.70 -> 0.76)
+   * and the sphere with holes (1.11 -> 1.32); the RMS distance rises on most (superquadric
+   * 0.72 -> 1.13, noisy UV spheres 0.80-0.83 -> 0.85-0.88). On the benchmark's
    * marching-cubes isosurfaces UNIFORM_WEIGHTS has the larger Hausdorff distance at all six
-   * targets (metaballs at 1%: 0.92 -> 1.09) and the larger RMS distance at all. Keep
-   * AREA_WEIGHTS for
-   * isosurfaces and for the least RMS distance; try UNIFORM_WEIGHTS for rough or graded
-   * tessellations when the largest distance matters.
+   * targets (metaballs at 1%: 0.92 -> 1.09) and the larger RMS distance at five (equal at the
+   * sixth). Keep AREA_WEIGHTS for isosurfaces and for the least RMS distance; try
+   * UNIFORM_WEIGHTS for rough or graded tessellations when the largest distance matters.
    */
   vtkSetClampMacro(PlaneWeights, int, AREA_WEIGHTS, UNIFORM_WEIGHTS);
   vtkGetMacro(PlaneWeights, int);
@@ -572,18 +571,20 @@ public:
    * triangles are far from their planes, which lowers the largest distance on most meshes: against
    * vtkQuadricDecimation at the same count (Benchmarks/RESULTS.md, the first and the
    * AreaNormalization 0 tables of "Beyond isosurfaces"; Hausdorff distance ratio, 0 -> 0.25), on
-   * the 11 meshes there that are not at rounding level or topology-bound, the geometric mean went
-   * from 0.98 to 0.86 at 10% and from 0.98 to 0.92 at 1%, the RMS distance unchanged (0.91 and
-   * 0.87). At 1% lower on 6 of the 11 (parametric torus 0.91 -> 0.70, Boy's surface 1.08 -> 0.72),
-   * higher on 5 (segmented balls 0.94 -> 0.97; noisy UV spheres, seeds 7 and 9, 0.98 -> 1.08 and
-   * 0.72 -> 0.77; terrain 1.03 -> 1.11; superquadric 1.03 -> 1.07). On the benchmark
-   * isosurfaces ("paper cost" rows), at 10% / 1%: metaballs 0.93 / 0.98 -> 0.87 / 0.92, gyroid
-   * (611k) 1.01 / 0.82 -> 0.89 / 1.02, gyroid (2.3M) 0.95 / 1.15 -> 1.03 / 0.99. The largest
-   * distance at 1% is one spot and moves by chance: with TargetReduction 0.99 instead of the
-   * benchmark's 1 - 6,109 / 610,880 (a level of 6,108 triangles instead of 6,107) the same gyroid
-   * gives 0.78; over nine targets from 6,107 to 6,303 triangles the ratio was 0.85-1.04, median
-   * 1.02 (the benchmark's target's), with the RMS distance 0.98-0.99x at each. Not in
-   * Benchmarks/RESULTS.md, from trial runs: powers of 0.5 and 0.75 gave 1.11 and 1.12 there; 0.5
+   * the 12 meshes there that are not at rounding level or topology-bound, the geometric mean went
+   * from 0.97 to 0.89 at 10% and from 0.91 to 0.90 at 1%, the RMS distance unchanged (0.91 and
+   * 0.85). At 1% lower on 5 of the 12 (parametric torus 0.91 -> 0.70, Boy's surface 1.07 ->
+   * 0.78, a noisy UV sphere 0.98 -> 0.79), higher on 7 (segmented balls 0.94 -> 1.43, the very
+   * noisy sphere 0.91 -> 1.02, terrain 1.03 -> 1.11, superquadric 1.03 -> 1.07). On the
+   * benchmark isosurfaces ("paper cost" rows), at 10% / 1%: metaballs 0.93 / 0.98 -> 0.87 /
+   * 0.92, gyroid (611k) 1.01 / 0.84 -> 0.95 / 1.02, gyroid (2.3M) 0.95 / 1.15 -> 1.03 / 0.99.
+   * The largest distance at 1% is one spot and moves by chance: over nine targets from 6,107 to
+   * 6,302 triangles the 611k gyroid's ratio was 0.81-1.02, median 0.85 (the benchmark's
+   * target's 1.02), with the RMS distance 0.97-0.99x at each (Benchmarks/RESULTS.md, "One
+   * target or nine"). Not in Benchmarks/RESULTS.md, from trial runs: the segmented balls'
+   * ratio over nine targets from 900 to 1,060 triangles was 0.93-1.61, geometric mean 1.17
+   * (0.90-1.76 and 1.23 before the greedy schedule retried refused triangles' other edges); on
+   * the 611k gyroid at 1%, powers of 0.5 and 0.75 gave 1.11 and 1.12; 0.5
    * lowered the 10% ratios a little more than 0.25 and raised RMS by about 1%; 1 raised RMS by
    * 7-12%. The power also shifts TRIANGLES_AND_EDGES towards whole triangles, whose three vertices
    * stand for more surface than an edge's two (see TriangleCostFactor). (The accuracy figures given
@@ -628,8 +629,8 @@ public:
    * CurvatureCost WEIGHT, whose weights are not distances, a vanishing still ranks by its
    * quadric error among them. For the isosurface of a noisy volume, as of a scan, whose specks
    * around single noisy samples otherwise fill the coarse levels: on one of 103,940 triangles
-   * with 328 specks, asked for 1%, 1,038 triangles at 1.4 times vtkQuadricDecimation's
-   * Hausdorff distance instead of 2,072 at 5.2 times (Benchmarks/RESULTS.md, "Beyond
+   * with 328 specks, asked for 1%, 1,038 triangles at 1.2 times vtkQuadricDecimation's
+   * Hausdorff distance instead of 2,016 at 5.2 times (Benchmarks/RESULTS.md, "Beyond
    * isosurfaces"; the largest distances left are from vanished specks to the surface, for
    * vtkQuadricDecimation's output too). Costs 4 bytes per input point and 12 per piece (8 per
    * point while the pieces are labelled).
@@ -680,12 +681,12 @@ public:
    * changes no count and no MorphTargetId of its level; the collapses towards the next level go
    * on from the flipped triangles, so the coarser levels are not those made without flips (their
    * counts may differ by a triangle or two). On the gyroid isosurfaces of Benchmarks/RESULTS.md
-   * the Hausdorff distance at 1% of the triangles falls from 0.243% to 0.188% of the diagonal
-   * (611k triangles; 1.02 to 0.79 times vtkQuadricDecimation's) and from 0.0627% to 0.0519%
-   * (2.3M; 0.99 to 0.82 times); at 10% it stays (0.89 and 1.03 times), and the RMS distances
-   * fall by 0.2-0.6%. The whole hierarchy took 0.98-1.06 times as long on one thread (0.44,
-   * 0.44 and 0.42 times vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the
-   * 2.3M gyroid, against 0.42, 0.41 and 0.43 without flips).
+   * the Hausdorff distance at 1% of the triangles falls from 0.243% to 0.185% of the diagonal
+   * (611k triangles; 1.02 to 0.77 times vtkQuadricDecimation's) and from 0.0627% to 0.0510%
+   * (2.3M; 0.99 to 0.81 times); at 10% it stays (0.95 and 1.03 times), and the RMS distances
+   * fall by 0.4-0.6%. The whole hierarchy took 1.01-1.24 times as long on one thread (0.47,
+   * 0.46 and 0.48 times vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the
+   * 2.3M gyroid, against 0.47, 0.43 and 0.38 without flips).
    * On the metaballs isosurface, with hardly a saddle, no quad is bent that much and the levels
    * are those without flips. Judging every quad bent by 0.3 times the scale (with several
    * flips per point, on a copy the collapses did not go on from) took 1.35-1.5 times as long
