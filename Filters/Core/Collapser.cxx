@@ -236,28 +236,34 @@ bool Collapser::OtherLegalEdge(Id t, Star& star, CollapseCandidate& c) const
   {
     return false;
   }
-  const int refused = c.MemberCount == 2 ? c.Choice : -1;
-  const int skip = this->Model.HubEdgesToSkip(this->State.Mesh.Triangle(t));
+  const int refused = c.MemberCount == 2 ? 1 << c.Choice : 0;
+  // Of equal costs (a flat part's, all zero) the shortest: taking the first edge of the
+  // triangle among equals instead left the geomorph's exact counts between a faceted
+  // cylinder's levels of 48,128 and 4,812 triangles short by up to 9,096 triangles.
+  return this->FirstLegalEdge(
+    t, refused | this->Model.HubEdgesToSkip(this->State.Mesh.Triangle(t)), true, star, c);
+}
+
+bool Collapser::FirstLegalEdge(
+  Id t, int leaveOut, bool shortestFirst, Star& star, CollapseCandidate& c) const
+{
   CollapseCandidate edges[3];
-  float spreads[3];
+  float spreads[3] = { 0.0f, 0.0f, 0.0f };
   int order[3], count = 0;
   CostScratch unused;
   for (int k = 0; k < 3; ++k)
   {
-    if (k != refused && (skip & (1 << k)) == 0 &&
-      this->Model.EvaluateChoice(t, k, edges[k], unused))
+    if ((leaveOut & (1 << k)) == 0 && this->Model.EvaluateChoice(t, k, edges[k], unused) &&
+      edges[k].Cost < InfiniteCost)
     {
-      spreads[k] = this->SpreadOf(edges[k]);
+      spreads[k] = shortestFirst ? this->SpreadOf(edges[k]) : 0.0f;
       order[count++] = k;
     }
   }
-  // Cheapest first, and of equal costs (a flat part's, all zero) the shortest: taking the
-  // first edge of the triangle among equals instead left the geomorph's exact counts between a
-  // faceted cylinder's levels of 48,128 and 4,812 triangles short by up to 9,096 triangles.
   std::sort(order, order + count, [&](int a, int b) {
     return edges[a].Cost < edges[b].Cost ||
-      (edges[a].Cost == edges[b].Cost && (spreads[a] < spreads[b] ||
-        (spreads[a] == spreads[b] && a < b)));
+      (edges[a].Cost == edges[b].Cost &&
+        (spreads[a] < spreads[b] || (spreads[a] == spreads[b] && a < b)));
   });
   for (int i = 0; i < count; ++i)
   {
@@ -294,27 +300,12 @@ void Collapser::LandOnTarget(Id t, std::int64_t needed, Star& star, CollapseCand
   {
     return;
   }
-  // The triangle's edges, cheapest first (ties: the first); the first legal one goes.
-  CollapseCandidate edges[3];
-  int order[3] = { 0, 1, 2 };
-  CostScratch unused;
-  for (int k = 0; k < 3; ++k)
+  // The triangle's edges, cheapest first (ties: the first); the first legal one goes. (Only
+  // serial loops land on a target: no star reaches another block.)
+  if (!this->FirstLegalEdge(t, 0, false, star, c))
   {
-    if (!this->Model.EvaluateChoice(t, k, edges[k], unused))
-    {
-      edges[k].Cost = InfiniteCost;
-    }
+    this->Legal(star, c); // the triangle's star again
   }
-  std::stable_sort(order, order + 3, [&](int a, int b) { return edges[a].Cost < edges[b].Cost; });
-  for (const int k : order)
-  {
-    if (edges[k].Cost < InfiniteCost && this->Legal(star, edges[k]) == Legality::Legal)
-    {
-      c = edges[k];
-      return;
-    }
-  }
-  this->Legal(star, c); // the triangle's star again
 }
 
 Legality Collapser::Legal(Star& star, const CollapseCandidate& c) const

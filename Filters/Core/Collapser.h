@@ -436,8 +436,9 @@ private:
   // The same without the swap (which reaches beyond the triangle's neighbourhood).
   Legality CheckDirect(Id t, Star& star, CollapseCandidate& c, CostScratch& scratch) const;
   Legality Legal(Star& star, const CollapseCandidate& c) const;
-  // After triangle t's candidate was refused: its other edges, cheapest first (those of
-  // HubEdgesToSkip left out), the first legal one into c and star. False when none is.
+  // After triangle t's candidate was refused: its other edges, cheapest first and the shortest
+  // of equal costs (those of HubEdgesToSkip left out), the first legal one into c and star.
+  // False when none is.
   //
   // A refused triangle used to wait in the parking lot, priced by its refused candidate, until
   // something around it changed, even where another of its edges could go. Near the end of a
@@ -447,6 +448,12 @@ private:
   // among the candidates at the cost of its cheapest legal edge (Requeue) instead; it is not
   // collapsed at once, which would take it out of the cost order.
   bool OtherLegalEdge(Id t, Star& star, CollapseCandidate& c) const;
+  // Triangle t's edges but those in `leaveOut` (bit k: edge k) and those never legal (priced
+  // infinite), cheapest first; of equal costs, with `shortestFirst` the one whose members lie
+  // nearest its position (SpreadOf), else the first. The first legal one into c and star;
+  // false when none is, or when the answer needs another block's vertices.
+  bool FirstLegalEdge(
+    Id t, int leaveOut, bool shortestFirst, Star& star, CollapseCandidate& c) const;
   // Triangle t's cost, choice and tie-break become candidate c's.
   void Requeue(Id t, const CollapseCandidate& c);
   // The tie-break of candidate c (Spreads): its members' squared distance to its position.

@@ -11,13 +11,13 @@
 // For a level, the input triangles' centroids (every stride-th: every second, or fewer so that
 // there are SamplesPerPoint per point of the level on average) are projected onto the triangles
 // around the point the triangle's first corner became (the chained MorphTargetId correspondence),
-// into the nearest of those whose interior they project into. Each signed distance, weighted by the input
-// triangle's area, is spread over that triangle's corners with the barycentric weights of the
-// projection; each point's weighted mean is the shift along its normal that zeroes it (the first
-// step of a least-squares fit of per-point offsets: a uniform offset is removed exactly, a varying
-// one smoothed over each point's triangles). The shift is then limited so that the largest distance
-// of the projections near the point (barycentric weight at least a third) does not grow, and to a
-// quarter of the point's shortest edge.
+// into the nearest of those whose interior they project into. Each signed distance, weighted by
+// the input triangle's area, is spread over that triangle's corners with the barycentric weights
+// of the projection; each point's weighted mean is the shift along its normal that zeroes it (the
+// first step of a least-squares fit of per-point offsets: a uniform offset is removed exactly, a
+// varying one smoothed over each point's triangles). The shift is then limited so that the largest
+// distance of the projections near the point (barycentric weight at least a third) does not grow,
+// and to a quarter of the point's shortest edge.
 //
 // Not moved: points that did not change between the previous level and this one (their own
 // single parent with weight 1): they keep the shift they had there, added in the same rounding,
