@@ -45,9 +45,9 @@
  * distances were 1.10 and 0.80 times vtkQuadricClustering's, now 0.73 and 0.59. Where the
  * minimiser has no error (planes meeting at a solid's corner or along its edge), only a vertex
  * without error may stand in, so that corners are not cut (a subdivided icosahedron asked for
- * 1% would get its count at 7.7% of its diagonal instead of 888 triangles at no error). On a
+ * 1% would get its count at 7.7% of its diagonal instead of 746 triangles at no error). On a
  * faceted cylinder (64 sides, 64,512 triangles) asked for 645 triangles the levels got worse,
- * 1,276 triangles at 5 times vtkQuadricClustering's distances (618 at 3.2 and 2.7 times
+ * 2,172 triangles at 4.5 times vtkQuadricClustering's distances (618 at 3.2 and 2.7 times
  * before). The cluster error is the largest of the root of the area-weighted mean squared
  * distance to all the planes, the largest distance to a boundary plane (so an open boundary,
  * corners included, stays within epsilon; not with BoundaryWeight 0), and half the distance to
@@ -90,7 +90,7 @@
  *   what a few more triangles need; on the surfaces of a segmented volume asked for 1%, whose
  *   curves merge only so far, 3,245 triangles at 0.79% Hausdorff distance instead of 2,423 at
  *   4.6% when this rule was made (the segmented balls of Benchmarks/RESULTS.md now: 3,012 at
- *   0.69%); on a finely subdivided icosahedron asked for 10% and 1%, 888 triangles at no error
+ *   0.69%); on a finely subdivided icosahedron asked for 10% and 1%, 746 triangles at no error
  *   at 1% instead of 390 at 8%, whose clusters across the edges cut the corners); a count
  *   between two that consecutive epsilons give (levels cut one cluster tree, so counts move in
  *   steps of whole clusters); a count at or above the previous level's (a level never refines).
@@ -99,7 +99,10 @@
  *   (about 1e-7 of a cluster's cell), so counts are met there too: flat disks of about 120,000
  *   triangles (vtkDiskSource) asked for 12,000 got 11,988-12,000 at no error, where they all
  *   merged at once before (4,488); a fan of 40,000 inside a ring of 80,000 gets 10,154, with
- *   the warning. In the epsilon modes every epsilon, 0 included, merges all of them.
+ *   the warning. Errors under 1e-6 of the bounding cube count as zero: the planes of a facet
+ *   of single-precision points differ by their rounding, and such errors (up to 7e-7) ordered
+ *   the merges at random: a subdivided octagonal prism asked for 1% (1,146 triangles) got 1,252
+ *   at 8% of its diagonal, its corner edges cut (now 2,172 at no error). In the epsilon modes every epsilon, 0 included, merges all of them.
  * A level that keeps exactly the triangles of the level before (an epsilon that merges nothing
  * more, or a small count met within its tolerance by the same cut) is kept, the same mesh again,
  * and said in a warning.
