@@ -37,6 +37,11 @@
 //   without one first, one that folds nothing first. (Joined one collapse after the other, the
 //   thin strokes of an extruded text, shrunk into single points each merging up to 103, left
 //   433 of a transition's 5,487 counts out of reach, by up to 472 triangles; now 21, by 36.)
+//   A larger group goes around its largest collapse: that one first, each other one made whole
+//   as soon as its merge is valid as the largest one's points settle, the rest after it.
+//   (Typically a flat region merging into one point, next to small collapses that wait for
+//   part of it while it waits for them: made one after the other, the first small one left
+//   its target without one fan through most of the large one's steps.)
 // - Both rules apply only to targets that have one fan in the next level (every point merged).
 //   A level with non-manifold vertices (vertex clustering with PreserveTopology off) has
 //   targets that no step can give one: they neither wait nor hold later steps up, so the steps

@@ -112,7 +112,12 @@ private:
   void ListLeft(size_t begin, size_t end);
   void ListFrontier(size_t begin, size_t end, Id t);
   Id NextOfCollapse(const std::vector<Id>& choices, size_t points, bool& ok);
-  void Settle(size_t c, bool wholeValid);
+  // With `aroundLargest`, c is the largest collapse of a waiting group too large to interleave:
+  // after each of its steps the group's other collapses next to it are made whole as soon as
+  // that is valid (MakeReadyNeighbours).
+  void Settle(size_t c, bool wholeValid, bool aroundLargest = false);
+  void MakeReadyNeighbours(Id p, size_t c, bool tracked);
+  void SettleGroupAroundLargest();
   bool WholeIsValid(size_t c);
   void RetryWaitingNear(size_t made, std::vector<size_t>& retry);
   void GatherGroup(size_t c);
@@ -179,6 +184,7 @@ private:
   // The points joined by an edge to a collapse's settled ones, kept sorted as points settle.
   SortedIds Frontier;
   std::vector<std::uint8_t> Waiting; // per collapse
+  std::vector<Id> CheckedAt;          // per collapse: the step after which it was last tested
   size_t WaitingNow = 0;
 
   // A group of waiting collapses made together (MakeWaitingGroups).
