@@ -50,10 +50,16 @@
  * 2,172 triangles at 4.5 times vtkQuadricClustering's distances (618 at 3.2 and 2.7 times
  * before). The cluster error is the largest of the root of the area-weighted mean squared
  * distance to all the planes, the largest distance to a boundary plane (so an open boundary,
- * corners included, stays within epsilon; not with BoundaryWeight 0), and half the distance to
- * the farthest plane (a mean alone lets elongated or bent clusters stray at their ends), in
- * world units; it is what epsilon bounds (the surface typically stays within 2-3 epsilon of the
- * input).
+ * corners included, stays within epsilon; not with BoundaryWeight 0), the distance to the
+ * farthest boundary tip it holds, and half the distance to the farthest plane (a mean alone
+ * lets elongated or bent clusters stray at their ends), in world units; it is what epsilon
+ * bounds (the surface typically stays within 2-3 epsilon of the input). A boundary tip is a
+ * vertex whose two boundary edges meet at under 30 degrees, where the boundary planes are
+ * almost parallel and barely see the tip pulled back along them; a cluster holding one is
+ * placed at it (the first, when it holds several). Without this, a sheet's 3-degree corner
+ * lost 15% of the sheet's length at 1% of its triangles, and the spike of Dini's surface
+ * (vtkParametricDini, 300 x 300, 178,802 triangles) 4.9% of the diagonal (Hausdorff distance
+ * at 1%, 0.45% now; vtkQuadricDecimation's 0.35%).
  *
  * Levels. The output has NumberOfLevels simplified levels after level 0 (the input), chosen by
  * LevelMode:
@@ -102,7 +108,9 @@
  *   the warning. Errors under 1e-6 of the bounding cube count as zero: the planes of a facet
  *   of single-precision points differ by their rounding, and such errors (up to 7e-7) ordered
  *   the merges at random: a subdivided octagonal prism asked for 1% (1,146 triangles) got 1,252
- *   at 8% of its diagonal, its corner edges cut (now 2,172 at no error). In the epsilon modes every epsilon, 0 included, merges all of them.
+ *   at 8% of its diagonal, its corner edges cut (now 2,172 at no error). In the epsilon modes
+ *   every epsilon, 0 included, merges all clusters of exactly zero error, and rounding-size
+ *   errors count as they are (a cluster stays within its level's epsilon).
  * A level that keeps exactly the triangles of the level before (an epsilon that merges nothing
  * more, or a small count met within its tolerance by the same cut) is kept, the same mesh again,
  * and said in a warning.

@@ -16,13 +16,14 @@ namespace
 {
 // A collapse of m points tries at most max(1, CollapseTestBudget / m) next points per step (see
 // NextOfCollapse). A test reads the merged vertex's link, kept up to date for a collapse of
-// CollapseSchedule's TrackedCollapsePoints or more (the default 8: below it there are fewer
-// choices than tries anyway). At 16,384 a faceted cylinder's cap of 5,032 points merging into
-// its centre had three tries per step and left its target without one fan every 20 to 40
-// steps, for a few steps each time; with 26 (and its waiting group made around it,
-// SettleGroupAroundLargest) 2.3% of the counts of that transition (48,128 to 4,812 triangles)
-// are out of reach instead of 23%. Schedules with such collapses take longer: a UV sphere's
-// octree level of 540 triangles from 636,800, 0.85 s instead of 0.65.
+// CollapseSchedule's TrackedCollapsePoints or more (with the default 8, a smaller one has fewer
+// choices than tries anyway; with a larger setting an untracked collapse's tests list its whole
+// merge, up to 8 times as many of them as at 16,384). At 16,384 a faceted cylinder's cap of 5,032
+// points merging into its centre had three tries per step and left its target without one fan
+// every 20 to 40 steps, for a few steps each time; with 26 (and its waiting group made around it,
+// SettleGroupAroundLargest) 2.3% of the counts of that transition (48,128 to 4,812 triangles) are
+// out of reach instead of 23%. Schedules with such collapses take longer: a UV sphere's octree
+// level of 540 triangles from 636,800, 0.85 s instead of 0.65.
 constexpr size_t CollapseTestBudget = 131072;
 // A step of a waiting group joined interleaved tests at most max(1, TestBudget / m) points, m
 // its largest collapse (each test lists the whole merged vertex).
@@ -358,9 +359,10 @@ void CollapseScheduleBuilder::Settle(size_t c, bool wholeValid, bool aroundLarge
 }
 
 // After point p of collapse c settled (c the largest of a waiting group, see
-// SettleGroupAroundLargest): the group's other collapses with a point next to p whose whole
-// merge is valid now are made at once. Each one's steps take the builder's frontier and link,
-// so c's are listed again after them (its link only when c is `tracked`).
+// SettleGroupAroundLargest): the group's other collapses of other targets, of at most
+// ReadyCollapsePoints points, with a point next to p and whose whole merge is valid now (each
+// tested once per step) are made at once. Their steps take the builder's frontier and link, so
+// c's are listed again after them (its link only when c is `tracked`).
 void CollapseScheduleBuilder::MakeReadyNeighbours(Id p, size_t c, bool tracked)
 {
   const Id t = this->Target[p];
@@ -386,7 +388,12 @@ void CollapseScheduleBuilder::MakeReadyNeighbours(Id p, size_t c, bool tracked)
       }
       if (!made)
       {
+        // w's points join their target's class, which changes t's link where they touch it:
+        // t is not tracked meanwhile (a test of t then lists its link afresh), and tracked
+        // again after them.
         frontier = this->Frontier.Items;
+        this->Link.Clear();
+        this->Tracked = Unassigned;
         made = true;
       }
       this->Waiting[w] = 0;

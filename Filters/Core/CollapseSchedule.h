@@ -37,8 +37,9 @@
 //   without one first, one that folds nothing first. (Joined one collapse after the other, the
 //   thin strokes of an extruded text, shrunk into single points each merging up to 103, left
 //   433 of a transition's 5,487 counts out of reach, by up to 472 triangles; now 21, by 36.)
-//   A larger group goes around its largest collapse: that one first, each other one made whole
-//   as soon as its merge is valid as the largest one's points settle, the rest after it.
+//   A larger group goes around its largest collapse: that one first, each other one of another
+//   target and of at most 1,024 points made whole as soon as its merge is valid as the largest
+//   one's points settle (tested after each of its steps next to it), the rest after it.
 //   (Typically a flat region merging into one point, next to small collapses that wait for
 //   part of it while it waits for them: made one after the other, the first small one left
 //   its target without one fan through most of the large one's steps.)

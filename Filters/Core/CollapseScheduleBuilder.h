@@ -113,13 +113,12 @@ private:
   void ListFrontier(size_t begin, size_t end, Id t);
   Id NextOfCollapse(const std::vector<Id>& choices, size_t points, bool& ok);
   // With `aroundLargest`, c is the largest collapse of a waiting group too large to interleave:
-  // after each of its steps the group's other collapses next to it are made whole as soon as
-  // that is valid (MakeReadyNeighbours).
+  // after each of its steps the group's small collapses of other targets next to it are made
+  // whole when that is valid (MakeReadyNeighbours).
   void Settle(size_t c, bool wholeValid, bool aroundLargest = false);
   void MakeReadyNeighbours(Id p, size_t c, bool tracked);
   void SettleGroupAroundLargest();
   bool WholeIsValid(size_t c);
-  void RetryWaitingNear(size_t made, std::vector<size_t>& retry);
   void GatherGroup(size_t c);
   Id NextOfGroup(size_t largest, bool& ok);
   void SettleInterleaved(size_t largest);

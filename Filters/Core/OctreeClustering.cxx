@@ -77,6 +77,7 @@ void OctreeClustering::BuildTree()
   AssignFresh(impl.ClusterOfVertex, impl.NV, InvalidId);
   impl.CurrentEpsilon = 0.0;
   impl.LabelHoles();
+  impl.LabelTips();
 }
 
 bool OctreeClustering::MakeLevel(double epsilon, ClusterLevel& level)

@@ -116,6 +116,8 @@ struct OctreeClustering::Internals
   std::vector<Id> HoleOffsets;
   std::vector<Id> HoleVertices;
   std::vector<double> HoleRadius; // half the diagonal of each loop's bounding box
+  // Per input vertex: whether it is a tip of the open boundary (LabelTips); empty without one.
+  std::vector<unsigned char> Tip;
   std::vector<float> Thr; // the smallest epsilon at which the node may be a cluster
   std::vector<Id> RepSlot;
   // Per evaluated node (RepSlot): representative, surface normal and error, in blocks that
@@ -236,9 +238,28 @@ struct OctreeClustering::Internals
   double ClusterError(const octree::EvaluationScratch& scratch,
     double value,
     double weight,
-    const double v0[3]) const;
+    const double v0[3],
+    double tipDistance) const;
   double BoundaryDistance(const std::vector<Id>& edges, const double v0[3]) const;
   void ProjectOnBoundary(const std::vector<Id>& edges, double v0[3]) const;
+  void LabelTips();
+  // f(a, b) for each boundary edge of the input, from a to b in its triangle's winding.
+  template <typename F>
+  void ForEachBoundaryEdge(F&& f) const
+  {
+    for (Id t = 0; t < this->NT; ++t)
+    {
+      const Id* tri = this->Mesh.Triangle(t);
+      for (int k = 0; k < 3; ++k)
+      {
+        if (this->Topology.IsBoundaryEdge(t, k))
+        {
+          f(tri[k], tri[(k + 1) % 3]);
+        }
+      }
+    }
+  }
+  double PlaceAtTip(Id node, const std::vector<Id>& edges, double v0[3]) const;
   void RepresentativeOf(Id node, double out[3]) const;
   double NodeError(Id node) const;
   void SurfaceNormal(Id node, double normal[3]) const;

@@ -2,6 +2,7 @@
 #include "OctreeClusteringInternals.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -22,6 +23,11 @@ constexpr Id FlipFreeCandidates = 32;
 constexpr double ExactPlacement = 1e-12;
 // The threshold of a node of zero error, relative to its cell size (see UpdateThreshold).
 constexpr double ZeroErrorOrder = 1e-7;
+// A boundary vertex whose two boundary edges meet at less than this many degrees is a tip
+// (LabelTips).
+constexpr double TipAngle = 30.0;
+// LabelTips' mark of a vertex on more than two boundary edges.
+constexpr Id NoTip = -2;
 // Places in [0, 1) spread evenly whatever the run of indices (the fractional parts of multiples
 // of the golden ratio's fraction).
 constexpr double GoldenFraction = 0.6180339887498949;
@@ -37,15 +43,16 @@ bool OctreeClustering::Internals::CheapInadmissible(Id index) const
       this->Tree.CellSize(n.Depth) > this->Options.MaximumCellSize);
 }
 
-// The smallest epsilon at which the node may be a cluster: its error once evaluated in full,
-// before that e1 (a lower bound). The tree's e1 comes from quadrics summed with cancellations, so
-// values at rounding level (under 1e-6 of the tree's size) are taken as zero; so are the full
-// evaluation's. That one recomputes the quadric directly, but the planes of a flat part's
-// triangles still differ by the rounding of their single-precision points: a subdivided
-// octagonal prism's flat clusters evaluated to 5e-8 to 7e-7 of its size, in no order and above
-// the tie-break below, so a search for 1% of its 114,688 triangles found no level between
-// 4,752 and 290 triangles and took one of clusters across its edges (1,252 triangles at 8% of
-// the diagonal); with them at zero it found 2,172 without error.
+// The smallest epsilon at which the node may be a cluster: its error once evaluated in full, before
+// that e1 (a lower bound). The tree's e1 comes from quadrics summed with cancellations, so values
+// at rounding level (under 1e-6 of the tree's size) are taken as zero; so are the full evaluation's
+// with OrderFlatClusters (target counts; in the epsilon modes a cluster's error stays within
+// epsilon). The evaluation recomputes the quadric directly, but the planes of a flat part's
+// triangles still differ by the rounding of their single-precision points: a subdivided octagonal
+// prism's flat clusters evaluated to 5e-8 to 7e-7 of its size, in no order and above the tie-break
+// below, so a search for 1% of its 114,688 triangles found no level between 4,752 and 290 triangles
+// and took one of clusters across its edges (1,252 triangles at 8% of the diagonal); with them at
+// zero it found 2,172 without error.
 //
 // With OrderFlatClusters (target counts), nodes of zero error (or almost) get a threshold of
 // their own, far below any error that matters: ZeroErrorOrder times their cell size, times 1 to
@@ -68,10 +75,14 @@ void OctreeClustering::Internals::UpdateThreshold(Id index)
     return;
   }
   const ClusterNode& node = this->Tree.Nodes[index];
-  const double error = this->State[index] == NodeState::Admissible
-    ? static_cast<double>(this->Slot(index)[6])
-    : static_cast<double>(node.E1);
-  thr = error < 1e-6 * this->Tree.Size ? 0.0f : static_cast<float>(error);
+  const bool evaluated = this->State[index] == NodeState::Admissible;
+  const double error =
+    evaluated ? static_cast<double>(this->Slot(index)[6]) : static_cast<double>(node.E1);
+  // (An evaluated error counts as zero for the order of flat clusters only: in the epsilon
+  // modes a cluster's error stays within its level's epsilon.)
+  const bool rounding =
+    error < 1e-6 * this->Tree.Size && (!evaluated || this->Options.OrderFlatClusters);
+  thr = rounding ? 0.0f : static_cast<float>(error);
   if (this->Options.OrderFlatClusters)
   {
     const double place = std::fmod(static_cast<double>(index) * GoldenFraction, 1.0);
@@ -180,6 +191,88 @@ double OctreeClustering::Internals::BoundaryDistance(const std::vector<Id>& edge
 }
 
 //------------------------------------------------------------------------------
+// Tips: boundary vertices whose two boundary edges meet at less than TipAngle (a spike, the
+// pointed corner of a sheet, the end of a slit). The planes through the boundary edges that
+// hold an open boundary within epsilon are almost parallel there and barely see a tip pulled
+// back along them: a sheet's 3-degree corner lost 15% of its length at 1% of its triangles, and
+// the spike of Dini's surface (vtkParametricDini, 300 x 300) 5% of the diagonal. A cluster
+// holding a tip is placed at it and its error is at least the distance to any other tip it
+// holds (PlaceAtTip), so tips stay within epsilon.
+void OctreeClustering::Internals::LabelTips()
+{
+  this->Tip.clear();
+  // The two boundary neighbours of each boundary vertex (InvalidId, or a third: not a tip).
+  std::vector<std::array<Id, 2>> ends;
+  this->ForEachBoundaryEdge([&](Id a, Id b) {
+    if (ends.empty())
+    {
+      ends.assign(this->NV, { InvalidId, InvalidId });
+    }
+    for (const auto& [v, w] : { std::make_pair(a, b), std::make_pair(b, a) })
+    {
+      std::array<Id, 2>& e = ends[v];
+      e[e[0] == InvalidId ? 0 : 1] = e[0] == InvalidId || e[1] == InvalidId ? w : NoTip;
+    }
+  });
+  if (ends.empty())
+  {
+    return;
+  }
+  const double cosine = std::cos(TipAngle * 3.14159265358979323846 / 180.0);
+  this->Tip.assign(this->NV, 0);
+  for (Id v = 0; v < this->NV; ++v)
+  {
+    const std::array<Id, 2>& e = ends[v];
+    if (e[0] == InvalidId || e[1] == InvalidId || e[1] == NoTip)
+    {
+      continue;
+    }
+    const double* p = this->Mesh.Point(v);
+    const double* a = this->Mesh.Point(e[0]);
+    const double* b = this->Mesh.Point(e[1]);
+    const double u[3] = { a[0] - p[0], a[1] - p[1], a[2] - p[2] };
+    const double w[3] = { b[0] - p[0], b[1] - p[1], b[2] - p[2] };
+    const double lengths = std::sqrt(Dot(u, u) * Dot(w, w));
+    this->Tip[v] = lengths > 0.0 && Dot(u, w) > cosine * lengths ? 1 : 0;
+  }
+}
+
+// The boundary tips node holds among the ends of its boundary edges: v0 (relative coordinates)
+// moves to the first (in edge order), and the distance to the farthest is returned (0 without
+// any), a bound on the cluster's error.
+double OctreeClustering::Internals::PlaceAtTip(
+  Id node, const std::vector<Id>& edges, double v0[3]) const
+{
+  if (this->Tip.empty())
+  {
+    return 0.0;
+  }
+  bool placed = false;
+  double farthest = 0.0;
+  for (const Id item : edges)
+  {
+    const Id* tri = this->Mesh.Triangle(item / 3);
+    const int k = static_cast<int>(item % 3);
+    for (const Id v : { tri[k], tri[(k + 1) % 3] })
+    {
+      if (!this->Tip[v] || !this->Tree.Contains(node, v))
+      {
+        continue;
+      }
+      double x[3];
+      this->Tree.RelativePoint(v, x);
+      if (!placed)
+      {
+        std::copy_n(x, 3, v0);
+        placed = true;
+      }
+      farthest = std::max(farthest, std::sqrt(Distance2(x, v0)));
+    }
+  }
+  return farthest;
+}
+
+//------------------------------------------------------------------------------
 // Move v0 (relative coordinates) to the closest point of the given boundary edges.
 void OctreeClustering::Internals::ProjectOnBoundary(const std::vector<Id>& edges,
   double v0[3]) const
@@ -281,10 +374,13 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   this->PlaceRepresentative(q1, crossing, centre, this->Tree.CellSize(n.Depth), v0);
   double value = this->KeepInsideCell(node, q1, crossing, centre, v0);
   // A cluster on an open boundary keeps its representative on the input's boundary: the closest
-  // point of its boundary edges (a small move, paid for in the error below).
+  // point of its boundary edges (a small move, paid for in the error below), or the boundary's
+  // tip when it holds one (PlaceAtTip).
+  double tipDistance = 0.0;
   if (!scratch.BoundaryEdges.empty())
   {
     this->ProjectOnBoundary(scratch.BoundaryEdges, v0);
+    tipDistance = this->PlaceAtTip(node, scratch.BoundaryEdges, v0);
     value = this->PlacementError(q1, crossing, v0);
   }
   // The cluster's normal is coherent when its triangles mostly face one way: the length of their
@@ -303,7 +399,7 @@ void OctreeClustering::Internals::Evaluate(Id index, EvaluationScratch& scratch)
   {
     flips = this->StandInVertex(node, q1, crossing, surface, weight, value, v0);
   }
-  const double error = this->ClusterError(scratch, value, weight, v0);
+  const double error = this->ClusterError(scratch, value, weight, v0, tipDistance);
   std::copy_n(v0, 3, slot);
   slot[6] = static_cast<float>(error); // as a threshold, in single precision
   this->State[index] =
@@ -452,9 +548,10 @@ bool OctreeClustering::Internals::StandInVertex(Id node,
 double OctreeClustering::Internals::ClusterError(const EvaluationScratch& scratch,
   double value,
   double weight,
-  const double v0[3]) const
+  const double v0[3],
+  double tipDistance) const
 {
-  double error = weight > 0.0 ? std::sqrt(value / weight) : 0.0;
+  double error = std::max(tipDistance, weight > 0.0 ? std::sqrt(value / weight) : 0.0);
   if (this->Options.BoundaryWeight > 0.0)
   {
     error = std::max(error, this->BoundaryDistance(scratch.BoundaryEdges, v0));

@@ -352,24 +352,15 @@ void OctreeClustering::Internals::LabelHoles()
     return;
   }
   std::vector<Id> up;
-  for (Id t = 0; t < this->NT; ++t)
-  {
-    const Id* tri = this->Mesh.Triangle(t);
-    for (int k = 0; k < 3; ++k)
+  this->ForEachBoundaryEdge([&](Id from, Id to) {
+    if (up.empty())
     {
-      if (!this->Topology.IsBoundaryEdge(t, k))
-      {
-        continue;
-      }
-      if (up.empty())
-      {
-        up.resize(this->NV);
-        std::iota(up.begin(), up.end(), Id(0));
-      }
-      const Id a = FindRoot(up, tri[k]), b = FindRoot(up, tri[(k + 1) % 3]);
-      up[std::max(a, b)] = std::min(a, b);
+      up.resize(this->NV);
+      std::iota(up.begin(), up.end(), Id(0));
     }
-  }
+    const Id a = FindRoot(up, from), b = FindRoot(up, to);
+    up[std::max(a, b)] = std::min(a, b);
+  });
   if (up.empty())
   {
     return;
