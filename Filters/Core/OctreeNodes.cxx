@@ -211,14 +211,21 @@ void OctreeClustering::Internals::LabelTips()
     for (const auto& [v, w] : { std::make_pair(a, b), std::make_pair(b, a) })
     {
       std::array<Id, 2>& e = ends[v];
-      e[e[0] == InvalidId ? 0 : 1] = e[0] == InvalidId || e[1] == InvalidId ? w : NoTip;
+      if (e[0] == InvalidId)
+      {
+        e[0] = w;
+      }
+      else
+      {
+        e[1] = e[1] == InvalidId ? w : NoTip;
+      }
     }
   });
   if (ends.empty())
   {
     return;
   }
-  const double cosine = std::cos(TipAngle * 3.14159265358979323846 / 180.0);
+  const double cosine = std::cos(TipAngle * M_PI / 180.0);
   this->Tip.assign(this->NV, 0);
   for (Id v = 0; v < this->NV; ++v)
   {
