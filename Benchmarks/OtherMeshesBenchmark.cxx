@@ -6,8 +6,9 @@
 // terrain), a non-orientable surface, a superquadric with rounded edges, VTK's wavelet test
 // volume's isosurface (open, with many handles), a mesh in georeferenced coordinates (far from
 // the origin), the smoothed surfaces between the regions of a segmented volume, where three
-// sheets meet along curves, a binary mask's terraced isosurface and thin tubes. Prints five
-// markdown tables
+// sheets meet along curves, a binary mask's terraced isosurface and thin tubes; then, through
+// both filters' defaults only (the first table and the octree's), 21 more shapes from VTK's
+// sources (SurveyMeshes.cxx). Prints five markdown tables
 // (quality and Euler characteristics, or the counts reached; no timing) that run-benchmarks.sh
 // appends to RESULTS.md.
 //
@@ -17,6 +18,7 @@
 #include "MeshLODHierarchyChecks.h"
 #include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestMeshes.h"
+#include "OtherMeshes.h"
 #include "vtkTriangleCollapseDecimation.h"
 
 #include "vtkAppendPolyData.h"
@@ -25,7 +27,6 @@
 #include "vtkDiscreteFlyingEdges3D.h"
 #include "vtkFlyingEdges3D.h"
 #include "vtkImageData.h"
-#include "vtkLinearSubdivisionFilter.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkParametricBoy.h"
@@ -54,27 +55,8 @@
 
 namespace
 {
-struct TestMesh
-{
-  std::string Name;
-  std::string Description;
-  std::function<vtkSmartPointer<vtkPolyData>()> Make;
-};
-
-// Triangulated and cleaned (exactly coincident points merged), optionally subdivided.
-vtkSmartPointer<vtkPolyData> Prepare(vtkAlgorithm* source, int subdivisions)
-{
-  vtkSmartPointer<vtkPolyData> mesh = meshlod::testing::TriangulateAndClean(source);
-  if (subdivisions > 0)
-  {
-    vtkNew<vtkLinearSubdivisionFilter> subdivide;
-    subdivide->SetInputData(mesh);
-    subdivide->SetNumberOfSubdivisions(subdivisions);
-    subdivide->Update();
-    mesh = subdivide->GetOutput();
-  }
-  return mesh;
-}
+using meshlod::benchmark::Prepare;
+using meshlod::benchmark::TestMesh;
 
 // A volume of `size`^3 samples over [-1, 1]^3 whose point scalars (a vtkShortArray named
 // `name`) are `label` of each sample's position.
@@ -416,8 +398,16 @@ int main(int argc, char* argv[])
     FindMethod(methods, "vtkVertexClusterOctree free topology");
   const meshlod::benchmark::Method& grid = FindMethod(methods, "vtkQuadricClustering");
   std::ostringstream octreeRows, curvatureRows, uniformRows, paperCostRows, freeTopologyRows;
-  for (const TestMesh& test : Meshes())
+  // The survey meshes go through the defaults only: the first table and the octree's.
+  std::vector<TestMesh> meshes = Meshes();
+  const std::size_t variantMeshes = meshes.size();
+  for (TestMesh& survey : meshlod::benchmark::SurveyMeshes())
   {
+    meshes.push_back(std::move(survey));
+  }
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+  {
+    const TestMesh& test = meshes[m];
     vtkSmartPointer<vtkPolyData> mesh = test.Make();
     const vtkIdType triangles = mesh->GetNumberOfPolys();
     notes.push_back("- " + test.Name + ": " + test.Description);
@@ -432,20 +422,23 @@ int main(int argc, char* argv[])
     const auto decimate = reduce([](vtkTriangleCollapseDecimation*) {});
     std::printf("%s", QuadricDecimationRows(test, mesh, decimate, options).c_str());
     std::fflush(stdout);
-    // PreserveTopology off changes only meshes with small closed pieces.
-    const auto freeTopology =
-      reduce([](vtkTriangleCollapseDecimation* d) { d->PreserveTopologyOff(); });
-    if (meshlod::testing::CountDifferingLevels(
-          decimate->GetHierarchy(), freeTopology->GetHierarchy()) > 0)
+    if (m < variantMeshes)
     {
-      freeTopologyRows << QuadricDecimationRows(test, mesh, freeTopology, options);
+      // PreserveTopology off changes only meshes with small closed pieces.
+      const auto freeTopology =
+        reduce([](vtkTriangleCollapseDecimation* d) { d->PreserveTopologyOff(); });
+      if (meshlod::testing::CountDifferingLevels(
+            decimate->GetHierarchy(), freeTopology->GetHierarchy()) > 0)
+      {
+        freeTopologyRows << QuadricDecimationRows(test, mesh, freeTopology, options);
+      }
+      curvatureRows << QuadricDecimationRows(test, mesh,
+        reduce([](vtkTriangleCollapseDecimation* d) { d->SetMethodToCurvature(); }), options);
+      uniformRows << QuadricDecimationRows(test, mesh,
+        reduce([](vtkTriangleCollapseDecimation* d) { d->SetPlaneWeightsToUniform(); }), options);
+      paperCostRows << QuadricDecimationRows(test, mesh,
+        reduce([](vtkTriangleCollapseDecimation* d) { d->SetAreaNormalization(0.0); }), options);
     }
-    curvatureRows << QuadricDecimationRows(test, mesh,
-      reduce([](vtkTriangleCollapseDecimation* d) { d->SetMethodToCurvature(); }), options);
-    uniformRows << QuadricDecimationRows(test, mesh,
-      reduce([](vtkTriangleCollapseDecimation* d) { d->SetPlaneWeightsToUniform(); }), options);
-    paperCostRows << QuadricDecimationRows(test, mesh,
-      reduce([](vtkTriangleCollapseDecimation* d) { d->SetAreaNormalization(0.0); }), options);
     const std::vector<vtkIdType> targets = { triangles / 10, triangles / 100 };
     const std::vector<vtkSmartPointer<vtkPolyData>> levels = octree.Hierarchy(mesh, targets);
     // FlipEdges changes no count: the same grid answers both.
