@@ -547,11 +547,12 @@ struct vtkVertexClusterOctree::LevelMaker
   // The levels LevelMode asks for (epsilons in world units).
   std::vector<LevelRequest> Requests(double unit) const;
   meshlod::OctreeClusteringOptions ClusteringOptions(double unit) const;
-  // Level i + 1, for request i, with the warnings it calls for; false when it would keep no
-  // triangle.
+  // Level i + 1, for request i, with the warnings it calls for (`previousTriangles`: level
+  // i's count); false when it would keep no triangle.
   bool MakeLevel(meshlod::OctreeClustering& clustering,
     const std::vector<LevelRequest>& requests,
     size_t i,
+    vtkIdType previousTriangles,
     meshlod::ClusterLevel& level);
   // The texture atlas of level i + 1 (i from 0), and its points split as the atlas splits them.
   SplitMap BuildAtlas(
@@ -714,14 +715,10 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
   }
   SplitMap previous;
   Id previousPoints = in.Mesh.GetNumberOfPoints();
-  for (size_t i = 0; i < requests.size(); ++i)
+  // Level i + 1 (request i) centred, given its normals and texture and handed to the hierarchy;
+  // false when the execution was aborted.
+  auto emit = [&](meshlod::ClusterLevel& level, size_t i) -> bool
   {
-    meshlod::ClusterLevel level;
-    if (!this->MakeLevel(clustering, requests, i, level))
-    {
-      break;
-    }
-
     if (self->CenterOnInput)
     {
       levelZero.Advance(level.Target);
@@ -774,6 +771,48 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
       this->Textures->Initialize();
       return false;
     }
+    return true;
+  };
+  // With FlipEdges a level waits for the next one before it is flipped and handed over: a flip
+  // is refused where the next level would merge its two triangles into one triangle twice
+  // (OctreeClustering::FlipEdges), which only the next level's clusters tell.
+  meshlod::ClusterLevel waiting;
+  size_t waitingRequest = 0;
+  bool isWaiting = false;
+  vtkIdType previousTriangles = builder.GetLevel(0)->GetNumberOfPolys();
+  for (size_t i = 0; i < requests.size(); ++i)
+  {
+    meshlod::ClusterLevel level;
+    const bool made = this->MakeLevel(clustering, requests, i, previousTriangles, level);
+    if (isWaiting)
+    {
+      clustering.FlipEdges(waiting, made ? &level : nullptr);
+      isWaiting = false;
+      if (!emit(waiting, waitingRequest))
+      {
+        return false;
+      }
+    }
+    if (!made)
+    {
+      break;
+    }
+    previousTriangles = static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles());
+    if (self->FlipEdges)
+    {
+      waiting = std::move(level);
+      waitingRequest = i;
+      isWaiting = true;
+    }
+    else if (!emit(level, i))
+    {
+      return false;
+    }
+  }
+  if (isWaiting)
+  {
+    clustering.FlipEdges(waiting, nullptr);
+    return emit(waiting, waitingRequest);
   }
   return true;
 }
@@ -826,7 +865,6 @@ meshlod::OctreeClusteringOptions vtkVertexClusterOctree::LevelMaker::ClusteringO
   options.MaximumCellSize = self->MaximumCellSize * unit;
   options.MaximumPointsPerCell = self->MaximumPointsPerCell;
   options.RepresentativeIterations = self->RepresentativeIterations;
-  options.FlipEdges = self->FlipEdges;
   options.PreserveTopology = self->PreserveTopology;
   options.BoundaryWeight = self->BoundaryWeight;
   options.OrderFlatClusters = self->LevelMode == TARGET_TRIANGLE_COUNTS;
@@ -837,10 +875,10 @@ meshlod::OctreeClusteringOptions vtkVertexClusterOctree::LevelMaker::ClusteringO
 bool vtkVertexClusterOctree::LevelMaker::MakeLevel(meshlod::OctreeClustering& clustering,
   const std::vector<LevelRequest>& requests,
   size_t i,
+  vtkIdType previousTriangles,
   meshlod::ClusterLevel& level)
 {
   vtkVertexClusterOctree* self = this->Self;
-  const meshlod::HierarchyBuilder& builder = this->Builder;
   // (A count above the input's asks for no change; clamped so that it fits the core's ids.)
   const Id count =
     static_cast<Id>(std::min<vtkIdType>(requests[i].Count, this->In.Mesh.GetNumberOfTriangles()));
@@ -856,8 +894,6 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevel(meshlod::OctreeClustering& cl
   const double asked = std::max(
     requests[i].Epsilon, self->LevelEpsilons.empty() ? 0.0 : self->LevelEpsilons.back());
   self->LevelEpsilons.push_back(level.Epsilon);
-  const vtkIdType previousTriangles =
-    builder.GetLevel(builder.GetNumberOfLevels() - 1)->GetNumberOfPolys();
   if (requests[i].ByCount)
   {
     self->WarnIfCountMissed(static_cast<int>(i + 1), requests[i].Count,

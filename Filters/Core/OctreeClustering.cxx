@@ -103,6 +103,11 @@ bool OctreeClustering::MakeLevel(double epsilon, ClusterLevel& level)
   return true;
 }
 
+void OctreeClustering::FlipEdges(ClusterLevel& level, const ClusterLevel* next) const
+{
+  this->Impl->FlipLevelEdges(level, next != nullptr ? next->Target.data() : nullptr);
+}
+
 bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLevel& level)
 {
   Internals& impl = *this->Impl;

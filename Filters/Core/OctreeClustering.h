@@ -100,10 +100,6 @@ struct VTKFILTERSMESHLOD_EXPORT OctreeClusteringOptions
   /// related triangle set when a node is evaluated), so levels may change topology as vertex
   /// clustering does, and reach counts that those repairs keep far above on rough surfaces.
   bool PreserveTopology = true;
-  /// Flip edges of each committed level towards the input (see TriangulationFlips.h): the same
-  /// points, counts and clusters, closer triangles, but no longer the images of the previous
-  /// level's triangles.
-  bool FlipEdges = false;
   /// Give clusters of zero error thresholds of their own, far below any error that matters
   /// (see UpdateThreshold), so that a search for a triangle count can stop part way through a
   /// flat region. Off, every epsilon merges them all, epsilon 0 included (a lossless reduction
@@ -158,6 +154,15 @@ public:
 
   /// Number of triangles of the current (last made) level.
   Id GetCurrentTriangleCount() const;
+
+  /// Flip edges of `level`, made before, towards the input (see TriangulationFlips.h): the
+  /// same points, counts and clusters, closer triangles, no longer all images of the previous
+  /// level's triangles. `next` is the level made after it (its Target gives where level's
+  /// points go), or null for the last level: no flip makes two triangles that become one
+  /// triangle twice in the next level. The next level is cut from `level`'s triangles as they
+  /// were made, so a level is flipped once the next one exists (the images of the flipped
+  /// triangles are known then) and flips change nothing the later levels are made from.
+  void FlipEdges(ClusterLevel& level, const ClusterLevel* next) const;
 
   // Statistics, valid after BuildTree().
   Id GetNumberOfInternalNodes() const;

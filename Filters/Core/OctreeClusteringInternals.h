@@ -388,10 +388,11 @@ struct OctreeClustering::Internals
     ClusterLevel& level) const;
   void SetSources(
     const octree::Synthesis& s, const std::vector<Id>& newId, Id points, ClusterLevel& level) const;
-  // Makes the chosen level the current one, then flips its edges towards the input
-  // (Options.FlipEdges).
+  // Makes the chosen level the current one.
   void Commit(ClusterLevel& level);
-  void FlipLevelEdges(ClusterLevel& level) const;
+  // OctreeClustering::FlipEdges; `nextTarget`: per point of the level, its point in the next
+  // level, or null.
+  void FlipLevelEdges(ClusterLevel& level, const Id* nextTarget) const;
 };
 
 } // namespace meshlod

@@ -5,6 +5,8 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <array>
+#include <memory>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -603,8 +605,127 @@ void JudgeEdges(const TriangleMesh& level, const TriangleTopology& topology,
 // triangles around an untouched vertex are as they were judged, so is every edge test below.
 // The triangles flipped are marked in `changedNext` (and listed in `flipped`, when given);
 // returns the number of flips.
+// How many triangles of a level have each image in the next level (TriangulationFlipOptions::
+// NextTarget): a flat open-addressing table of sorted point triples, degenerate images (which
+// vanish) left out.
+class ImageCounts
+{
+public:
+  using Key = std::array<Id, 3>;
+
+  ImageCounts(const TriangleMesh& level, const Id* nextTarget)
+    : NextTarget(nextTarget)
+  {
+    this->Resize(2 * static_cast<size_t>(level.GetNumberOfTriangles()) + 16);
+    for (Id t = 0; t < level.GetNumberOfTriangles(); ++t)
+    {
+      this->Add(level.Triangle(t), 1);
+    }
+  }
+  // The image of triangle `corners`; false when it is degenerate.
+  bool Image(const Id* corners, Key& key) const
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      key[i] = this->NextTarget[corners[i]];
+    }
+    std::sort(key.begin(), key.end());
+    return key[0] != key[1] && key[1] != key[2];
+  }
+  int Count(const Key& key) const { return this->Slots[this->Find(key)].Count; }
+  void Add(const Id* corners, int delta)
+  {
+    Key key;
+    if (!this->Image(corners, key))
+    {
+      return;
+    }
+    Slot* slot = &this->Slots[this->Find(key)];
+    if (slot->Triple[0] == InvalidId)
+    {
+      if (2 * (this->Used + 1) > this->Slots.size())
+      {
+        this->Resize(2 * this->Slots.size());
+        slot = &this->Slots[this->Find(key)];
+      }
+      slot->Triple = key;
+      ++this->Used;
+    }
+    slot->Count += delta;
+  }
+
+private:
+  struct Slot
+  {
+    Key Triple{ { InvalidId, InvalidId, InvalidId } };
+    int Count = 0;
+  };
+  // The slot holding `key`, or the empty one where it would go.
+  size_t Find(const Key& key) const
+  {
+    const size_t mask = this->Slots.size() - 1;
+    size_t i = (static_cast<size_t>(key[0]) * 0x9e3779b97f4a7c15ull ^
+                 static_cast<size_t>(key[1]) * 0xc2b2ae3d27d4eb4full ^
+                 static_cast<size_t>(key[2]) * 0x165667b19e3779f9ull) >>
+      17;
+    for (i &= mask; this->Slots[i].Triple[0] != InvalidId && this->Slots[i].Triple != key;
+         i = (i + 1) & mask)
+    {
+    }
+    return i;
+  }
+  void Resize(size_t atLeast)
+  {
+    size_t size = 16;
+    while (size < atLeast)
+    {
+      size *= 2;
+    }
+    std::vector<Slot> old(size);
+    old.swap(this->Slots);
+    for (const Slot& slot : old)
+    {
+      if (slot.Triple[0] != InvalidId)
+      {
+        this->Slots[this->Find(slot.Triple)] = slot;
+      }
+    }
+  }
+
+  const Id* NextTarget;
+  std::vector<Slot> Slots;
+  size_t Used = 0;
+};
+
+// Whether replacing triangles `t` and `u` by `made` (two triangles) gives a triangle the image
+// of another one (see ImageCounts).
+bool FlipDoublesImage(const ImageCounts& images, const Id* t, const Id* u, const Id made[2][3])
+{
+  ImageCounts::Key mine[2], before[2];
+  const bool had[2] = { images.Image(t, before[0]), images.Image(u, before[1]) };
+  const bool has[2] = { images.Image(made[0], mine[0]), images.Image(made[1], mine[1]) };
+  if (has[0] && has[1] && mine[0] == mine[1])
+  {
+    return true;
+  }
+  for (int i = 0; i < 2; ++i)
+  {
+    if (has[i])
+    {
+      int others = images.Count(mine[i]);
+      others -= (had[0] && before[0] == mine[i]) ? 1 : 0;
+      others -= (had[1] && before[1] == mine[i]) ? 1 : 0;
+      if (others > 0)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 Id MakeFlips(TriangleMesh& level, const TriangleTopology& topology, std::vector<float>& gain,
-  std::vector<std::uint8_t>& changedNext, std::vector<Id>* flipped)
+  std::vector<std::uint8_t>& changedNext, std::vector<Id>* flipped, ImageCounts* images)
 {
   std::vector<Id> candidates;
   for (Id e = 0; e < 3 * level.GetNumberOfTriangles(); ++e)
@@ -627,13 +748,22 @@ Id MakeFlips(TriangleMesh& level, const TriangleTopology& topology, std::vector<
     const Id u = topology.EdgeNeighbors[e];
     const Id a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
     const Id d = OppositeOfReversed(level.Triangle(u), a, b);
+    const Id after[2][3] = { { c, a, d }, { d, b, c } };
     if (d == InvalidId || used[a] || used[b] || used[c] || used[d] ||
-      HasEdge(level, topology.VertexTriangles, c, d))
+      HasEdge(level, topology.VertexTriangles, c, d) ||
+      (images != nullptr && FlipDoublesImage(*images, tri, level.Triangle(u), after)))
     {
       continue;
     }
-    const Id flippedT[3] = { c, a, d };
-    const Id flippedU[3] = { d, b, c };
+    if (images != nullptr)
+    {
+      images->Add(tri, -1);
+      images->Add(level.Triangle(u), -1);
+      images->Add(after[0], 1);
+      images->Add(after[1], 1);
+    }
+    const Id* flippedT = after[0];
+    const Id* flippedU = after[1];
     std::copy_n(flippedT, 3, tri);
     std::copy_n(flippedU, 3, level.Triangle(u));
     used[a] = used[b] = used[c] = used[d] = 1;
@@ -659,6 +789,11 @@ Id MakeSweeps(TriangleMesh& level, const Judge& judge, const TriangulationFlipOp
   // A judgement depends on the quad's four points only: after the first sweep only the edges of
   // the triangles a flip changed are judged again.
   std::vector<std::uint8_t> changed(nt, 1), changedNext(nt, 0);
+  std::unique_ptr<ImageCounts> images;
+  if (options.NextTarget != nullptr)
+  {
+    images.reset(new ImageCounts(level, options.NextTarget));
+  }
   Id flips = 0;
   for (int sweep = 0; sweep < options.MaximumSweeps; ++sweep)
   {
@@ -666,7 +801,7 @@ Id MakeSweeps(TriangleMesh& level, const Judge& judge, const TriangulationFlipOp
     topology.Build(level);
     JudgeEdges(level, topology, judge, options, changed, gain);
     std::fill(changedNext.begin(), changedNext.end(), 0);
-    const Id made = MakeFlips(level, topology, gain, changedNext, flipped);
+    const Id made = MakeFlips(level, topology, gain, changedNext, flipped, images.get());
     flips += made;
     changed.swap(changedNext);
     if (made == 0)

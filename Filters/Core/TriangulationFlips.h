@@ -59,7 +59,17 @@ struct VTKFILTERSMESHLOD_EXPORT TriangulationFlipOptions
   /// the error bound apart: a flip between closer ones changes the error by less (on a
   /// 611k-triangle gyroid a tenth less time for the same flips).
   double MinimumSeparation = 0.1;
+  /// When given: per point of the level, the point of the next level it becomes (the next
+  /// level cut from the level's triangles as they were before the flips). A flip is then also
+  /// refused when a triangle it makes would have the image, in the next level, of another
+  /// triangle of the level (its three points merged onto the same three points: one triangle
+  /// twice, a fin a geomorph towards the next level would pass through). Where the next level
+  /// merges the ends of the old diagonal but not those of the new one, the two new triangles
+  /// are such a pair; on a small closed piece that the next level makes a tetrahedron, a flip
+  /// can give two faces each twice.
+  const Id* NextTarget = nullptr;
 };
+
 
 /// Flip edges of `level` towards `input` (see above; read in place, LevelZeroView.h).
 /// `startVertex[p]` is an input vertex near level point p (of the input part p represents);
