@@ -44,8 +44,8 @@
  * no such second part: between a flipped level's last counts and its own, the quads' diagonals
  * turn at once (by 1.7% of the diagonal on a gyroid's coarse level). A level that differs in any other way (as
  * with vtkVertexClusterOctree's FlipEdges, whose next level is cut from the unflipped clusters)
- * is left as it was: as t -> 1 the output tends to the images (no two of which are the same
- * triangle: the octree refuses flips that would make such a pair), and at L = i + 1 it jumps to
+ * is left as it was: as t -> 1 the output tends to the images (no flip makes two of them the
+ * same triangle: the octree refuses such flips), and at L = i + 1 it jumps to
  * level i + 1 where quads were flipped, by 0.5-1.9 times the level's own Hausdorff distance to the input on the
  * benchmark isosurfaces (see the octree's FlipEdges).
  *

@@ -528,6 +528,31 @@ bool vtkVertexClusterOctree::CheckSettings()
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// Whether `level` is `previous` again: the same points, each its own target, and as many
+// triangles (the octree repeats a level whose epsilon merges nothing more).
+bool RepeatsLevel(const meshlod::ClusterLevel& level, const meshlod::ClusterLevel& previous)
+{
+  const Id points = previous.Mesh.GetNumberOfPoints();
+  if (level.Mesh.GetNumberOfPoints() != points ||
+    level.Mesh.GetNumberOfTriangles() != previous.Mesh.GetNumberOfTriangles() ||
+    level.Target.size() != static_cast<size_t>(points))
+  {
+    return false;
+  }
+  for (Id p = 0; p < points; ++p)
+  {
+    if (level.Target[p] != p)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 // The levels after level 0, RequestData's second half: the octree of the input, then each
 // requested level made, checked against its request and handed to the hierarchy with its
 // normals, texture atlas and baked texture. (Nested in the filter so that it reads the filter's
@@ -775,46 +800,47 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
   };
   // With FlipEdges a level waits for the next one before it is flipped and handed over: a flip
   // is refused where the next level would merge its two triangles into one triangle twice
-  // (OctreeClustering::FlipEdges), which only the next level's clusters tell.
-  meshlod::ClusterLevel waiting;
-  size_t waitingRequest = 0;
-  bool isWaiting = false;
-  vtkIdType previousTriangles = builder.GetLevel(0)->GetNumberOfPolys();
-  for (size_t i = 0; i < requests.size(); ++i)
+  // (OctreeClustering::FlipEdges), which only the next level's clusters tell. A level that
+  // repeats the one before (an epsilon that merges nothing more) waits with it, so that all of
+  // them get the same flips, those the next different level allows (no jump between them).
+  std::vector<std::pair<meshlod::ClusterLevel, size_t>> waiting; // level, request
+  const auto handOver = [&](const meshlod::ClusterLevel* next) -> bool
   {
-    meshlod::ClusterLevel level;
-    const bool made = this->MakeLevel(clustering, requests, i, previousTriangles, level);
-    if (isWaiting)
+    for (auto& held : waiting)
     {
-      clustering.FlipEdges(waiting, made ? &level : nullptr);
-      isWaiting = false;
-      if (!emit(waiting, waitingRequest))
+      clustering.FlipEdges(held.first, next);
+      if (!emit(held.first, held.second))
       {
         return false;
       }
     }
-    if (!made)
+    waiting.clear();
+    return true;
+  };
+  vtkIdType previousTriangles = builder.GetLevel(0)->GetNumberOfPolys();
+  for (size_t i = 0; i < requests.size(); ++i)
+  {
+    meshlod::ClusterLevel level;
+    if (!this->MakeLevel(clustering, requests, i, previousTriangles, level))
     {
       break;
     }
     previousTriangles = static_cast<vtkIdType>(level.Mesh.GetNumberOfTriangles());
-    if (self->FlipEdges)
+    if (!self->FlipEdges)
     {
-      waiting = std::move(level);
-      waitingRequest = i;
-      isWaiting = true;
+      if (!emit(level, i))
+      {
+        return false;
+      }
+      continue;
     }
-    else if (!emit(level, i))
+    if (!waiting.empty() && !RepeatsLevel(level, waiting.back().first) && !handOver(&level))
     {
       return false;
     }
+    waiting.emplace_back(std::move(level), i);
   }
-  if (isWaiting)
-  {
-    clustering.FlipEdges(waiting, nullptr);
-    return emit(waiting, waitingRequest);
-  }
-  return true;
+  return handOver(nullptr);
 }
 
 //------------------------------------------------------------------------------

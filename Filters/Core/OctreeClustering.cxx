@@ -105,7 +105,9 @@ bool OctreeClustering::MakeLevel(double epsilon, ClusterLevel& level)
 
 void OctreeClustering::FlipEdges(ClusterLevel& level, const ClusterLevel* next) const
 {
-  this->Impl->FlipLevelEdges(level, next != nullptr ? next->Target.data() : nullptr);
+  const bool follows = next != nullptr &&
+    next->Target.size() == static_cast<size_t>(level.Mesh.GetNumberOfPoints());
+  this->Impl->FlipLevelEdges(level, follows ? next->Target.data() : nullptr);
 }
 
 bool OctreeClustering::MakeLevelForTriangleCount(Id targetTriangles, ClusterLevel& level)

@@ -157,11 +157,13 @@ public:
 
   /// Flip edges of `level`, made before, towards the input (see TriangulationFlips.h): the
   /// same points, counts and clusters, closer triangles, no longer all images of the previous
-  /// level's triangles. `next` is the level made after it (its Target gives where level's
-  /// points go), or null for the last level: no flip makes two triangles that become one
-  /// triangle twice in the next level. The next level is cut from `level`'s triangles as they
-  /// were made, so a level is flipped once the next one exists (the images of the flipped
-  /// triangles are known then) and flips change nothing the later levels are made from.
+  /// level's triangles. `next` is the level made right after it (its Target gives where
+  /// level's points go), or null for the last level (a `next` whose Target does not have one
+  /// entry per point of `level` counts as null). With `next`, no flip makes two triangles that
+  /// become one triangle twice in the next level. The next level is cut from `level`'s
+  /// triangles as they were made, so a level is flipped once the next one exists (the images of
+  /// the flipped triangles are known then) and flips change nothing the later levels are made
+  /// from.
   void FlipEdges(ClusterLevel& level, const ClusterLevel* next) const;
 
   // Statistics, valid after BuildTree().

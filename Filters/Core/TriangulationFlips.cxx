@@ -6,10 +6,10 @@
 
 #include <algorithm>
 #include <array>
-#include <memory>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <utility>
 
 namespace meshlod
@@ -601,10 +601,6 @@ void JudgeEdges(const TriangleMesh& level, const TriangleTopology& topology,
     });
 }
 
-// The flips judged worth making, best gain first, at most one per vertex and sweep: the
-// triangles around an untouched vertex are as they were judged, so is every edge test below.
-// The triangles flipped are marked in `changedNext` (and listed in `flipped`, when given);
-// returns the number of flips.
 // How many triangles of a level have each image in the next level (TriangulationFlipOptions::
 // NextTarget): a flat open-addressing table of sorted point triples, degenerate images (which
 // vanish) left out.
@@ -724,6 +720,11 @@ bool FlipDoublesImage(const ImageCounts& images, const Id* t, const Id* u, const
   return false;
 }
 
+// The flips judged worth making, best gain first, at most one per vertex and sweep: the
+// triangles around an untouched vertex are as they were judged, so is every edge test below.
+// The triangles flipped are marked in `changedNext` (and listed in `flipped`, when given). With
+// `images`, a flip whose triangle would have the image of another is refused, and the counts
+// follow the flips made. Returns the number of flips.
 Id MakeFlips(TriangleMesh& level, const TriangleTopology& topology, std::vector<float>& gain,
   std::vector<std::uint8_t>& changedNext, std::vector<Id>* flipped, ImageCounts* images)
 {
@@ -762,10 +763,8 @@ Id MakeFlips(TriangleMesh& level, const TriangleTopology& topology, std::vector<
       images->Add(after[0], 1);
       images->Add(after[1], 1);
     }
-    const Id* flippedT = after[0];
-    const Id* flippedU = after[1];
-    std::copy_n(flippedT, 3, tri);
-    std::copy_n(flippedU, 3, level.Triangle(u));
+    std::copy_n(after[0], 3, tri);
+    std::copy_n(after[1], 3, level.Triangle(u));
     used[a] = used[b] = used[c] = used[d] = 1;
     changedNext[t] = changedNext[u] = 1;
     if (flipped)

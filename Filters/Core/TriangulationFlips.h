@@ -23,7 +23,8 @@
 // or non-manifold edge; and when the old error is at rounding level (nothing to gain) or beyond
 // twice the level's largest cluster error (the walk is lost: on an extruded text it found points of
 // a neighbouring letter's wall), or when the two configurations lie within a tenth of that error of
-// each other (too close to matter).
+// each other (too close to matter); and, given the next level's targets, when a new triangle would
+// become there the same triangle as another one (TriangulationFlipOptions::NextTarget).
 //
 // Only edges whose two facing angles (at c and d) add up to MinimumOppositeAngles or more are
 // judged: below that the flip would make an obtuse triangle (in a flat quad the angles at a and
@@ -69,7 +70,6 @@ struct VTKFILTERSMESHLOD_EXPORT TriangulationFlipOptions
   /// can give two faces each twice.
   const Id* NextTarget = nullptr;
 };
-
 
 /// Flip edges of `level` towards `input` (see above; read in place, LevelZeroView.h).
 /// `startVertex[p]` is an input vertex near level point p (of the input part p represents);

@@ -566,7 +566,7 @@ vtkIdType CountDoubledImages(vtkPolyData* level)
 // one triangle twice (a fin the geomorph passed through towards the next level). A gyroid of
 // 22,550 triangles with eight levels of epsilon 0.002 x 2^i had 16 such pairs (10 between
 // levels 1 and 2); none now, and the geomorph's exact counts between the first two simplified
-// levels are valid meshes.
+// levels are valid meshes. A repeated level is flipped as the level it repeats.
 void TestOctreeFlipsKeepImagesApart()
 {
   vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Gyroid, 40);
@@ -585,6 +585,31 @@ void TestOctreeFlipsKeepImagesApart()
     MESHLOD_CHECK_EQ(CountDoubledImages(testing::Level(hierarchy, i)), 0);
   }
   MESHLOD_CHECK_GT(testing::CountCorrespondenceViolations(hierarchy), 0); // still flipped
+
+  // A level that repeats the one before (an epsilon that merges nothing more) waits with it for
+  // the next different level: both get the same flips.
+  vtkNew<vtkVertexClusterOctree> repeating;
+  repeating->SetInputData(mesh);
+  repeating->SetLevelModeToEpsilonList();
+  for (const double epsilon : { 0.004, 0.004 * (1.0 + 1e-9), 0.008, 0.016 })
+  {
+    repeating->AddEpsilonValue(epsilon);
+  }
+  repeating->FlipEdgesOn();
+  repeating->Update();
+  vtkMultiBlockDataSet* repeated = repeating->GetHierarchy();
+  MESHLOD_CHECK_EQ(repeated->GetNumberOfBlocks(), 5u);
+  if (repeated->GetNumberOfBlocks() == 5)
+  {
+    MESHLOD_CHECK_EQ(testing::Level(repeated, 1)->GetNumberOfPolys(),
+      testing::Level(repeated, 2)->GetNumberOfPolys());
+    MESHLOD_CHECK(testing::SameMesh(testing::Level(repeated, 1), testing::Level(repeated, 2)));
+    for (unsigned int i = 0; i < 4; ++i)
+    {
+      MESHLOD_CHECK_EQ(CountDoubledImages(testing::Level(repeated, i)), 0);
+    }
+  }
+
   vtkNew<vtkLODGeomorph> morph;
   morph->SetInputData(hierarchy);
   morph->UsePipelineTimeOff();
