@@ -58,7 +58,14 @@ from vtkmodules.vtkFiltersSources import (
 from vtkmodules.vtkImagingHybrid import vtkSampleFunction
 
 import meshlod
-from meshlod_testing import check, finish, triangles_of
+from meshlod_testing import (
+    check,
+    edge_counts,
+    finish,
+    first_nonfinite_point,
+    morph_target_ids,
+    triangles_of,
+)
 
 
 def prepared(source, subdivisions=0):
@@ -244,8 +251,7 @@ def open_shape(r):
 
 
 def inspect(mesh):
-    """Degenerate and duplicate triangles (either order), directed edge uses, and whether every
-    point is finite."""
+    """Degenerate and duplicate triangles (either order), and the uses of each directed edge."""
     flat = triangles_of(mesh)
     degenerate = duplicates = 0
     seen, directed = set(), {}
@@ -260,33 +266,26 @@ def inspect(mesh):
         for k in range(3):
             edge = (corners[k], corners[(k + 1) % 3])
             directed[edge] = directed.get(edge, 0) + 1
-    finite = all(math.isfinite(x) for i in range(mesh.GetNumberOfPoints()) for x in mesh.GetPoint(i))
-    return degenerate, duplicates, directed, finite
+    return degenerate, duplicates, directed
 
 
 def closed_manifold(directed):
     return all(uses == 1 and directed.get((b, a), 0) == 1 for (a, b), uses in directed.items())
 
 
-def most_uses(directed):
-    undirected = {}
-    for (a, b), uses in directed.items():
-        key = (min(a, b), max(a, b))
-        undirected[key] = undirected.get(key, 0) + uses
-    return max(undirected.values()) if undirected else 0
+def most_uses(mesh):
+    """The most triangles any edge has."""
+    return max(edge_counts(mesh)[0], default=0)
 
 
-def euler_minus_pieces(mesh, directed):
-    """V - E + F over the points triangles use, less twice the connected pieces: what the genus
-    fixes, whatever pieces vanish."""
-    used = {p for edge in directed for p in edge}
-    edges = {(min(a, b), max(a, b)) for a, b in directed}
-    faces = len(directed) // 3
+def euler_and_genus_term(mesh):
+    """V - E + F over the points triangles use, and that less twice the connected pieces: what
+    the genus fixes, whatever pieces vanish."""
+    euler = edge_counts(mesh)[1]
     pieces = vtkPolyDataConnectivityFilter()
     pieces.SetInputData(mesh)
     pieces.SetExtractionModeToAllRegions()
     pieces.Update()
-    euler = len(used) - len(edges) + faces
     return euler, euler - 2 * pieces.GetNumberOfExtractedRegions()
 
 
@@ -328,12 +327,12 @@ def configured(r, mesh, preserve):
 def try_shape(seed, closed):
     r = random.Random(seed)
     name, mesh = closed_shape(r) if closed else open_shape(r)
-    degenerate, duplicates, directed, _ = inspect(mesh)
+    degenerate, duplicates, directed = inspect(mesh)
     if mesh.GetNumberOfPolys() < 4 or degenerate or (closed and not closed_manifold(directed)):
         return False  # (a source's output that is not what the kind promises: not tried)
     preserve = closed or r.random() < 0.6
-    allowed = most_uses(directed)
-    euler, genus_term = euler_minus_pieces(mesh, directed)
+    allowed = most_uses(mesh)
+    euler, genus_term = euler_and_genus_term(mesh)
     f = configured(r, mesh, preserve)
     octree = isinstance(f, meshlod.vtkVertexClusterOctree)
     hierarchy = f.GetHierarchy()
@@ -344,19 +343,21 @@ def try_shape(seed, closed):
         return True
 
     def check_mesh(level, where):
-        degenerate, duplicates, directed, finite = inspect(level)
-        check(finite and degenerate == 0, "%s, %s: finite, no degenerate triangle" % (what, where))
+        degenerate, duplicates, directed = inspect(level)
+        check(first_nonfinite_point(level) < 0 and degenerate == 0,
+              "%s, %s: finite, no degenerate triangle" % (what, where))
         if not preserve:
             return
         check(duplicates == 0, "%s, %s: no duplicate triangle (%d)" % (what, where, duplicates))
         if closed:
             check(closed_manifold(directed), "%s, %s: a closed manifold" % (what, where))
-            level_euler, level_genus = euler_minus_pieces(level, directed)
+            level_euler, level_genus = euler_and_genus_term(level)
             check(level_euler == euler if not octree else level_genus == genus_term,
                   "%s, %s: Euler characteristic %d (input %d)" % (what, where, level_euler, euler))
         else:
-            check(most_uses(directed) <= allowed, "%s, %s: no edge in more triangles than the "
-                  "input's (%d > %d)" % (what, where, most_uses(directed), allowed))
+            uses = most_uses(level)
+            check(uses <= allowed, "%s, %s: no edge in more triangles than the input's (%d > %d)"
+                  % (what, where, uses, allowed))
 
     levels = hierarchy.GetNumberOfBlocks()
     for i in range(levels):
@@ -368,10 +369,10 @@ def try_shape(seed, closed):
             check(count < before or (octree and count == before),
                   "%s: level %d has %d triangles after %d" % (what, i, count, before))
         if i + 1 < levels:
-            targets = level.GetPointData().GetArray("MorphTargetId")
+            targets = morph_target_ids(level)
             points = hierarchy.GetBlock(i + 1).GetNumberOfPoints()
-            check(targets is not None and all(0 <= targets.GetTuple1(p) < points
-                                              for p in range(level.GetNumberOfPoints())),
+            check(targets is not None and len(targets) == level.GetNumberOfPoints() and
+                  all(0 <= v < points for v in targets),
                   "%s: level %d's MorphTargetId within level %d's points" % (what, i, i + 1))
     if levels > 1 and preserve:
         morph = meshlod.vtkLODGeomorph()

@@ -6,15 +6,13 @@ kinds of edges, the curves), the coarsest must reach its target (the octree: com
 without the error of a level that crushes the sheets), and vtkLODGeomorph must give exact
 counts between the levels."""
 
-from collections import Counter
-
 from vtkmodules.vtkCommonCore import vtkShortArray
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData
 from vtkmodules.vtkFiltersGeneral import vtkDiscreteFlyingEdges3D
 
 import meshlod
-from meshlod_testing import check, finish
+from meshlod_testing import check, edge_counts, finish
 
 
 
@@ -44,19 +42,6 @@ def labelled_balls(size):
                 index += 1
     image.GetPointData().SetScalars(labels)
     return image
-
-
-def edge_counts(poly):
-    """Triangles per edge, and the Euler characteristic over the points in use."""
-    ids = poly.GetPolys().GetConnectivityArray()
-    corners = [int(ids.GetTuple1(i)) for i in range(ids.GetNumberOfTuples())]
-    edges = Counter()
-    for t in range(0, len(corners), 3):
-        a, b, c = corners[t:t + 3]
-        for u, v in ((a, b), (b, c), (c, a)):
-            edges[(min(u, v), max(u, v))] += 1
-    euler = len(set(corners)) - len(edges) + len(corners) // 3
-    return Counter(edges.values()), euler
 
 
 def check_topology(levels, name):
