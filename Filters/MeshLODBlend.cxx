@@ -394,7 +394,10 @@ void BlendPointData(
     {
       continue;
     }
-    vtkAbstractArray* b = a == plan.Unblended ? nullptr : Counterpart(coarse, a);
+    // Global ids keep the finer level's values: switched to the coarser level's, the points
+    // that merge into one would share its id, and global ids must be unique.
+    const bool own = a == plan.Unblended || a == fine->GetGlobalIds();
+    vtkAbstractArray* b = own ? nullptr : Counterpart(coarse, a);
     vtkSmartPointer<vtkAbstractArray> result;
     if (sameRows && (plan.Weight == 0.0 || !b || (!IsReal(a) && plan.Weight < 0.5)))
     {

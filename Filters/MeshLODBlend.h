@@ -59,8 +59,9 @@ VTKFILTERSMESHLOD_EXPORT vtkSmartPointer<vtkAbstractArray> SwitchArray(
 
 /// Every array of `fine` except the morph arrays, blended with the array of the same name and
 /// number of components in `coarse` (floating-point arrays blended, the others switched; an
-/// array `coarse` lacks keeps the finer level's values). Attributes are kept; Normals are
-/// renormalised. Arrays are shared, not copied, wherever the output equals them.
+/// array `coarse` lacks keeps the finer level's values, and so does the GlobalIds attribute,
+/// which must stay unique). Attributes are kept; Normals are renormalised. Arrays are shared,
+/// not copied, wherever the output equals them.
 VTKFILTERSMESHLOD_EXPORT void BlendPointData(
   vtkPointData* fine, vtkPointData* coarse, const BlendPlan& plan, vtkPointData* out);
 

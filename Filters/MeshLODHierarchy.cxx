@@ -266,8 +266,12 @@ vtkSmartPointer<vtkIdList> Iota(vtkIdType count)
   return list;
 }
 
+// The tuples fromIds of every array, attributes kept. Global ids too, which CopyAllocate's
+// default flags leave out (they must stay unique): every use here takes each tuple at most once
+// (a level's points from distinct input points, its triangles from distinct level-0 triangles).
 void CopySubset(vtkDataSetAttributes* from, vtkIdList* fromIds, vtkDataSetAttributes* to)
 {
+  to->SetCopyGlobalIds(1, vtkDataSetAttributes::COPYTUPLE);
   to->CopyAllocate(from, fromIds->GetNumberOfIds());
   to->CopyData(from, fromIds, Iota(fromIds->GetNumberOfIds()));
 }

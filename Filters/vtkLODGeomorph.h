@@ -151,8 +151,9 @@
  * attribute is renormalised. Integer and string arrays (ids, labels, categories) are not
  * interpolated: a point takes level i + 1's value from t >= 0.5 on, level i's before (in the
  * exact-count mode: once it has settled, or moved at least half way). An array level i + 1
- * lacks keeps level i's values. The morph arrays themselves are not passed. Cell data: level
- * i's, for the triangles kept. Field data: LevelOfDetail (double), the L produced (for an
+ * lacks keeps level i's values, and so does the GlobalIds attribute (switched, the points that
+ * merge would share one id; global ids must stay unique). The morph arrays themselves are not
+ * passed. Cell data: level i's, for the triangles kept (global ids included). Field data: LevelOfDetail (double), the L produced (for an
  * exact count: i + the fraction of level i's steps applied, just below i + 1 when all are).
  *
  * @par Time

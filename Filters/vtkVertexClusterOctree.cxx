@@ -289,6 +289,12 @@ void SetLevelTCoords(vtkPolyData* poly,
     }
   }
   poly->GetPointData()->SetTCoords(tcoords);
+  // The atlas splits points into copies that share their point data: a GlobalIds attribute,
+  // which promises one point per id, stays as a plain array of the same name.
+  if (poly->GetPointData()->GetGlobalIds())
+  {
+    poly->GetPointData()->SetActiveAttribute(-1, vtkDataSetAttributes::GLOBALIDS);
+  }
 }
 } // namespace
 

@@ -183,7 +183,9 @@
  * Output port 0: the shared MeshLOD hierarchy (see MeshLODHierarchy.h): a vtkMultiBlockDataSet
  * with block i = level i named "Level i"; every point-data array of the input is carried to
  * every level (floating-point arrays averaged over the cluster's input vertices, integer arrays
- * from the dominant one), cell data from the input triangle each triangle descends from, field
+ * from the dominant one: the GlobalIds attribute stays unique, unless BakeTexture splits the
+ * points, see below), cell data from the input triangle each triangle descends from (its
+ * GlobalIds included), field
  * data LevelIndex, NumberOfTriangles, EstimatedError (the largest cluster error of the level)
  * and, with MeasureLevelErrors, MeasuredHausdorff and MeasuredRMS, plus the input's field-data
  * arrays (shared; one named like any of these or TextureAtlasLevel is left out, so a level
@@ -200,7 +202,9 @@
  * Each texel takes the colour of the nearest point of the input surface: the colour array
  * interpolated there, or the input texture looked up at the interpolated texture coordinates.
  * The level's points are then split per texture square (so MorphTargetId refers to the first
- * copy of each point) and get texture coordinates as their TCoords attribute; the level's field
+ * copy of each point; the copies share their point data, so an input GlobalIds attribute, which
+ * promises one point per id, stays there as a plain array of that name) and get texture
+ * coordinates as their TCoords attribute; the level's field
  * data TextureAtlasLevel gives the index of the texture they address (vtkLODGeomorph keeps such
  * coordinates unblended, the finer level's, for the finer level's texture). Without
  * BakeTexture, colours and texture coordinates are averaged per vertex like any point array.

@@ -16,6 +16,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkGenericCell.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkImageShiftScale.h"
 #include "vtkLookupTable.h"
@@ -39,6 +40,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <set>
 #include <vector>
 
@@ -460,6 +462,11 @@ void TestColorArray()
   vtkSmartPointer<vtkPolyData> mesh = testing::MakeIsosurface(testing::Field::Metaballs, 60);
   vtkSmartPointer<vtkUnsignedCharArray> colors = ColorPoints(mesh, 1.5,
     [](const double* x) { return std::sin(9.0 * x[0]) * std::cos(7.0 * x[1]) + x[2]; }, true);
+  vtkNew<vtkIdTypeArray> globalIds;
+  globalIds->SetName("GlobalIds");
+  globalIds->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  std::iota(globalIds->Begin(), globalIds->End(), vtkIdType(100));
+  mesh->GetPointData()->SetGlobalIds(globalIds);
 
   const vtkIdType n = mesh->GetNumberOfPolys();
   vtkNew<vtkVertexClusterOctree> filter;
@@ -489,7 +496,13 @@ void TestColorArray()
     MESHLOD_CHECK_LE(
       std::abs(level->GetNumberOfPolys() - (i == 1 ? n / 20 : n / 100)), 2 + n / 5000);
     CheckAtlas(level, texture);
+    // The copies of a split point share its global id: the values stay, the GlobalIds
+    // attribute (one point per id) does not.
+    MESHLOD_CHECK(level->GetPointData()->GetGlobalIds() == nullptr);
+    MESHLOD_CHECK(vtkIdTypeArray::SafeDownCast(level->GetPointData()->GetArray("GlobalIds")));
   }
+  MESHLOD_CHECK(
+    vtkPolyData::SafeDownCast(h->GetBlock(0))->GetPointData()->GetGlobalIds() == globalIds);
 
   // The coarsest level's baked texture against per-vertex averaging at the same level.
   auto* level = vtkPolyData::SafeDownCast(h->GetBlock(2));

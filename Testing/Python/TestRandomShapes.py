@@ -14,9 +14,12 @@ PreserveTopology on no level and no geomorph count may have a degenerate or dupl
 or an edge in more triangles than any edge of the input; with it off, no degenerate triangle.
 Always: finite points, triangle counts falling from level to level (the octree may repeat a
 level), MorphTargetId within the next level's points, and the geomorph never above the count
-asked. (The octree's FlipEdges once gave its levels triangles that the next level merged into
+asked; the input's point and cell GlobalIds attributes present and unique on every level and in
+every geomorph output. (The octree's FlipEdges once gave its levels triangles that the next level merged into
 one triangle twice, which the geomorph's exact counts showed as duplicate triangles: seed 63 of
-the open shapes, a gyroid isosurface, failed.)
+the open shapes, a gyroid isosurface, failed. Cell global ids were once dropped from every
+coarser level, point global ids from every level of an input whose seams were stitched, and the
+geomorph gave the points that merge one id.)
 
     TestRandomShapes.py [seeds]   (shapes of each kind to try, default 100: under 20 seconds)
 """
@@ -25,7 +28,7 @@ import math
 import random
 import sys
 
-from vtkmodules.vtkCommonCore import vtkFloatArray, vtkObject, vtkPoints
+from vtkmodules.vtkCommonCore import vtkFloatArray, vtkIdTypeArray, vtkObject, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkBox, vtkCellArray, vtkImageData, vtkPolyData, vtkSphere
 from vtkmodules.vtkCommonComputationalGeometry import (
     vtkParametricEllipsoid,
@@ -269,6 +272,28 @@ def inspect(mesh):
     return degenerate, duplicates, directed
 
 
+def add_global_ids(mesh):
+    """Point and cell GlobalIds attributes, distinct values far from the indices."""
+    for data, count in ((mesh.GetPointData(), mesh.GetNumberOfPoints()),
+                        (mesh.GetCellData(), mesh.GetNumberOfCells())):
+        ids = vtkIdTypeArray()
+        ids.SetName("GlobalIds")
+        ids.SetNumberOfTuples(count)
+        for i in range(count):
+            ids.SetValue(i, 1000 + 3 * i)
+        data.SetGlobalIds(ids)
+
+
+def unique_global_ids(poly):
+    """Whether the points and the cells have a GlobalIds attribute without repeated values."""
+    for data in (poly.GetPointData(), poly.GetCellData()):
+        ids = data.GetGlobalIds()
+        if ids is None or len({ids.GetValue(i) for i in range(ids.GetNumberOfTuples())}) != \
+                ids.GetNumberOfTuples():
+            return False
+    return True
+
+
 def closed_manifold(directed):
     return all(uses == 1 and directed.get((b, a), 0) == 1 for (a, b), uses in directed.items())
 
@@ -331,6 +356,7 @@ def try_shape(seed, closed):
     if mesh.GetNumberOfPolys() < 4 or degenerate or (closed and not closed_manifold(directed)):
         return False  # (a source's output that is not what the kind promises: not tried)
     preserve = closed or r.random() < 0.6
+    add_global_ids(mesh)
     allowed = most_uses(mesh)
     euler, genus_term = euler_and_genus_term(mesh)
     f = configured(r, mesh, preserve)
@@ -346,6 +372,7 @@ def try_shape(seed, closed):
         degenerate, duplicates, directed = inspect(level)
         check(first_nonfinite_point(level) < 0 and degenerate == 0,
               "%s, %s: finite, no degenerate triangle" % (what, where))
+        check(unique_global_ids(level), "%s, %s: unique point and cell global ids" % (what, where))
         if not preserve:
             return
         check(duplicates == 0, "%s, %s: no duplicate triangle (%d)" % (what, where, duplicates))
