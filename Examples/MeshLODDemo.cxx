@@ -1,17 +1,20 @@
 // MeshLOD demo: a marching-cubes isosurface turned into levels of detail with smooth
 // transitions between them, everything written for ParaView, and a picture of a few levels.
 //
-//   MeshLODDemo [output-directory] [--field NAME] [--resolution N] [--frames N] [--no-render]
+//   MeshLODDemo [output-directory] [--field NAME] [--resolution N] [--input FILE] [--frames N]
+//               [--no-render]
 //
 // output-directory  default demo-output; created if needed
 // --field           metaballs (default), gyroid, torus, sphere or wavelet
 // --resolution      samples per axis of the volume (default: about 200k triangles)
+// --input           your own surface instead of the isosurface: a .vtp, .vtk (legacy polydata),
+//                   .stl, .ply or .obj file (polygons are triangulated by the filters)
 // --frames          frames per level transition in the time series (default 8)
 // --no-render       skip the picture (it needs an X display; run-demo.sh provides one with Xvfb)
 //
 // Each hierarchy producer (HierarchyProducers() below: vtkTriangleCollapseDecimation, named
 // triangle_collapse, and vtkVertexClusterOctree, named vertex_cluster_octree) makes levels of
-// detail of the same isosurface, and the demo writes
+// detail of the same isosurface (or input surface), and the demo writes
 // into the output directory, <name> being the producer's name:
 //   <name>.vtm + <name>/           the hierarchy: block i = "Level i", level 0 = the isosurface
 //                                  (flying edges at 0 of the field), with the morph arrays and
@@ -31,6 +34,7 @@
 #include "vtkVertexClusterOctree.h"
 
 #include "vtkActor.h"
+#include "vtkAlgorithm.h"
 #include "vtkCamera.h"
 #include "vtkCoordinate.h"
 #include "vtkDataArray.h"
@@ -39,18 +43,23 @@
 #include "vtkInformation.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkPLYReader.h"
 #include "vtkPNGWriter.h"
+#include "vtkPolyDataReader.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSTLReader.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLMultiBlockDataWriter.h"
+#include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 
 #ifdef MESHLOD_DEMO_HAS_GLX
@@ -59,6 +68,7 @@
 #endif
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -490,6 +500,8 @@ struct Options
   fs::path Output = "demo-output";
   meshlod::testing::Field Field = meshlod::testing::Field::Metaballs;
   int Resolution = 0; // 0: about DefaultTriangles
+  bool FieldGiven = false;
+  fs::path Input;     // empty: the isosurface of Field
   int FramesPerTransition = 8;
   bool Render = true;
 };
@@ -509,6 +521,11 @@ bool ParseArguments(int argc, char* argv[], Options& options)
         std::cerr << "unknown field " << argv[i] << "\n";
         return false;
       }
+      options.FieldGiven = true;
+    }
+    else if (arg == "--input" && i + 1 < argc)
+    {
+      options.Input = argv[++i];
     }
     else if (arg == "--resolution" && i + 1 < argc)
     {
@@ -518,6 +535,7 @@ bool ParseArguments(int argc, char* argv[], Options& options)
         std::cerr << "--resolution must be between 8 and 2000\n";
         return false;
       }
+      options.FieldGiven = true;
     }
     else if (arg == "--frames" && i + 1 < argc)
     {
@@ -542,7 +560,73 @@ bool ParseArguments(int argc, char* argv[], Options& options)
       return false;
     }
   }
+  if (!options.Input.empty() && options.FieldGiven)
+  {
+    std::cerr << "--input replaces the isosurface that --field and --resolution make: give one "
+                 "or the other\n";
+    return false;
+  }
   return true;
+}
+
+/// The surface in `file`, read by the reader its extension names (.vtp, .vtk, .stl, .ply, .obj),
+/// or null with the reason in `why`.
+vtkSmartPointer<vtkPolyData> ReadSurface(const fs::path& file, std::string& why)
+{
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (extension == ".vtp")
+  {
+    auto xml = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    xml->SetFileName(file.string().c_str());
+    reader = xml;
+  }
+  else if (extension == ".vtk")
+  {
+    auto legacy = vtkSmartPointer<vtkPolyDataReader>::New();
+    legacy->SetFileName(file.string().c_str());
+    reader = legacy;
+  }
+  else if (extension == ".stl")
+  {
+    auto stl = vtkSmartPointer<vtkSTLReader>::New(); // merges the copies of each corner
+    stl->SetFileName(file.string().c_str());
+    reader = stl;
+  }
+  else if (extension == ".ply")
+  {
+    auto ply = vtkSmartPointer<vtkPLYReader>::New();
+    ply->SetFileName(file.string().c_str());
+    reader = ply;
+  }
+  else if (extension == ".obj")
+  {
+    auto obj = vtkSmartPointer<vtkOBJReader>::New();
+    obj->SetFileName(file.string().c_str());
+    reader = obj;
+  }
+  else
+  {
+    why = "not a file type the demo reads (.vtp, .vtk, .stl, .ply or .obj)";
+    return nullptr;
+  }
+  std::error_code error;
+  if (!fs::is_regular_file(file, error))
+  {
+    why = "no such file";
+    return nullptr;
+  }
+  reader->Update();
+  vtkPolyData* surface = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (reader->GetErrorCode() != vtkErrorCode::NoError || surface == nullptr ||
+    surface->GetNumberOfPolys() + surface->GetNumberOfStrips() == 0)
+  {
+    why = "no polygons read from it";
+    return nullptr;
+  }
+  return surface;
 }
 
 /// One producer: its hierarchy, table, files and picture. False when a file cannot be written.
@@ -614,7 +698,8 @@ int main(int argc, char* argv[])
   {
     std::cerr << "usage: " << argv[0]
               << " [output-directory] [--field metaballs|gyroid|torus|sphere|wavelet]"
-                 " [--resolution N] [--frames N] [--no-render]\n";
+                 " [--resolution N] [--input FILE.vtp|.vtk|.stl|.ply|.obj] [--frames N]"
+                 " [--no-render]\n";
     return 2;
   }
   std::error_code error;
@@ -625,17 +710,33 @@ int main(int argc, char* argv[])
     return 1;
   }
 
-  // The input: marching cubes (flying edges) on a sampled analytic field.
-  const int resolution = options.Resolution > 0
-    ? options.Resolution
-    : meshlod::testing::ResolutionForTriangles(options.Field, DefaultTriangles);
+  // The input: the user's surface, or marching cubes (flying edges) on a sampled analytic field.
   const Clock::time_point start = Clock::now();
-  vtkSmartPointer<vtkPolyData> surface =
-    meshlod::testing::MakeIsosurface(options.Field, resolution, /*computeNormals=*/false);
-  std::printf("Isosurface of %s on a %d^3 volume: %lld triangles, %lld points, %.3f s\n",
-    meshlod::testing::FieldName(options.Field), resolution,
-    static_cast<long long>(surface->GetNumberOfPolys()),
-    static_cast<long long>(surface->GetNumberOfPoints()), SecondsSince(start));
+  vtkSmartPointer<vtkPolyData> surface;
+  if (!options.Input.empty())
+  {
+    std::string why;
+    surface = ReadSurface(options.Input, why);
+    if (surface == nullptr)
+    {
+      std::cerr << "cannot read " << options.Input.string() << ": " << why << "\n";
+      return 1;
+    }
+    std::printf("Read %s: %lld polygons, %lld points, %.3f s\n", options.Input.string().c_str(),
+      static_cast<long long>(surface->GetNumberOfPolys()),
+      static_cast<long long>(surface->GetNumberOfPoints()), SecondsSince(start));
+  }
+  else
+  {
+    const int resolution = options.Resolution > 0
+      ? options.Resolution
+      : meshlod::testing::ResolutionForTriangles(options.Field, DefaultTriangles);
+    surface = meshlod::testing::MakeIsosurface(options.Field, resolution, /*computeNormals=*/false);
+    std::printf("Isosurface of %s on a %d^3 volume: %lld triangles, %lld points, %.3f s\n",
+      meshlod::testing::FieldName(options.Field), resolution,
+      static_cast<long long>(surface->GetNumberOfPolys()),
+      static_cast<long long>(surface->GetNumberOfPoints()), SecondsSince(start));
+  }
 
   for (const HierarchyProducer& producer : HierarchyProducers())
   {
