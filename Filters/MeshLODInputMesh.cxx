@@ -800,11 +800,17 @@ vtkSmartPointer<vtkPolyData> Triangulate(vtkPolyData* input, vtkIdType firstPoly
   surface->SetPolys(polys != nullptr ? polys.Get() : input->GetPolys());
   surface->SetStrips(input->GetStrips());
   surface->GetPointData()->ShallowCopy(input->GetPointData());
+  // A polygon or strip becomes several triangles, and each keeps its cell's data. Global ids
+  // promise one cell per id, so the triangles keep theirs in a plain array of the same name
+  // (copied like any other; the copy flags would drop the attribute).
+  vtkNew<vtkCellData> cells;
+  cells->ShallowCopy(input->GetCellData());
+  cells->SetActiveAttribute(-1, vtkDataSetAttributes::GLOBALIDS);
   const vtkIdType numberOfSurfaceCells = input->GetNumberOfPolys() + input->GetNumberOfStrips();
-  surface->GetCellData()->CopyAllocate(input->GetCellData(), numberOfSurfaceCells);
+  surface->GetCellData()->CopyAllocate(cells, numberOfSurfaceCells);
   for (vtkIdType c = 0; c < numberOfSurfaceCells; ++c)
   {
-    surface->GetCellData()->CopyData(input->GetCellData(), firstPolyCellId + c, c);
+    surface->GetCellData()->CopyData(cells, firstPolyCellId + c, c);
   }
   vtkNew<vtkTriangleFilter> triangulate;
   triangulate->SetInputData(surface);

@@ -4,7 +4,8 @@
 // Policy (documented in every filter's class comment):
 // - No points or no polygons/strips: "empty", the filter produces an empty output, no error.
 // - Polygons with more than three points and triangle strips are triangulated with
-//   vtkTriangleFilter (cell data is copied to each resulting triangle).
+//   vtkTriangleFilter (cell data is copied to each resulting triangle; the GlobalIds attribute
+//   as a plain array of that name, since the triangles of one cell share its id).
 // - Vertices and lines are ignored, with a warning.
 // - NaN or infinite coordinates of a point a triangle uses: an error naming the first such
 //   point, no output (an unused point, finite or not, is dropped like any unused point).

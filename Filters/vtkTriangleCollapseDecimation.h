@@ -181,7 +181,8 @@
  * - the cell data of the surviving input triangles;
  * - the GlobalIds attributes of the input's points and cells, unique on every level as in the
  *   input (a level's point takes the id of one of the input points merged into it, no two the
- *   same; a triangle keeps its input triangle's);
+ *   same; a triangle keeps its input triangle's; where polygons or strips were triangulated,
+ *   their triangles share the cell's id, in a plain array of that name, not the attribute);
  * - for every level but the last: MorphTarget (where each point goes in the next level),
  *   MorphTargetId (its point id there; chaining it maps any input point to its point in any
  *   coarser level) and CollapseRank (the order in which the points move when only part of the

@@ -185,7 +185,8 @@
  * every level (floating-point arrays averaged over the cluster's input vertices, integer arrays
  * from the dominant one: the GlobalIds attribute stays unique, unless BakeTexture splits the
  * points, see below), cell data from the input triangle each triangle descends from (its
- * GlobalIds included), field
+ * GlobalIds included; as a plain array of that name where polygons or strips were
+ * triangulated, since their triangles share the cell's id), field
  * data LevelIndex, NumberOfTriangles, EstimatedError (the largest cluster error of the level)
  * and, with MeasureLevelErrors, MeasuredHausdorff and MeasuredRMS, plus the input's field-data
  * arrays (shared; one named like any of these or TextureAtlasLevel is left out, so a level

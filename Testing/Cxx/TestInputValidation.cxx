@@ -7,6 +7,7 @@
 #include "vtkCellData.h"
 #include "vtkCubeSource.h"
 #include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
@@ -87,6 +88,13 @@ void TestQuadsAndStripsAreTriangulated(Reader& reader)
   }
   grid->SetPolys(quads);
   grid->GetCellData()->AddArray(square);
+  vtkNew<vtkIdTypeArray> globalIds; // one id per quad
+  globalIds->SetName("QuadIds");
+  for (vtkIdType q = 0; q < 4; ++q)
+  {
+    globalIds->InsertNextValue(100 + q);
+  }
+  grid->GetCellData()->SetGlobalIds(globalIds);
   InputMesh result;
   MESHLOD_CHECK(reader.Read(grid, result) == InputStatus::Valid);
   MESHLOD_CHECK_EQ(result.Mesh.GetNumberOfTriangles(), 8);
@@ -100,6 +108,17 @@ void TestQuadsAndStripsAreTriangulated(Reader& reader)
     for (Id t = 0; t < 8; ++t)
     {
       MESHLOD_CHECK_EQ(mapped->GetTuple1(result.SourceCellIds[t]), static_cast<double>(t / 2));
+    }
+  }
+  // So do the global ids, but as a plain array: two triangles share each quad's id, and the
+  // GlobalIds attribute promises one cell per id.
+  vtkDataArray* quadIds = result.Source->GetCellData()->GetArray("QuadIds");
+  MESHLOD_CHECK(quadIds != nullptr && result.Source->GetCellData()->GetGlobalIds() == nullptr);
+  if (quadIds)
+  {
+    for (Id t = 0; t < 8; ++t)
+    {
+      MESHLOD_CHECK_EQ(quadIds->GetTuple1(result.SourceCellIds[t]), 100.0 + t / 2);
     }
   }
 
