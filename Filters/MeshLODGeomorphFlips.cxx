@@ -16,6 +16,7 @@
 #include "MeshLODBlend.h"
 
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -32,6 +33,15 @@ namespace
 {
 using meshlod::Id;
 using Triangle = std::array<Id, 3>;
+
+// Whether an array that is attribute `attribute` of a level (-1: none) stays that attribute in
+// the output while flips turn. Global ids do not: a midpoint takes a corner's values and the
+// triangles split at it their source triangle's, so ids repeat, which the attribute forbids;
+// they stay as plain arrays of the same name.
+bool KeepsAttribute(int attribute)
+{
+  return attribute >= 0 && attribute != vtkDataSetAttributes::GLOBALIDS;
+}
 
 // The triangle turned so that its smallest id comes first (its orientation kept).
 Triangle Turned(const Id* t)
@@ -363,7 +373,8 @@ void vtkLODGeomorph::Internals::BuildFlipCells(int level)
   }
   cache.FlipCells = polys;
   // Every cell array, copied tuple by tuple from its source triangle (global ids included: the
-  // copy flags of vtkCellData::CopyData would leave them out).
+  // copy flags of vtkCellData::CopyData would leave them out; as a plain array, since the
+  // triangles split at a midpoint repeat their source's id, see KeepsAttribute).
   vtkCellData* from = next.Poly->GetCellData();
   cache.FlipCellData = vtkSmartPointer<vtkCellData>::New();
   vtkNew<vtkIdList> destinations;
@@ -379,7 +390,7 @@ void vtkLODGeomorph::Internals::BuildFlipCells(int level)
     result->SetNumberOfTuples(sources->GetNumberOfIds());
     result->InsertTuples(destinations, sources, source);
     const int attribute = from->IsArrayAnAttribute(i);
-    if (attribute >= 0)
+    if (KeepsAttribute(attribute))
     {
       cache.FlipCellData->SetAttribute(result, attribute);
     }
@@ -427,7 +438,7 @@ void vtkLODGeomorph::Internals::ProduceFlipMorph(int level, double t, vtkPolyDat
     }
     const auto result = WithMidpoints(source, source == from->GetNormals(), corners, weights);
     const int attribute = from->IsArrayAnAttribute(i);
-    if (attribute >= 0)
+    if (KeepsAttribute(attribute))
     {
       to->SetAttribute(result, attribute);
     }

@@ -37,7 +37,9 @@
  * turns its diagonal about a point in its middle that moves from the middle of the old
  * diagonal to the middle of the new one (four triangles around it: two more per quad), so that
  * the output is continuous at t = 0.75 and tends to level i + 1 as t -> 1 (its point arrays are
- * level i + 1's, the midpoints' blended from the quad's corners, and so is its cell data; the
+ * level i + 1's, the midpoints' blended from the quad's corners, and so is its cell data; since
+ * a midpoint's ids are a corner's and the triangles split at it repeat their source's, the
+ * GlobalIds of points and cells are plain arrays of that name in this part, not attributes; the
  * rules of "Point and cell data" below hold in the first part for its own fraction t / 0.75, so
  * an integer array switches at t = 0.375, and an array level i + 1 lacks ends at t = 0.75).
  * The quads are found once per level (kept until the input changes). The exact-count mode has
