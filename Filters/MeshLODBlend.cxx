@@ -1,6 +1,7 @@
 #include "MeshLODBlend.h"
 
 #include "MeshLODHierarchy.h"
+#include "MeshLODNewArray.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
@@ -298,15 +299,12 @@ vtkSmartPointer<vtkAbstractArray> ArrayPool::Take(vtkAbstractArray* like, vtkIdT
       array->GetNumberOfComponents() == like->GetNumberOfComponents() &&
       array->GetNumberOfTuples() == tuples)
     {
-      array->SetName(like->GetName());
+      CopyArrayDescription(like, array);
       array->Modified();
       return array;
     }
   }
-  auto array = vtk::TakeSmartPointer(like->NewInstance());
-  array->SetName(like->GetName());
-  array->SetNumberOfComponents(like->GetNumberOfComponents());
-  array->SetNumberOfTuples(tuples);
+  vtkSmartPointer<vtkAbstractArray> array = NewArrayLike(like, tuples);
   if (this->Arrays.size() >= MaximumArrays)
   {
     const auto idle = std::find_if(this->Arrays.begin(), this->Arrays.end(),
@@ -326,11 +324,7 @@ vtkSmartPointer<vtkAbstractArray> OutputArray(vtkAbstractArray* like, const Blen
   {
     return plan.Pool->Take(like, plan.NumberOfPoints);
   }
-  auto out = vtk::TakeSmartPointer(like->NewInstance());
-  out->SetName(like->GetName());
-  out->SetNumberOfComponents(like->GetNumberOfComponents());
-  out->SetNumberOfTuples(plan.NumberOfPoints);
-  return out;
+  return NewArrayLike(like, plan.NumberOfPoints);
 }
 } // namespace
 

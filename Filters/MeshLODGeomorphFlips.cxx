@@ -14,6 +14,7 @@
 #include "MeshLODGeomorphInternals.h"
 
 #include "MeshLODBlend.h"
+#include "MeshLODNewArray.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
@@ -383,11 +384,8 @@ void vtkLODGeomorph::Internals::BuildFlipCells(int level)
   for (int i = 0; i < from->GetNumberOfArrays(); ++i)
   {
     vtkAbstractArray* source = from->GetAbstractArray(i);
-    vtkSmartPointer<vtkAbstractArray> result;
-    result.TakeReference(source->NewInstance());
-    result->SetName(source->GetName());
-    result->SetNumberOfComponents(source->GetNumberOfComponents());
-    result->SetNumberOfTuples(sources->GetNumberOfIds());
+    vtkSmartPointer<vtkAbstractArray> result =
+      meshlod::NewArrayLike(source, sources->GetNumberOfIds());
     result->InsertTuples(destinations, sources, source);
     const int attribute = from->IsArrayAnAttribute(i);
     if (KeepsAttribute(attribute))

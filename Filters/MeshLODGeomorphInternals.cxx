@@ -7,6 +7,7 @@
 #include "MeshLODInputArrays.h"
 #include "MeshLODInputMesh.h"
 #include "MeshLODNearestCorrespondence.h"
+#include "MeshLODNewArray.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -168,10 +169,7 @@ vtkSmartPointer<vtkCellData> SubsetCellData(vtkCellData* in, const std::vector<I
   for (int i = 0; i < in->GetNumberOfArrays(); ++i)
   {
     vtkAbstractArray* array = in->GetAbstractArray(i);
-    auto subset = vtk::TakeSmartPointer(array->NewInstance());
-    subset->SetName(array->GetName());
-    subset->SetNumberOfComponents(array->GetNumberOfComponents());
-    subset->SetNumberOfTuples(ids->GetNumberOfIds());
+    vtkSmartPointer<vtkAbstractArray> subset = meshlod::NewArrayLike(array, ids->GetNumberOfIds());
     array->GetTuples(ids, subset);
     const int attribute = in->IsArrayAnAttribute(i);
     if (attribute >= 0)

@@ -2,6 +2,7 @@
 
 #include "Core/FreshMemory.h"
 #include "MeshLODInputMesh.h"
+#include "MeshLODNewArray.h"
 #include "MeshLODSurfaceDistance.h"
 
 #include "vtkArrayDispatch.h"
@@ -135,10 +136,7 @@ void InterpolatePointData(vtkPointData* from, const PointSources& sources, vtkId
     {
       continue;
     }
-    vtkSmartPointer<vtkAbstractArray> out = vtk::TakeSmartPointer(in->NewInstance());
-    out->SetName(in->GetName());
-    out->SetNumberOfComponents(in->GetNumberOfComponents());
-    out->SetNumberOfTuples(count);
+    vtkSmartPointer<vtkAbstractArray> out = NewArrayLike(in, count);
     PrepareForWriting(out);
     if (!IsCategorical(in))
     {

@@ -51,6 +51,7 @@ set(meshlod_private_headers
   Filters/MeshLODInputArrays.h
   Filters/MeshLODInputMesh.h
   Filters/MeshLODNearestCorrespondence.h
+  Filters/MeshLODNewArray.h
   Filters/MeshLODSettings.h
   Filters/MeshLODTextureBaking.h
   Filters/MeshLODTriangleTree.h)
@@ -93,6 +94,7 @@ set(meshlod_sources
   Filters/MeshLODInputArrays.cxx
   Filters/MeshLODInputMesh.cxx
   Filters/MeshLODNearestCorrespondence.cxx
+  Filters/MeshLODNewArray.cxx
   Filters/MeshLODSurfaceDistance.cxx
   Filters/MeshLODTextureBaking.cxx
   Filters/MeshLODTriangleTree.cxx)

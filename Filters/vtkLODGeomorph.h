@@ -147,16 +147,17 @@
  * build (the output is empty), which is then made again at the next update.
  *
  * @par Point and cell data
- * Every point-data array of level i is carried to the output. Floating-point arrays are
- * blended like the points: (1 - t) a(p) + t a'(MorphTargetId(p)), a' being the array of the
- * same name in level i + 1 (the partner point's value without morph data); the Normals
- * attribute is renormalised. Integer and string arrays (ids, labels, categories) are not
- * interpolated: a point takes level i + 1's value from t >= 0.5 on, level i's before (in the
- * exact-count mode: once it has settled, or moved at least half way). An array level i + 1
- * lacks keeps level i's values, and so does the GlobalIds attribute (switched, the points that
- * merge would share one id; global ids must stay unique). The morph arrays themselves are not
- * passed. Cell data: level i's, for the triangles kept (global ids included). Field data: LevelOfDetail (double), the L produced (for an
- * exact count: i + the fraction of level i's steps applied, just below i + 1 when all are).
+ * Every point-data array of level i is carried to the output, with its component names and
+ * information (so is every cell array). Floating-point arrays are blended like the points:
+ * (1 - t) a(p) + t a'(MorphTargetId(p)), a' being the array of the same name in level i + 1 (the
+ * partner point's value without morph data); the Normals attribute is renormalised. Integer and
+ * string arrays (ids, labels, categories) are not interpolated: a point takes level i + 1's value
+ * from t >= 0.5 on, level i's before (in the exact-count mode: once it has settled, or moved at
+ * least half way). An array level i + 1 lacks keeps level i's values, and so does the GlobalIds attribute
+ * (switched, the points that merge would share one id; global ids must stay unique). The morph
+ * arrays themselves are not passed. Cell data: level i's, for the triangles kept (global ids
+ * included). Field data: LevelOfDetail (double), the L produced (for an exact count: i + the
+ * fraction of level i's steps applied, just below i + 1 when all are).
  *
  * @par Time
  * With UsePipelineTime on (the default), RequestInformation publishes TIME_STEPS = {0, s, 2s, ...,

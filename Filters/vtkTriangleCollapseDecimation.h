@@ -170,9 +170,10 @@
  * and locked, the last collapses forced by the count can distort it.
  *
  * What every level carries (array names in MeshLODHierarchy.h):
- * - every input point-data array; floating-point arrays interpolated with the barycentric
- *   weights of each collapse point (composed over the collapses between levels), integer
- *   arrays (ids, labels, categories) taking the value of the vertex with the largest weight.
+ * - every input point-data array, with its component names and information (units, say);
+ *   floating-point arrays interpolated with the barycentric weights of each collapse point
+ *   (composed over the collapses between levels), integer arrays (ids, labels, categories)
+ *   taking the value of the vertex with the largest weight.
  *   The weights are those of the collapse point's projection onto the merged edge or
  *   triangle, clamped to it: a point placed outside (a boundary point moved along the
  *   boundary) takes the data of the nearest point of the edge, never values beyond its

@@ -182,12 +182,12 @@
  *
  * Output port 0: the shared MeshLOD hierarchy (see MeshLODHierarchy.h): a vtkMultiBlockDataSet
  * with block i = level i named "Level i"; every point-data array of the input is carried to
- * every level (floating-point arrays averaged over the cluster's input vertices, integer arrays
- * from the dominant one: the GlobalIds attribute stays unique, unless BakeTexture splits the
- * points, see below), cell data from the input triangle each triangle descends from (its
- * GlobalIds included; as a plain array of that name where polygons or strips were
- * triangulated, since their triangles share the cell's id), field
- * data LevelIndex, NumberOfTriangles, EstimatedError (the largest cluster error of the level)
+ * every level, with its component names and information (floating-point arrays averaged over
+ * the cluster's input vertices, integer arrays from the dominant one: the GlobalIds attribute
+ * stays unique, unless BakeTexture splits the points, see below), cell data from the input
+ * triangle each triangle descends from (its GlobalIds included; as a plain array of that name
+ * where polygons or strips were triangulated, since their triangles share the cell's id),
+ * field data LevelIndex, NumberOfTriangles, EstimatedError (the largest cluster error of the level)
  * and, with MeasureLevelErrors, MeasuredHausdorff and MeasuredRMS, plus the input's field-data
  * arrays (shared; one named like any of these or TextureAtlasLevel is left out, so a level
  * of an unmeasured run never shows an input's MeasuredHausdorff); every level but the last

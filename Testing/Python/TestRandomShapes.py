@@ -15,12 +15,14 @@ or an edge in more triangles than any edge of the input; with it off, no degener
 Always: finite points, triangle counts falling from level to level (the octree may repeat a
 level), MorphTargetId within the next level's points, and the geomorph never above the count
 asked; the input's point and cell GlobalIds attributes present and unique on every level and in
-every geomorph output (where flips turn, plain arrays of that name instead). (The octree's FlipEdges once gave its levels triangles that the next level merged into
-one triangle twice, which the geomorph's exact counts showed as duplicate triangles: seed 63 of
-the open shapes, a gyroid isosurface, failed. Cell global ids were once dropped from every
-coarser level, point global ids from every level of an input whose seams were stitched, and the
-geomorph gave the points that merge one id, and, while flips turn, the midpoints and the
-triangles split at them their sources' ids.)
+every geomorph output (where flips turn, plain arrays of that name instead), and the component
+names and units label of a three-component point and cell array kept. (The octree's FlipEdges
+once gave its levels triangles that the next level merged into one triangle twice, which the
+geomorph's exact counts showed as duplicate triangles: seed 63 of the open shapes, a gyroid
+isosurface, failed. Cell global ids were once dropped from every coarser level, point global ids
+from every level of an input whose seams were stitched, and the geomorph gave the points that
+merge one id, and, while flips turn, the midpoints and the triangles split at them their
+sources' ids; coarser levels and the geomorph lost component names and array information.)
 
     TestRandomShapes.py [seeds]   (shapes of each kind to try, default 100: under 20 seconds)
 """
@@ -29,7 +31,13 @@ import math
 import random
 import sys
 
-from vtkmodules.vtkCommonCore import vtkFloatArray, vtkIdTypeArray, vtkObject, vtkPoints
+from vtkmodules.vtkCommonCore import (
+    vtkDataArray,
+    vtkFloatArray,
+    vtkIdTypeArray,
+    vtkObject,
+    vtkPoints,
+)
 from vtkmodules.vtkCommonDataModel import vtkBox, vtkCellArray, vtkImageData, vtkPolyData, vtkSphere
 from vtkmodules.vtkCommonComputationalGeometry import (
     vtkParametricEllipsoid,
@@ -273,16 +281,42 @@ def inspect(mesh):
     return degenerate, duplicates, directed
 
 
-def add_global_ids(mesh):
-    """Point and cell GlobalIds attributes, distinct values far from the indices."""
+def add_arrays(mesh):
+    """Point and cell GlobalIds attributes (distinct values far from the indices), and point and
+    cell arrays "Velocity" with named components and a units label."""
     for data, count in ((mesh.GetPointData(), mesh.GetNumberOfPoints()),
                         (mesh.GetCellData(), mesh.GetNumberOfCells())):
         ids = vtkIdTypeArray()
         ids.SetName("GlobalIds")
         ids.SetNumberOfTuples(count)
+        velocity = vtkFloatArray()
+        velocity.SetName("Velocity")
+        velocity.SetNumberOfComponents(3)
+        velocity.SetNumberOfTuples(count)
         for i in range(count):
             ids.SetValue(i, 1000 + 3 * i)
+            velocity.SetTuple3(i, i % 7, 1.0, -1.0)
+        for k, name in enumerate(COMPONENT_NAMES):
+            velocity.SetComponentName(k, name)
+        velocity.GetInformation().Set(vtkDataArray.UNITS_LABEL(), "m/s")
         data.SetGlobalIds(ids)
+        data.AddArray(velocity)
+
+
+COMPONENT_NAMES = ("Vx", "Vy", "Vz")
+
+
+def described_velocity(poly):
+    """Whether the points' and the cells' Velocity arrays kept their component names and units."""
+    for data in (poly.GetPointData(), poly.GetCellData()):
+        velocity = data.GetArray("Velocity")
+        if velocity is None:
+            return False
+        names = tuple(velocity.GetComponentName(k) for k in range(3))
+        if names != COMPONENT_NAMES or \
+                velocity.GetInformation().Get(vtkDataArray.UNITS_LABEL()) != "m/s":
+            return False
+    return True
 
 
 def unique_global_ids(poly, plain_allowed=False):
@@ -360,7 +394,7 @@ def try_shape(seed, closed):
     if mesh.GetNumberOfPolys() < 4 or degenerate or (closed and not closed_manifold(directed)):
         return False  # (a source's output that is not what the kind promises: not tried)
     preserve = closed or r.random() < 0.6
-    add_global_ids(mesh)
+    add_arrays(mesh)
     allowed = most_uses(mesh)
     euler, genus_term = euler_and_genus_term(mesh)
     f = configured(r, mesh, preserve)
@@ -377,6 +411,7 @@ def try_shape(seed, closed):
         check(first_nonfinite_point(level) < 0 and degenerate == 0,
               "%s, %s: finite, no degenerate triangle" % (what, where))
         check(unique_global_ids(level), "%s, %s: unique point and cell global ids" % (what, where))
+        check(described_velocity(level), "%s, %s: component names and units kept" % (what, where))
         if not preserve:
             return
         check(duplicates == 0, "%s, %s: no duplicate triangle (%d)" % (what, where, duplicates))
@@ -430,8 +465,10 @@ def try_shape(seed, closed):
             morph.SetLevelOfDetail(at)
             morph.Update()
             output = morph.GetOutput()
-            check(first_nonfinite_point(output) < 0 and unique_global_ids(output, True),
-                  "%s: the geomorph at L = %g: finite, unique global ids" % (what, at))
+            check(first_nonfinite_point(output) < 0 and unique_global_ids(output, True) and
+                  described_velocity(output),
+                  "%s: the geomorph at L = %g: finite, unique global ids, component names and "
+                  "units kept" % (what, at))
     return True
 
 
