@@ -5,6 +5,7 @@
 #include "MeshLODNewArray.h"
 #include "MeshLODSurfaceDistance.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -189,10 +190,19 @@ void InterpolatePointData(vtkPointData* from, const PointSources& sources, vtkId
   }
 }
 
-// The point type of every level: the input's when it is float or double, else double. Integer
-// points (VTK allows them) would truncate every collapse point and every geomorph frame.
-int LevelPointType(vtkPoints* input)
+// The point type of every level: the one asked for, else the input's when it is float or
+// double, else double. Integer points (VTK allows them) would truncate every collapse point and
+// every geomorph frame.
+int LevelPointType(vtkPoints* input, int precision)
 {
+  if (precision == vtkAlgorithm::SINGLE_PRECISION)
+  {
+    return VTK_FLOAT;
+  }
+  if (precision == vtkAlgorithm::DOUBLE_PRECISION)
+  {
+    return VTK_DOUBLE;
+  }
   const int type = input ? input->GetDataType() : VTK_FLOAT;
   return type == VTK_FLOAT || type == VTK_DOUBLE ? type : VTK_DOUBLE;
 }
@@ -360,13 +370,13 @@ vtkPolyData* HierarchyBuilder::GetLevel(int level) const
 }
 
 //------------------------------------------------------------------------------
-void HierarchyBuilder::SetLevelZero(const InputMesh& input)
+void HierarchyBuilder::SetLevelZero(const InputMesh& input, int precision)
 {
   this->Impl->Levels.clear();
   auto level0 = vtkSmartPointer<vtkPolyData>::New();
   vtkPolyData* source = input.Source;
   const bool cellsFirst = input.SourceCellIds.empty() || input.SourceCellIds[0] == 0;
-  const int pointType = LevelPointType(source->GetPoints());
+  const int pointType = LevelPointType(source->GetPoints(), precision);
   if (input.SameAsInput)
   {
     level0->SetPoints(pointType == source->GetPoints()->GetDataType()
@@ -432,16 +442,13 @@ LevelZeroView HierarchyBuilder::GetLevelZeroView(std::vector<double>& copy) cons
 }
 
 //------------------------------------------------------------------------------
-void HierarchyBuilder::SetEmptyLevelZero(vtkPolyData* input)
+void HierarchyBuilder::SetEmptyLevelZero(vtkPolyData* input, int precision)
 {
   this->Impl->Levels.clear();
   this->Impl->InputFieldData = input ? input->GetFieldData() : nullptr;
   auto level0 = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
-  if (input != nullptr && input->GetPoints() != nullptr)
-  {
-    points->SetDataType(LevelPointType(input->GetPoints()));
-  }
+  points->SetDataType(LevelPointType(input ? input->GetPoints() : nullptr, precision));
   level0->SetPoints(points);
   vtkNew<vtkCellArray> polys;
   level0->SetPolys(polys);

@@ -79,14 +79,16 @@ public:
   HierarchyBuilder& operator=(const HierarchyBuilder&) = delete;
 
   /// Level 0 from the validated input. Shares the input's points, cells and arrays when the
-  /// input needed no cleaning.
-  void SetLevelZero(const InputMesh& input);
+  /// input needed no cleaning. `precision` (vtkAlgorithm::DesiredOutputPrecision) is the type
+  /// of every level's points: DEFAULT_PRECISION the input's when it is float or double (else
+  /// double), SINGLE_PRECISION float, DOUBLE_PRECISION double.
+  void SetLevelZero(const InputMesh& input, int precision);
 
   /// Level 0 of an empty input (no points or no polygons): no points and no cells, the
   /// input's point- and cell-data arrays without tuples, and the level field data. The
   /// hierarchy of an empty input is this one level, so that a downstream vtkLODGeomorph
   /// produces an empty mesh too instead of reporting a hierarchy without levels.
-  void SetEmptyLevelZero(vtkPolyData* input);
+  void SetEmptyLevelZero(vtkPolyData* input, int precision);
 
   /// Append the next level: builds its polydata and adds the morph arrays to the level before.
   /// Consumes `level`: each of its arrays is released once converted, so that a level's plain

@@ -1,7 +1,8 @@
-// Checks of filter settings shared by the MeshLOD filters.
+// Checks and printing of filter settings shared by the MeshLOD filters.
 #ifndef MeshLODSettings_h
 #define MeshLODSettings_h
 
+#include "vtkAlgorithm.h"
 #include "vtkObject.h"
 
 #include <cmath>
@@ -26,6 +27,14 @@ inline bool SettingsAreNumbers(
     }
   }
   return true;
+}
+
+/// The name of a vtkAlgorithm::DesiredOutputPrecision value, for PrintSelf.
+inline const char* PrecisionName(int precision)
+{
+  return precision == vtkAlgorithm::SINGLE_PRECISION ? "SINGLE_PRECISION"
+    : precision == vtkAlgorithm::DOUBLE_PRECISION    ? "DOUBLE_PRECISION"
+                                                     : "DEFAULT_PRECISION";
 }
 
 } // namespace meshlod

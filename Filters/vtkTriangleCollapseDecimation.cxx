@@ -268,7 +268,7 @@ int vtkTriangleCollapseDecimation::RequestData(
   {
     // One empty level, not none: see HierarchyBuilder::SetEmptyLevelZero.
     meshlod::HierarchyBuilder empty;
-    empty.SetEmptyLevelZero(input);
+    empty.SetEmptyLevelZero(input, this->OutputPointsPrecision);
     this->NumberOfLevelsProduced = 1;
     empty.Finish(output);
     return 1;
@@ -287,7 +287,7 @@ int vtkTriangleCollapseDecimation::RequestData(
   options.LevelTargets = LevelTargets(this->LevelReductionsToMake(), inputTriangles);
 
   meshlod::HierarchyBuilder builder;
-  builder.SetLevelZero(mesh);
+  builder.SetLevelZero(mesh, this->OutputPointsPrecision);
   // Level 0 as the output holds it (the engine takes the mesh over below), for the passes that
   // look at each level through it.
   const bool throughLevelZero = this->CenterOnInput || this->FlipEdges;
@@ -536,6 +536,8 @@ void vtkTriangleCollapseDecimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CenterOnInput: " << (this->CenterOnInput ? "On" : "Off") << "\n";
   os << indent << "FlipEdges: " << (this->FlipEdges ? "On" : "Off") << "\n";
   os << indent << "ComputeLevelError: " << (this->ComputeLevelError ? "On" : "Off") << "\n";
+  os << indent << "OutputPointsPrecision: " << meshlod::PrecisionName(this->OutputPointsPrecision)
+     << "\n";
   os << indent << "NumberOfLevelsProduced: " << this->NumberOfLevelsProduced << "\n";
   os << indent << "ActualReduction: " << this->ActualReduction << "\n";
   os << indent << "NumberOfSwaps: " << this->NumberOfSwaps << "\n";

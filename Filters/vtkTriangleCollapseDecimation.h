@@ -717,6 +717,18 @@ public:
 
   ///@{
   /**
+   * Type of every level's points (level 0 included), as vtkAlgorithm::DesiredOutputPrecision:
+   * DEFAULT_PRECISION (the default) keeps the input's when it is float or double and gives
+   * double for integer points; SINGLE_PRECISION gives float, DOUBLE_PRECISION double. The
+   * computation is in double precision either way. vtkLODGeomorph's output keeps the levels'
+   * type.
+   */
+  vtkSetClampMacro(OutputPointsPrecision, int, SINGLE_PRECISION, DEFAULT_PRECISION);
+  vtkGetMacro(OutputPointsPrecision, int);
+  ///@}
+
+  ///@{
+  /**
    * Measure every level's symmetric Hausdorff and RMS surface distance to level 0 and store them as
    * MeasuredHausdorff and MeasuredRMS field data (10,000 area samples per surface plus up to 10,000
    * vertices, and from the 128 samples farthest from the other surface a search for the farthest
@@ -771,6 +783,7 @@ protected:
   int MaximumFitPoints = 48;
   bool PreserveTopology = true;
   bool ComputeLevelError = false;
+  int OutputPointsPrecision = DEFAULT_PRECISION;
   bool CenterOnInput = true;
   bool FlipEdges = false;
   int NumberOfLevelsProduced = 0;

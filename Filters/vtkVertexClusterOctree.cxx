@@ -623,7 +623,7 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   {
     // One empty level, not none: see HierarchyBuilder::SetEmptyLevelZero.
     meshlod::HierarchyBuilder empty;
-    empty.SetEmptyLevelZero(input);
+    empty.SetEmptyLevelZero(input, this->OutputPointsPrecision);
     empty.Finish(output);
     if (this->BakeTexture)
     {
@@ -659,7 +659,7 @@ int vtkVertexClusterOctree::RequestData(vtkInformation*,
   }
 
   meshlod::HierarchyBuilder builder;
-  builder.SetLevelZero(in);
+  builder.SetLevelZero(in, this->OutputPointsPrecision);
   // The source ids were only needed for level 0.
   meshlod::Release(in.SourcePointIds);
   meshlod::Release(in.SourceCellIds);
@@ -1007,6 +1007,8 @@ void vtkVertexClusterOctree::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BoundaryWeight: " << this->BoundaryWeight << "\n";
   os << indent << "ComputeNormals: " << (this->ComputeNormals ? "On" : "Off") << "\n";
   os << indent << "MeasureLevelErrors: " << (this->MeasureLevelErrors ? "On" : "Off") << "\n";
+  os << indent << "OutputPointsPrecision: " << meshlod::PrecisionName(this->OutputPointsPrecision)
+     << "\n";
   os << indent << "BakeTexture: " << (this->BakeTexture ? "On" : "Off") << "\n";
   os << indent << "TextureResolution: " << this->TextureResolution << "\n";
   os << indent << "ColorArrayName: " << (this->ColorArrayName ? this->ColorArrayName : "(none)")

@@ -487,6 +487,18 @@ public:
 
   ///@{
   /**
+   * Type of every level's points (level 0 included), as vtkAlgorithm::DesiredOutputPrecision:
+   * DEFAULT_PRECISION (the default) keeps the input's when it is float or double and gives
+   * double for integer points; SINGLE_PRECISION gives float, DOUBLE_PRECISION double. The
+   * computation is in double precision either way. vtkLODGeomorph's output keeps the levels'
+   * type.
+   */
+  vtkSetClampMacro(OutputPointsPrecision, int, SINGLE_PRECISION, DEFAULT_PRECISION);
+  vtkGetMacro(OutputPointsPrecision, int);
+  ///@}
+
+  ///@{
+  /**
    * Measure every level's surface distance to level 0 (MeasuredHausdorff, MeasuredRMS field
    * data). Costs about half the simplification's time (0.5 s on top of 1.0 s for the
    * levels of a 977,200-triangle UV sphere, one thread). Default off.
@@ -580,6 +592,7 @@ protected:
   double BoundaryWeight = 1.0;
   bool ComputeNormals = false;
   bool MeasureLevelErrors = false;
+  int OutputPointsPrecision = DEFAULT_PRECISION;
   bool BakeTexture = false;
   int TextureResolution = 1024;
   char* ColorArrayName = nullptr;

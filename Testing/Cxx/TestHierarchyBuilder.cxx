@@ -4,6 +4,7 @@
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDoubleArray.h"
@@ -48,7 +49,7 @@ int TestHierarchyBuilder(int, char*[])
   InputMesh input;
   MESHLOD_CHECK(ReadInputMesh(grid, caller, input) == InputStatus::Valid);
   HierarchyBuilder builder;
-  builder.SetLevelZero(input);
+  builder.SetLevelZero(input, vtkAlgorithm::DEFAULT_PRECISION);
 
   // Level 1: points 1 and 4 merge into a new point at (1, 0.5); triangles (0,4,3) and (1,2,5)
   // survive. New points: 0 <- 0, 1 <- {1, 4}, 2 <- 2, 3 <- 3, 4 <- 5.

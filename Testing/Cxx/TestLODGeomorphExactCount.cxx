@@ -12,6 +12,7 @@
 #include "MeshLODTestHierarchies.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
@@ -208,7 +209,7 @@ vtkSmartPointer<vtkMultiBlockDataSet> MakeGridHierarchy()
   InputMesh input;
   ReadInputMesh(grid, caller, input);
   HierarchyBuilder builder;
-  builder.SetLevelZero(input);
+  builder.SetLevelZero(input, vtkAlgorithm::DEFAULT_PRECISION);
 
   LevelData level;
   level.Sources.Clear();

@@ -1,7 +1,8 @@
 // What both hierarchy filters make of inputs a pipeline can hand them besides a plain float or
 // double surface: composite data (an error that says what to do, not a hierarchy nested in a
 // hierarchy, which the pipeline's block-by-block execution made) and integer points (levels in
-// double, not collapse points and geomorph frames truncated to integers).
+// double, not collapse points and geomorph frames truncated to integers); and the point type
+// OutputPointsPrecision asks for.
 #include "vtkLODGeomorph.h"
 #include "vtkTriangleCollapseDecimation.h"
 #include "vtkVertexClusterOctree.h"
@@ -9,6 +10,7 @@
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkExecutive.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
@@ -16,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkTestErrorObserver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -108,6 +111,81 @@ void TestIntegerPoints(const char* name)
   MESHLOD_CHECK_EQ(morph->GetOutput()->GetPoints()->GetDataType(), VTK_DOUBLE);
   MESHLOD_CHECK_GT(FractionalCoordinates(morph->GetOutput()), 0);
 }
+// OutputPointsPrecision: every level (and a geomorph frame) in the type asked for, whatever the
+// input's, the same triangle counts, and points within float rounding of the default's.
+template <typename Filter>
+void TestOutputPointsPrecision(const char* name)
+{
+  vtkSmartPointer<vtkPolyData> sphere = testing::MakeIcosphere(4);
+  vtkNew<vtkPolyData> floatSphere, doubleSphere;
+  for (vtkPolyData* copy : { floatSphere.Get(), doubleSphere.Get() })
+  {
+    vtkNew<vtkPoints> points;
+    points->SetDataType(copy == floatSphere.Get() ? VTK_FLOAT : VTK_DOUBLE);
+    for (vtkIdType p = 0; p < sphere->GetNumberOfPoints(); ++p)
+    {
+      points->InsertNextPoint(sphere->GetPoint(p));
+    }
+    copy->SetPoints(points);
+    copy->SetPolys(sphere->GetPolys());
+  }
+  for (vtkPolyData* input : { floatSphere.Get(), doubleSphere.Get() })
+  {
+    vtkNew<Filter> reference;
+    reference->SetInputData(input);
+    reference->Update();
+    vtkMultiBlockDataSet* expected = reference->GetHierarchy();
+    for (const int precision : { vtkAlgorithm::SINGLE_PRECISION, vtkAlgorithm::DOUBLE_PRECISION,
+           vtkAlgorithm::DEFAULT_PRECISION })
+    {
+      vtkNew<Filter> filter;
+      filter->SetInputData(input);
+      filter->SetOutputPointsPrecision(precision);
+      filter->Update();
+      vtkMultiBlockDataSet* h = filter->GetHierarchy();
+      const int type = precision == vtkAlgorithm::SINGLE_PRECISION ? VTK_FLOAT
+        : precision == vtkAlgorithm::DOUBLE_PRECISION            ? VTK_DOUBLE
+                                                                 : input->GetPoints()->GetDataType();
+      MESHLOD_CHECK_EQ(h->GetNumberOfBlocks(), expected->GetNumberOfBlocks());
+      double largest = 0.0;
+      for (unsigned int i = 0; i < h->GetNumberOfBlocks() && i < expected->GetNumberOfBlocks(); ++i)
+      {
+        auto* level = vtkPolyData::SafeDownCast(h->GetBlock(i));
+        auto* other = vtkPolyData::SafeDownCast(expected->GetBlock(i));
+        MESHLOD_REQUIRE(level && other);
+        MESHLOD_CHECK_EQ(level->GetPoints()->GetDataType(), type);
+        MESHLOD_CHECK_EQ(level->GetNumberOfPolys(), other->GetNumberOfPolys());
+        if (level->GetNumberOfPoints() != other->GetNumberOfPoints())
+        {
+          MESHLOD_CHECK_EQ(level->GetNumberOfPoints(), other->GetNumberOfPoints());
+          continue;
+        }
+        for (vtkIdType p = 0; p < level->GetNumberOfPoints(); ++p)
+        {
+          double x[3], y[3];
+          level->GetPoint(p, x);
+          other->GetPoint(p, y);
+          for (int k = 0; k < 3; ++k)
+          {
+            largest = std::max(largest, std::abs(x[k] - y[k]));
+          }
+        }
+      }
+      // (A sphere of radius 1: float rounding is below 1e-7, and the collapses, which run on
+      // the validated input in double either way, are the same.)
+      MESHLOD_CHECK_LE(largest, 1e-6);
+      vtkNew<vtkLODGeomorph> morph;
+      morph->SetInputData(h);
+      morph->SetLevelOfDetail(0.5);
+      morph->Update();
+      MESHLOD_CHECK_EQ(morph->GetOutput()->GetPoints()->GetDataType(), type);
+    }
+  }
+  vtkNew<Filter> filter;
+  filter->SetOutputPointsPrecision(7);
+  MESHLOD_CHECK_EQ(filter->GetOutputPointsPrecision(), vtkAlgorithm::DEFAULT_PRECISION);
+  std::cout << name << ": OutputPointsPrecision\n";
+}
 } // namespace
 
 int TestMeshLODFilterInputs(int, char*[])
@@ -116,5 +194,7 @@ int TestMeshLODFilterInputs(int, char*[])
   TestComposite<vtkVertexClusterOctree>("vtkVertexClusterOctree");
   TestIntegerPoints<vtkTriangleCollapseDecimation>("vtkTriangleCollapseDecimation");
   TestIntegerPoints<vtkVertexClusterOctree>("vtkVertexClusterOctree");
+  TestOutputPointsPrecision<vtkTriangleCollapseDecimation>("vtkTriangleCollapseDecimation");
+  TestOutputPointsPrecision<vtkVertexClusterOctree>("vtkVertexClusterOctree");
   return testing::Result();
 }

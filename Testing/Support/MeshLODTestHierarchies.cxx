@@ -4,6 +4,7 @@
 #include "MeshLODHierarchy.h"
 #include "MeshLODInputMesh.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkInformation.h"
@@ -260,7 +261,7 @@ vtkSmartPointer<vtkMultiBlockDataSet> MakeCollapseHierarchy(
     return hierarchy;
   }
   HierarchyBuilder builder;
-  builder.SetLevelZero(input);
+  builder.SetLevelZero(input, vtkAlgorithm::DEFAULT_PRECISION);
   TriangleMesh current = input.Mesh;
   TriangleTopology topology = input.Topology;
   std::vector<Id> levelZeroTriangle(current.GetNumberOfTriangles());
