@@ -308,7 +308,9 @@ void SetDoubleField(vtkPolyData* poly, const char* name, double value)
   array->InsertNextValue(value);
   poly->GetFieldData()->AddArray(array);
 }
-// Whether `name` is one of the field-data arrays the hierarchy's layout gives its levels.
+} // namespace
+
+//------------------------------------------------------------------------------
 bool IsLevelFieldName(const char* name)
 {
   for (const char* own : { names::LevelIndex, names::NumberOfTriangles, names::EstimatedError,
@@ -321,7 +323,20 @@ bool IsLevelFieldName(const char* name)
   }
   return false;
 }
-} // namespace
+
+//------------------------------------------------------------------------------
+void PassMetadata(vtkFieldData* from, vtkFieldData* to)
+{
+  for (int a = 0; from && a < from->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = from->GetAbstractArray(a);
+    const char* name = array ? array->GetName() : nullptr;
+    if (array && (!name || (!IsLevelFieldName(name) && !to->GetAbstractArray(name))))
+    {
+      to->AddArray(array);
+    }
+  }
+}
 
 //------------------------------------------------------------------------------
 std::string LevelBlockName(int level)
@@ -551,22 +566,12 @@ void HierarchyBuilder::Finish(vtkMultiBlockDataSet* output)
 {
   output->Initialize();
   output->SetNumberOfBlocks(static_cast<unsigned int>(this->Impl->Levels.size()));
-  vtkFieldData* passed = this->Impl->InputFieldData;
   for (size_t i = 0; i < this->Impl->Levels.size(); ++i)
   {
-    // The input's field data (metadata, as VTK filters pass it on), shared, on every level;
-    // the layout's own names are left out even where this level has no such array (an input
-    // that is itself a measured level must not lend its MeasuredHausdorff to unmeasured ones).
-    vtkFieldData* fd = this->Impl->Levels[i]->GetFieldData();
-    for (int a = 0; passed && a < passed->GetNumberOfArrays(); ++a)
-    {
-      vtkAbstractArray* array = passed->GetAbstractArray(a);
-      const char* name = array ? array->GetName() : nullptr;
-      if (array && (!name || (!IsLevelFieldName(name) && !fd->GetAbstractArray(name))))
-      {
-        fd->AddArray(array); // unnamed arrays too: no name to clash with
-      }
-    }
+    // The input's field data on every level; the layout's own names are left out even where
+    // this level has no such array (an input that is itself a measured level must not lend its
+    // MeasuredHausdorff to unmeasured ones).
+    PassMetadata(this->Impl->InputFieldData, this->Impl->Levels[i]->GetFieldData());
     output->SetBlock(static_cast<unsigned int>(i), this->Impl->Levels[i]);
     output->GetMetaData(static_cast<unsigned int>(i))
       ->Set(vtkCompositeDataSet::NAME(), LevelBlockName(static_cast<int>(i)).c_str());

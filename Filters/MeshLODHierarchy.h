@@ -35,6 +35,7 @@
 #include <vector>
 
 class vtkAlgorithm;
+class vtkFieldData;
 class vtkInformation;
 class vtkMultiBlockDataSet;
 class vtkObject;
@@ -62,6 +63,16 @@ constexpr const char* TextureAtlasLevel = "TextureAtlasLevel";
 } // namespace names
 
 VTKFILTERSMESHLOD_EXPORT std::string LevelBlockName(int level);
+
+/// Whether `name` is one of the field-data arrays the layout gives each level (LevelIndex,
+/// NumberOfTriangles, EstimatedError, MeasuredHausdorff, MeasuredRMS, TextureAtlasLevel): what
+/// describes that level only, as opposed to the input's field data every level carries.
+VTKFILTERSMESHLOD_EXPORT bool IsLevelFieldName(const char* name);
+
+/// Adds to `to` the arrays of `from`, shared, but those IsLevelFieldName names and those whose
+/// name `to` already has (unnamed arrays too: no name to clash with): the input's metadata, which
+/// every level and a geomorph's output carry as VTK filters pass field data on.
+VTKFILTERSMESHLOD_EXPORT void PassMetadata(vtkFieldData* from, vtkFieldData* to);
 
 /// Warn on `caller` when the input has point-data arrays named like the hierarchy's own
 /// (MorphTarget, MorphTargetId, CollapseRank): the levels carry the filter's arrays under those

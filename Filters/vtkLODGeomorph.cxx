@@ -1,6 +1,7 @@
 #include "vtkLODGeomorph.h"
 
 #include "MeshLODGeomorphInternals.h"
+#include "MeshLODHierarchy.h"
 #include "MeshLODInputMesh.h"
 #include "MeshLODSettings.h"
 
@@ -255,6 +256,10 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
   lodArray->SetName(LevelOfDetailName);
   lodArray->InsertNextValue(lod);
   output->GetFieldData()->AddArray(lodArray);
+  // The finer level's field data, less what the layout gives each level (its index, count and
+  // errors describe that level, not this mesh).
+  const int finer = std::min(static_cast<int>(std::floor(lod)), n - 1);
+  meshlod::PassMetadata(impl.Levels[finer].Poly->GetFieldData(), output->GetFieldData());
   this->ActualNumberOfTriangles = output->GetNumberOfPolys();
   this->UpdateProgress(1.0);
   return 1;

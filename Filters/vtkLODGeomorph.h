@@ -157,7 +157,10 @@
  * (switched, the points that merge would share one id; global ids must stay unique). The morph
  * arrays themselves are not passed. Cell data: level i's, for the triangles kept (global ids
  * included). Field data: LevelOfDetail (double), the L produced (for an exact count: i + the
- * fraction of level i's steps applied, just below i + 1 when all are).
+ * fraction of level i's steps applied, just below i + 1 when all are), and level floor(L)'s field
+ * data (the input's metadata, shared) but for the arrays that describe that level alone:
+ * LevelIndex, NumberOfTriangles, EstimatedError, MeasuredHausdorff, MeasuredRMS and
+ * TextureAtlasLevel.
  *
  * @par Time
  * With UsePipelineTime on (the default), RequestInformation publishes TIME_STEPS = {0, s, 2s, ...,

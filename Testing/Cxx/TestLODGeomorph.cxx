@@ -40,7 +40,8 @@ using testing::Level;
 using testing::SameValues;
 
 // The mesh with float or double points and point data: Height (double, = z), Label (int,
-// 10 * id), Normals (float, the attribute) and cell data CellLabel (int, 100 + id).
+// 10 * id), Normals (float, the attribute), cell data CellLabel (int, 100 + id) and field data
+// Scan (int, 7).
 vtkSmartPointer<vtkPolyData> Decorate(vtkPolyData* mesh, int pointType)
 {
   auto out = vtkSmartPointer<vtkPolyData>::New();
@@ -75,7 +76,25 @@ vtkSmartPointer<vtkPolyData> Decorate(vtkPolyData* mesh, int pointType)
     cellLabel->InsertNextValue(static_cast<int>(100 + c));
   }
   out->GetCellData()->AddArray(cellLabel);
+  vtkNew<vtkIntArray> scan;
+  scan->SetName("Scan");
+  scan->InsertNextValue(7);
+  out->GetFieldData()->AddArray(scan);
   return out;
+}
+
+// The output's field data: LevelOfDetail, and the input's arrays as the levels share them, not
+// the per-level ones of the layout (level index, triangle count and errors describe a level).
+void CheckFieldData(vtkPolyData* out, vtkPolyData* level)
+{
+  vtkFieldData* fd = out->GetFieldData();
+  MESHLOD_CHECK(fd->GetArray("Scan") != nullptr &&
+    fd->GetArray("Scan") == level->GetFieldData()->GetArray("Scan"));
+  MESHLOD_CHECK(fd->GetArray("LevelOfDetail") != nullptr);
+  for (const char* own : { names::LevelIndex, names::NumberOfTriangles, names::EstimatedError })
+  {
+    MESHLOD_CHECK(fd->GetAbstractArray(own) == nullptr);
+  }
 }
 
 vtkPolyData* Run(vtkLODGeomorph* filter, double lod)
@@ -116,6 +135,7 @@ void TestWholeLevel(vtkLODGeomorph* filter, vtkMultiBlockDataSet* h)
     out->GetCellData()->GetArray("CellLabel") == level->GetCellData()->GetArray("CellLabel"));
   MESHLOD_CHECK_EQ(filter->GetActualLevelOfDetail(), 1.0);
   MESHLOD_CHECK_EQ(out->GetFieldData()->GetArray("LevelOfDetail")->GetTuple1(0), 1.0);
+  CheckFieldData(out, level);
   MESHLOD_CHECK_EQ(filter->GetNumberOfLevels(), 4);
   MESHLOD_CHECK_EQ(filter->GetActualCorrespondence(), vtkLODGeomorph::MORPH_ARRAYS);
 }
@@ -165,6 +185,7 @@ void TestWithinLevel(vtkLODGeomorph* filter, vtkMultiBlockDataSet* h)
     MESHLOD_CHECK_EQ(notUnit, 0);
     MESHLOD_CHECK(out->GetPointData()->GetNormals() != nullptr);
     MESHLOD_CHECK(out->GetPointData()->GetArray(names::MorphTarget) == nullptr);
+    CheckFieldData(out, level);
   }
   // t = 0.5 exactly: one point checked by hand against both levels.
   vtkPolyData* out = Run(filter, 1.5);
