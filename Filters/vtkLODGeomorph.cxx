@@ -246,7 +246,8 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
 
   // 3. The mesh.
   this->UpdateProgress(0.0);
-  if (!this->Produce(lod, output))
+  int dataLevel = 0;
+  if (!this->Produce(lod, output, dataLevel))
   {
     output->Initialize();
     return 1;
@@ -256,25 +257,33 @@ int vtkLODGeomorph::RequestData(vtkInformation* vtkNotUsed(request),
   lodArray->SetName(LevelOfDetailName);
   lodArray->InsertNextValue(lod);
   output->GetFieldData()->AddArray(lodArray);
-  // The finer level's field data, less what the layout gives each level (its index, count and
-  // errors describe that level, not this mesh).
-  const int finer = std::min(static_cast<int>(std::floor(lod)), n - 1);
-  meshlod::PassMetadata(impl.Levels[finer].Poly->GetFieldData(), output->GetFieldData());
+  // The field data of the level whose point data the output has, less what the layout gives
+  // each level (its index, count and errors describe that level, not this mesh) but for
+  // TextureAtlasLevel: the output's TCoords address that level's baked texture.
+  vtkFieldData* levelData = impl.Levels[dataLevel].Poly->GetFieldData();
+  meshlod::PassMetadata(levelData, output->GetFieldData());
+  if (vtkAbstractArray* atlas = levelData->GetAbstractArray(meshlod::names::TextureAtlasLevel))
+  {
+    output->GetFieldData()->AddArray(atlas);
+  }
   this->ActualNumberOfTriangles = output->GetNumberOfPolys();
   this->UpdateProgress(1.0);
   return 1;
 }
 
 //------------------------------------------------------------------------------
-// The mesh at `lod` (or at TargetNumberOfTriangles), into `output`; `lod` becomes the level of
-// detail produced. False when it failed or was stopped.
-bool vtkLODGeomorph::Produce(double& lod, vtkPolyData* output)
+// False when it failed or was stopped.
+bool vtkLODGeomorph::Produce(double& lod, vtkPolyData* output, int& dataLevel)
 {
   Internals& impl = *this->Impl;
   if (this->TargetNumberOfTriangles >= 0)
   {
-    return impl.ProduceExactCount(
+    // (Its L is kept below the next level wherever the output has this level's point data.)
+    const bool done = impl.ProduceExactCount(
       this, this->TargetNumberOfTriangles, this->CollapseFraction, output, lod);
+    dataLevel = std::max(0, std::min(static_cast<int>(std::floor(lod)),
+                              static_cast<int>(impl.Levels.size()) - 1));
+    return done;
   }
   const int n = static_cast<int>(impl.Levels.size());
   int level = static_cast<int>(std::floor(lod));
@@ -285,6 +294,7 @@ bool vtkLODGeomorph::Produce(double& lod, vtkPolyData* output)
     t = 0.0;
   }
   lod = level + t;
+  dataLevel = level;
   if (t == 0.0)
   {
     impl.ProduceLevel(level, output);
@@ -297,6 +307,7 @@ bool vtkLODGeomorph::Produce(double& lod, vtkPolyData* output)
     if (t >= collapses)
     {
       impl.ProduceFlipMorph(level, (t - collapses) / FlipShare, output);
+      dataLevel = level + 1; // (on the next level's points, with its arrays)
       return true;
     }
     return impl.ProducePartialCollapse(this, level, t / collapses, output);

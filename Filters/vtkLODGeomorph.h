@@ -157,10 +157,11 @@
  * (switched, the points that merge would share one id; global ids must stay unique). The morph
  * arrays themselves are not passed. Cell data: level i's, for the triangles kept (global ids
  * included). Field data: LevelOfDetail (double), the L produced (for an exact count: i + the
- * fraction of level i's steps applied, just below i + 1 when all are), and level floor(L)'s field
- * data (the input's metadata, shared) but for the arrays that describe that level alone:
- * LevelIndex, NumberOfTriangles, EstimatedError, MeasuredHausdorff, MeasuredRMS and
- * TextureAtlasLevel.
+ * fraction of level i's steps applied, just below i + 1 when all are), and the field data of the
+ * level whose point data the output has (level floor(L), or i + 1 while flips turn): the
+ * input's metadata, shared, and TextureAtlasLevel, the texture its TCoords address; not
+ * LevelIndex, NumberOfTriangles, EstimatedError, MeasuredHausdorff and MeasuredRMS, which
+ * describe a level alone.
  *
  * @par Time
  * With UsePipelineTime on (the default), RequestInformation publishes TIME_STEPS = {0, s, 2s, ...,
@@ -359,7 +360,9 @@ private:
   vtkLODGeomorph(const vtkLODGeomorph&) = delete;
   void operator=(const vtkLODGeomorph&) = delete;
 
-  bool Produce(double& lod, vtkPolyData* output);
+  // The mesh at `lod` (or at TargetNumberOfTriangles) into `output`; `lod` becomes the level of
+  // detail produced and `dataLevel` the level whose point data (and baked texture) it carries.
+  bool Produce(double& lod, vtkPolyData* output, int& dataLevel);
 
   struct Internals;
   std::unique_ptr<Internals> Impl;

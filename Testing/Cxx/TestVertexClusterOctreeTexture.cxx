@@ -544,6 +544,10 @@ void TestColorArray()
     }
     geomorph->Update();
     vtkPolyData* out = geomorph->GetOutput();
+    // It says which texture its TCoords address: level 1's.
+    vtkDataArray* atlasLevel =
+      out->GetFieldData()->GetArray(meshlod::names::TextureAtlasLevel);
+    MESHLOD_CHECK(atlasLevel != nullptr && atlasLevel->GetTuple1(0) == 1.0);
     vtkDataArray* tcoords = out->GetPointData()->GetTCoords();
     MESHLOD_CHECK(tcoords != nullptr);
     if (!tcoords)
