@@ -24,7 +24,7 @@ from every level of an input whose seams were stitched, and the geomorph gave th
 merge one id, and, while flips turn, the midpoints and the triangles split at them their
 sources' ids; coarser levels and the geomorph lost component names and array information.)
 
-    TestRandomShapes.py [seeds]   (shapes of each kind to try, default 100: under 20 seconds)
+    TestRandomShapes.py [seeds]   (shapes of each kind to try, default 100: under 25 seconds)
 """
 
 import math
