@@ -282,6 +282,7 @@ void CopySubset(vtkDataSetAttributes* from, vtkIdList* fromIds, vtkDataSetAttrib
   to->SetCopyGlobalIds(1, vtkDataSetAttributes::COPYTUPLE);
   to->CopyAllocate(from, fromIds->GetNumberOfIds());
   to->CopyData(from, fromIds, Iota(fromIds->GetNumberOfIds()));
+  to->SetCopyGlobalIds(0, vtkDataSetAttributes::COPYTUPLE); // the default again, for later users
 }
 
 void SetLevelFieldData(vtkPolyData* poly, int level, double estimatedError)
