@@ -297,8 +297,9 @@ vtkSmartPointer<vtkAbstractArray> ArrayPool::Take(vtkAbstractArray* like, vtkIdT
     if (array->GetReferenceCount() == 1 && array->GetDataType() == like->GetDataType() &&
       array->GetArrayType() == like->GetArrayType() && array->IsA(like->GetClassName()) &&
       array->GetNumberOfComponents() == like->GetNumberOfComponents() &&
-      array->GetNumberOfTuples() == tuples)
+      array->GetNumberOfTuples() == tuples && SameComponentNames(array, like))
     {
+      // (Same component names: an array cannot lose those of an earlier use.)
       CopyArrayDescription(like, array);
       array->Modified();
       return array;

@@ -3,6 +3,8 @@
 #include "vtkAbstractArray.h"
 #include "vtkInformation.h"
 
+#include <cstring>
+
 namespace meshlod
 {
 //------------------------------------------------------------------------------
@@ -18,6 +20,25 @@ void CopyArrayDescription(vtkAbstractArray* from, vtkAbstractArray* to)
   {
     to->GetInformation()->Clear(); // (a recycled array's from its previous use)
   }
+}
+
+//------------------------------------------------------------------------------
+bool SameComponentNames(vtkAbstractArray* a, vtkAbstractArray* b)
+{
+  if (a->GetNumberOfComponents() != b->GetNumberOfComponents())
+  {
+    return false;
+  }
+  for (int k = 0; k < a->GetNumberOfComponents(); ++k)
+  {
+    const char* x = a->GetComponentName(k);
+    const char* y = b->GetComponentName(k);
+    if ((x == nullptr) != (y == nullptr) || (x != nullptr && std::strcmp(x, y) != 0))
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------

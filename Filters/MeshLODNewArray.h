@@ -13,8 +13,13 @@ class vtkAbstractArray;
 namespace meshlod
 {
 /// Gives `to` the name, component names and information of `from` (the information's cached
-/// ranges left out, as vtkAbstractArray::CopyInformation does); `to` keeps its values.
+/// ranges left out, as vtkAbstractArray::CopyInformation does); `to` keeps its values. VTK 9.1
+/// cannot take component names away (CopyComponentNames of an array without any leaves them),
+/// so `to` must have no component names or the same ones as `from` (SameComponentNames).
 void CopyArrayDescription(vtkAbstractArray* from, vtkAbstractArray* to);
+
+/// Whether `a` and `b` have the same component names (none counts as a name of its own).
+bool SameComponentNames(vtkAbstractArray* a, vtkAbstractArray* b);
 
 /// A new array of `like`'s class and number of components with `tuples` tuples (values not
 /// set) and `like`'s description (CopyArrayDescription).

@@ -2,13 +2,14 @@
 vtkQuadricDecimation outputs without them; the time-driven update must give the same mesh as
 the explicit LevelOfDetail, and an upstream with time steps of its own is asked for its first.
 Exact counts on an extruded vector text, whose large flat faces make clusters that are valid
-only together."""
+only together. Frames keep their arrays' component names while a user holds arrays of earlier
+frames (the filter recycles its output arrays)."""
 
 import os
 import tempfile
 
 from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIdTypeArray, vtkPoints
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkFloatArray, vtkIdTypeArray, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkMultiBlockDataSet, vtkPolyData
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkQuadricDecimation, vtkTriangleFilter
@@ -316,7 +317,48 @@ def test_time_aware_upstream(continuous):
     check(source.times[-1] == 0.0, "time on: the upstream was last asked for %s" % source.times)
 
 
+def test_component_names_while_frames_are_held():
+    """Each frame's arrays have their own component names. The geomorph recycles output arrays
+    nobody holds; one recycled from a named Velocity once came back as the Normals with the
+    components Vx, Vy, Vz (VTK cannot take component names away)."""
+    sphere = vtkSphereSource()
+    sphere.SetThetaResolution(40)
+    sphere.SetPhiResolution(40)
+    sphere.SetOutputPointsPrecision(1)
+    sphere.Update()
+    mesh = sphere.GetOutput()
+    count = mesh.GetNumberOfPoints()
+    velocity = vtkFloatArray()
+    velocity.SetName("Velocity")
+    velocity.SetNumberOfComponents(3)
+    velocity.SetNumberOfTuples(count)
+    for i in range(count):
+        velocity.SetTuple3(i, i % 7, 1.0, -1.0)
+    for k, name in enumerate(("Vx", "Vy", "Vz")):
+        velocity.SetComponentName(k, name)
+    mesh.GetPointData().AddArray(velocity)
+    decimate = meshlod.vtkTriangleCollapseDecimation()
+    decimate.SetInputData(mesh)
+    decimate.Update()
+    geomorph = meshlod.vtkLODGeomorph()
+    geomorph.SetInputData(decimate.GetHierarchy())
+    geomorph.UsePipelineTimeOff()
+    held = []
+    for lod in (0.5, 0.4, 0.3, 0.2):
+        geomorph.SetLevelOfDetail(lod)
+        geomorph.Update()
+        data = geomorph.GetOutput().GetPointData()
+        normals, speed = data.GetArray("Normals"), data.GetArray("Velocity")
+        check([normals.GetComponentName(k) for k in range(3)] == [None] * 3 and
+              [speed.GetComponentName(k) for k in range(3)] == ["Vx", "Vy", "Vz"],
+              "L = %g: component names of Normals %s, Velocity %s" % (
+                  lod, [normals.GetComponentName(k) for k in range(3)],
+                  [speed.GetComponentName(k) for k in range(3)]))
+        held.append(normals)  # a user keeps this frame's normals
+
+
 test_morph()
+test_component_names_while_frames_are_held()
 test_time_aware_upstream(False)
 test_time_aware_upstream(True)
 test_nearest()
