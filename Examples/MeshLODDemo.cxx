@@ -8,7 +8,7 @@
 // --field           metaballs (default), gyroid, torus, sphere or wavelet
 // --resolution      samples per axis of the volume (default: about 200k triangles)
 // --input           your own surface instead of the isosurface: a .vtp, .vtk (legacy polydata),
-//                   .stl, .ply or .obj file (polygons are triangulated by the filters)
+//                   .stl, .ply or .obj file (polygons and strips are triangulated first)
 // --frames          frames per level transition in the time series (default 8)
 // --no-render       skip the picture (it needs an X display; run-demo.sh provides one with Xvfb)
 //
@@ -36,6 +36,7 @@
 #include "vtkActor.h"
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCoordinate.h"
 #include "vtkDataArray.h"
 #include "vtkErrorCode.h"
@@ -57,6 +58,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
+#include "vtkTriangleFilter.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLMultiBlockDataWriter.h"
 #include "vtkXMLPolyDataReader.h"
@@ -119,14 +121,27 @@ vtkSmartPointer<vtkMultiBlockDataSet> ProduceTriangleCollapse(vtkPolyData* surfa
 
 vtkSmartPointer<vtkMultiBlockDataSet> ProduceVertexClusterOctree(vtkPolyData* surface)
 {
-  // The same level sizes as the triangle collapse's defaults: 56%, 32%, ..., 1% of the input.
+  // The same level sizes as the triangle collapse's defaults: 56%, 32%, ..., 1% of the input's
+  // triangles (the surface is all triangles: see main), each count at least 4 (a tetrahedron)
+  // and below the one before; a surface too small for any keeps its own count, in one level.
+  const vtkIdType triangles = surface->GetNumberOfPolys();
   vtkNew<vtkVertexClusterOctree> cluster;
   cluster->SetInputData(surface);
   cluster->SetLevelModeToTargetTriangleCounts();
+  vtkIdType last = triangles;
   for (int k = 1; k <= 8; ++k)
   {
-    cluster->AddTargetTriangleCount(static_cast<vtkIdType>(
-      surface->GetNumberOfPolys() * std::pow(0.01, k / 8.0)));
+    const vtkIdType count = std::max<vtkIdType>(
+      4, static_cast<vtkIdType>(static_cast<double>(triangles) * std::pow(0.01, k / 8.0)));
+    if (count < last)
+    {
+      cluster->AddTargetTriangleCount(count);
+      last = count;
+    }
+  }
+  if (last == triangles)
+  {
+    cluster->AddTargetTriangleCount(triangles);
   }
   cluster->Update();
   return cluster->GetHierarchy();
@@ -722,7 +737,21 @@ int main(int argc, char* argv[])
       std::cerr << "cannot read " << options.Input.string() << ": " << why << "\n";
       return 1;
     }
-    std::printf("Read %s: %lld polygons, %lld points, %.3f s\n", options.Input.string().c_str(),
+    const long long polygons = surface->GetNumberOfPolys();
+    const long long strips = surface->GetNumberOfStrips();
+    if (strips > 0 || surface->GetPolys()->IsHomogeneous() != 3)
+    {
+      // Polygons and strips as triangles here (the filters would do it themselves), so that
+      // the octree's level counts and the tables count triangles.
+      vtkNew<vtkTriangleFilter> triangulate;
+      triangulate->SetInputData(surface);
+      triangulate->PassVertsOff();
+      triangulate->PassLinesOff();
+      triangulate->Update();
+      surface = triangulate->GetOutput();
+    }
+    std::printf("Read %s: %lld polygons and %lld strips, %lld triangles, %lld points, %.3f s\n",
+      options.Input.string().c_str(), polygons, strips,
       static_cast<long long>(surface->GetNumberOfPolys()),
       static_cast<long long>(surface->GetNumberOfPoints()), SecondsSince(start));
   }

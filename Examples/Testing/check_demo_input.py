@@ -3,9 +3,12 @@
     check_demo_input.py <MeshLODDemo> <CheckDemoOutput> <work-directory>
 
 A closed surface (a sampled sphere's isosurface, triangles only, no point data) is written as
-.vtp, .vtk, .stl, .ply and .obj; for each, the demo must say it read that many polygons, and
-its triangle-collapse files must pass CheckDemoOutput (9 levels, 2 frames per transition). A
-missing file, an unknown extension and --input given with --field must fail with their messages.
+.vtp, .vtk, .stl, .ply and .obj; for each, the demo must say it read that many triangles, and
+its triangle-collapse files must pass CheckDemoOutput (9 levels, 2 frames per transition). The
+same surface as triangle strips, a plane of quads and a 12-triangle cube must run too (the
+demo counts their triangles: the octree's level counts were once computed from polygons, 0 for
+strips, and counts below 1 stopped the demo). A missing file, an unknown extension and --input
+given with --field must fail with their messages.
 """
 import os
 import re
@@ -13,7 +16,8 @@ import subprocess
 import sys
 
 from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkSphere
-from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
+from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D, vtkStripper, vtkTriangleFilter
+from vtkmodules.vtkFiltersSources import vtkCubeSource, vtkPlaneSource
 from vtkmodules.vtkImagingHybrid import vtkSampleFunction
 from vtkmodules.vtkIOGeometry import vtkOBJWriter, vtkSTLWriter
 from vtkmodules.vtkIOLegacy import vtkPolyDataWriter
@@ -65,14 +69,39 @@ for extension, writer_class in writers.items():
     output = os.path.join(work, "out" + extension.replace(".", "_"))
     code, text = run(output, "--input", path, "--frames", "2", "--no-render")
     check(code == 0, "%s: the demo exits with 0 (%d):\n%s" % (extension, code, text))
-    read = re.search(r"Read [^\n]*: (\d+) polygons", text)
+    read = re.search(r"Read [^\n]*, (\d+) triangles", text)
     check(read is not None and int(read.group(1)) == triangles,
-          "%s: read %s polygons, written %d" % (extension, read and read.group(1), triangles))
+          "%s: read %s triangles, written %d" % (extension, read and read.group(1), triangles))
     check(not re.search(r"ERR\||WARN\||Warning:", text), "%s: no VTK error or warning:\n%s"
           % (extension, text))
     files = subprocess.run([check_output, output, "triangle_collapse", "9", "2"],
                            capture_output=True, text=True)
     check(files.returncode == 0, "%s: CheckDemoOutput:\n%s" % (extension, files.stdout))
+
+# Strips, quads and a tiny solid: their triangles counted, both hierarchies made.
+stripper = vtkStripper()
+stripper.SetInputData(surface)
+plane = vtkPlaneSource()
+plane.SetResolution(30, 30)
+cube = vtkCubeSource()
+cube_triangles = vtkTriangleFilter()
+cube_triangles.SetInputConnection(cube.GetOutputPort())
+for name, algorithm, expected in (("strips", stripper, triangles), ("quads", plane, 1800),
+                                  ("cube", cube_triangles, 12)):
+    algorithm.Update()
+    path = os.path.join(work, name + ".vtp")
+    writer = vtkXMLPolyDataWriter()
+    writer.SetInputData(algorithm.GetOutput())
+    writer.SetFileName(path)
+    writer.Write()
+    output = os.path.join(work, "out_" + name)
+    code, text = run(output, "--input", path, "--frames", "2", "--no-render")
+    read = re.search(r"Read [^\n]*, (\d+) triangles", text)
+    check(code == 0 and read is not None and int(read.group(1)) == expected,
+          "%s: exit code %d, %s triangles read (%d expected):\n%s"
+          % (name, code, read and read.group(1), expected, text))
+    check(os.path.isfile(os.path.join(output, "vertex_cluster_octree.vtm")),
+          "%s: the octree's hierarchy written" % name)
 
 code, text = run(os.path.join(work, "none"), "--input", os.path.join(work, "missing.stl"))
 check(code == 1 and "no such file" in text, "a missing file is refused: %d %s" % (code, text))
