@@ -274,15 +274,23 @@ vtkSmartPointer<vtkIdList> Iota(vtkIdType count)
   return list;
 }
 
-// The tuples fromIds of every array, attributes kept. Global ids too, which CopyAllocate's
-// default flags leave out (they must stay unique): every use here takes each tuple at most once
-// (a level's points from distinct input points, its triangles from distinct level-0 triangles).
-void CopySubset(vtkDataSetAttributes* from, vtkIdList* fromIds, vtkDataSetAttributes* to)
+// `to` allocated for `count` tuples of every array of `from`, attributes kept. Global ids too,
+// which CopyAllocate's default flags leave out (they must stay unique): every use here takes each
+// tuple at most once (a level's points from distinct input points, its triangles from distinct
+// level-0 triangles). The flags are VTK's default again afterwards, for later users of `to`
+// (CopyData copies what CopyAllocate chose).
+void AllocateLike(vtkDataSetAttributes* from, vtkDataSetAttributes* to, vtkIdType count)
 {
   to->SetCopyGlobalIds(1, vtkDataSetAttributes::COPYTUPLE);
-  to->CopyAllocate(from, fromIds->GetNumberOfIds());
+  to->CopyAllocate(from, count);
+  to->SetCopyGlobalIds(0, vtkDataSetAttributes::COPYTUPLE);
+}
+
+// The tuples fromIds of every array (AllocateLike).
+void CopySubset(vtkDataSetAttributes* from, vtkIdList* fromIds, vtkDataSetAttributes* to)
+{
+  AllocateLike(from, to, fromIds->GetNumberOfIds());
   to->CopyData(from, fromIds, Iota(fromIds->GetNumberOfIds()));
-  to->SetCopyGlobalIds(0, vtkDataSetAttributes::COPYTUPLE); // the default again, for later users
 }
 
 void SetLevelFieldData(vtkPolyData* poly, int level, double estimatedError)
@@ -470,8 +478,8 @@ void HierarchyBuilder::SetEmptyLevelZero(vtkPolyData* input, int precision)
   level0->SetPolys(polys);
   if (input != nullptr)
   {
-    level0->GetPointData()->CopyAllocate(input->GetPointData(), 0);
-    level0->GetCellData()->CopyAllocate(input->GetCellData(), 0);
+    AllocateLike(input->GetPointData(), level0->GetPointData(), 0);
+    AllocateLike(input->GetCellData(), level0->GetCellData(), 0);
   }
   SetLevelFieldData(level0, 0, 0.0);
   this->Impl->Levels.push_back(level0);

@@ -490,8 +490,9 @@ public:
    * Type of every level's points (level 0 included), as vtkAlgorithm::DesiredOutputPrecision:
    * DEFAULT_PRECISION (the default) keeps the input's when it is float or double and gives
    * double for integer points; SINGLE_PRECISION gives float, DOUBLE_PRECISION double. The
-   * computation is in double precision either way. vtkLODGeomorph's output keeps the levels'
-   * type.
+   * simplification itself runs in double precision either way; with SINGLE_PRECISION on double
+   * input, level 0 is float too, and the passes that read level 0 (centring, edge flips,
+   * measured errors) see its rounded points. vtkLODGeomorph's output keeps the levels' type.
    */
   vtkSetClampMacro(OutputPointsPrecision, int, SINGLE_PRECISION, DEFAULT_PRECISION);
   vtkGetMacro(OutputPointsPrecision, int);

@@ -72,21 +72,13 @@ void TestCleanMeshIsShared(Reader& reader)
 void TestQuadsAndStripsAreTriangulated(Reader& reader)
 {
   // Four quads of a 2x2 grid with a cell array "Square" naming each quad.
-  vtkSmartPointer<vtkPolyData> grid = testing::MakeGrid(2, 2);
-  vtkNew<vtkCellArray> quads;
+  vtkSmartPointer<vtkPolyData> grid = testing::MakeQuadGrid(2, 2);
   vtkNew<vtkIntArray> square;
   square->SetName("Square");
-  for (vtkIdType j = 0; j < 2; ++j)
+  for (int q = 0; q < 4; ++q)
   {
-    for (vtkIdType i = 0; i < 2; ++i)
-    {
-      const vtkIdType a = j * 3 + i;
-      const vtkIdType ids[4] = { a, a + 1, a + 4, a + 3 };
-      quads->InsertNextCell(4, ids);
-      square->InsertNextValue(static_cast<int>(j * 2 + i));
-    }
+    square->InsertNextValue(q);
   }
-  grid->SetPolys(quads);
   grid->GetCellData()->AddArray(square);
   vtkNew<vtkIdTypeArray> globalIds; // one id per quad
   globalIds->SetName("QuadIds");

@@ -1,8 +1,8 @@
 // What both hierarchy filters make of inputs a pipeline can hand them besides a plain float or
 // double surface: composite data (an error that says what to do, not a hierarchy nested in a
 // hierarchy, which the pipeline's block-by-block execution made) and integer points (levels in
-// double, not collapse points and geomorph frames truncated to integers); and the point type
-// OutputPointsPrecision asks for.
+// double, not collapse points and geomorph frames truncated to integers); the point type
+// OutputPointsPrecision asks for; and the cell global ids of quads, which their triangles share.
 #include "vtkLODGeomorph.h"
 #include "vtkTriangleCollapseDecimation.h"
 #include "vtkVertexClusterOctree.h"
@@ -11,7 +11,10 @@
 #include "MeshLODTestMeshes.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
 #include "vtkExecutive.h"
+#include "vtkIdTypeArray.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -186,6 +189,41 @@ void TestOutputPointsPrecision(const char* name)
   MESHLOD_CHECK_EQ(filter->GetOutputPointsPrecision(), vtkAlgorithm::DEFAULT_PRECISION);
   std::cout << name << ": OutputPointsPrecision\n";
 }
+// Quads with cell GlobalIds: the two triangles of a quad share its id, so every level keeps the
+// ids as a plain array of that name, each value one of the input's, and not as the attribute
+// (which promises one cell per id).
+template <typename Filter>
+void TestPolygonCellIds(const char* name)
+{
+  vtkSmartPointer<vtkPolyData> grid = testing::MakeQuadGrid(20, 20);
+  vtkNew<vtkIdTypeArray> ids;
+  ids->SetName("QuadIds");
+  for (vtkIdType q = 0; q < grid->GetNumberOfCells(); ++q)
+  {
+    ids->InsertNextValue(1001 + q);
+  }
+  grid->GetCellData()->SetGlobalIds(ids);
+  vtkNew<Filter> filter;
+  filter->SetInputData(grid);
+  filter->Update();
+  vtkMultiBlockDataSet* h = filter->GetHierarchy();
+  MESHLOD_CHECK_GT(h->GetNumberOfBlocks(), 1u);
+  for (unsigned int i = 0; i < h->GetNumberOfBlocks(); ++i)
+  {
+    auto* level = vtkPolyData::SafeDownCast(h->GetBlock(i));
+    MESHLOD_REQUIRE(level != nullptr);
+    vtkDataArray* kept = level->GetCellData()->GetArray("QuadIds");
+    MESHLOD_CHECK(kept != nullptr && level->GetCellData()->GetGlobalIds() == nullptr);
+    vtkIdType foreign = 0;
+    for (vtkIdType c = 0; kept && c < kept->GetNumberOfTuples(); ++c)
+    {
+      const double value = kept->GetTuple1(c);
+      foreign += value < 1001 || value > 1400 ? 1 : 0;
+    }
+    MESHLOD_CHECK_EQ(foreign, 0);
+  }
+  std::cout << name << ": quads' cell ids on " << h->GetNumberOfBlocks() << " levels\n";
+}
 } // namespace
 
 int TestMeshLODFilterInputs(int, char*[])
@@ -196,5 +234,7 @@ int TestMeshLODFilterInputs(int, char*[])
   TestIntegerPoints<vtkVertexClusterOctree>("vtkVertexClusterOctree");
   TestOutputPointsPrecision<vtkTriangleCollapseDecimation>("vtkTriangleCollapseDecimation");
   TestOutputPointsPrecision<vtkVertexClusterOctree>("vtkVertexClusterOctree");
+  TestPolygonCellIds<vtkTriangleCollapseDecimation>("vtkTriangleCollapseDecimation");
+  TestPolygonCellIds<vtkVertexClusterOctree>("vtkVertexClusterOctree");
   return testing::Result();
 }

@@ -13,11 +13,13 @@
 #include "vtkAppendPolyData.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
@@ -626,13 +628,24 @@ void TestErrorsAndAbort()
 {
   vtkNew<vtkTest::ErrorObserver> observer;
   {
-    // Empty input: one empty level (a vtkLODGeomorph downstream then gives an empty mesh).
+    // Empty input: one empty level (a vtkLODGeomorph downstream then gives an empty mesh),
+    // with the input's arrays, global ids included, without tuples.
     vtkNew<vtkTriangleCollapseDecimation> filter;
     vtkNew<vtkPolyData> empty;
+    vtkNew<vtkIdTypeArray> pointIds, cellIds;
+    pointIds->SetName("PointIds");
+    cellIds->SetName("CellIds");
+    empty->GetPointData()->SetGlobalIds(pointIds);
+    empty->GetCellData()->SetGlobalIds(cellIds);
     filter->SetInputData(empty);
     filter->Update();
     MESHLOD_CHECK_EQ(filter->GetHierarchy()->GetNumberOfBlocks(), 1u);
-    MESHLOD_CHECK_EQ(Level(filter->GetHierarchy(), 0)->GetNumberOfPoints(), 0);
+    vtkPolyData* level0 = Level(filter->GetHierarchy(), 0);
+    MESHLOD_CHECK_EQ(level0->GetNumberOfPoints(), 0);
+    MESHLOD_CHECK(level0->GetPointData()->GetGlobalIds() != nullptr &&
+      std::string(level0->GetPointData()->GetGlobalIds()->GetName()) == "PointIds");
+    MESHLOD_CHECK(level0->GetCellData()->GetGlobalIds() != nullptr &&
+      std::string(level0->GetCellData()->GetGlobalIds()->GetName()) == "CellIds");
   }
   {
     // TargetReduction 0 asks for no level but level 0 (the missed-target check used to read

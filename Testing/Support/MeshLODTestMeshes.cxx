@@ -243,6 +243,23 @@ vtkSmartPointer<vtkPolyData> MakeGrid(int nx, int ny)
   return MakePolyData(points, triangles);
 }
 
+vtkSmartPointer<vtkPolyData> MakeQuadGrid(int nx, int ny)
+{
+  vtkSmartPointer<vtkPolyData> grid = MakeGrid(nx, ny);
+  vtkNew<vtkCellArray> quads;
+  for (vtkIdType j = 0; j < ny; ++j)
+  {
+    for (vtkIdType i = 0; i < nx; ++i)
+    {
+      const vtkIdType a = j * (nx + 1) + i;
+      const vtkIdType corners[4] = { a, a + 1, a + nx + 2, a + nx + 1 };
+      quads->InsertNextCell(4, corners);
+    }
+  }
+  grid->SetPolys(quads);
+  return grid;
+}
+
 vtkSmartPointer<vtkPolyData> MakeFan(int n)
 {
   std::vector<double> points = { 0.0, 0.0, 0.3 };

@@ -45,6 +45,9 @@ int ResolutionForTriangles(Field field, double triangles);
 
 /// A flat nx by ny grid of squares on z = 0, each split into two triangles (open).
 vtkSmartPointer<vtkPolyData> MakeGrid(int nx, int ny);
+/// The same grid's squares as quads (cell j * nx + i is square (i, j)), for input that the
+/// filters triangulate.
+vtkSmartPointer<vtkPolyData> MakeQuadGrid(int nx, int ny);
 /// Closed regular octahedron (all vertices valence 4).
 vtkSmartPointer<vtkPolyData> MakeOctahedron();
 /// Closed regular icosahedron subdivided `levels` times and projected on the unit sphere.
