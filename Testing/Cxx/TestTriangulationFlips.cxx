@@ -5,6 +5,7 @@
 // the same points and counts with a smaller distance to the input.
 #include "Core/TriangleMesh.h"
 #include "Core/TriangulationFlips.h"
+#include "MeshLODHierarchy.h"
 #include "MeshLODHierarchyChecks.h"
 #include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestCheck.h"
@@ -17,6 +18,8 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIntArray.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -761,6 +764,20 @@ vtkIdType CountLoneFlippedQuads(vtkPolyData* level, vtkPolyData* next)
 // quads turn (two triangles more per quad).
 void CheckGeomorphThroughFlips(vtkMultiBlockDataSet* hierarchy)
 {
+  // Each level names itself as a baked level would (TextureAtlasLevel; without TCoords it
+  // changes nothing else): the output carries the name of the level whose point data it has,
+  // this level's while the collapses move, the next one's while its flips turn.
+  for (unsigned int i = 0; i < hierarchy->GetNumberOfBlocks(); ++i)
+  {
+    vtkNew<vtkIntArray> mark;
+    mark->SetName(names::TextureAtlasLevel);
+    mark->InsertNextValue(static_cast<int>(i));
+    testing::Level(hierarchy, i)->GetFieldData()->AddArray(mark);
+  }
+  auto atlasLevel = [](vtkPolyData* frame) {
+    vtkDataArray* mark = frame->GetFieldData()->GetArray(names::TextureAtlasLevel);
+    return mark ? static_cast<int>(mark->GetTuple1(0)) : -1;
+  };
   vtkNew<vtkLODGeomorph> morph;
   morph->SetInputData(hierarchy);
   morph->UsePipelineTimeOff();
@@ -791,6 +808,8 @@ void CheckGeomorphThroughFlips(vtkMultiBlockDataSet* hierarchy)
     }
     const auto middle = at(i + 0.9);
     MESHLOD_CHECK_EQ(middle->GetNumberOfPolys(), next->GetNumberOfPolys() + 2 * quads);
+    MESHLOD_CHECK_EQ(atlasLevel(middle), static_cast<int>(i + 1));
+    MESHLOD_CHECK_EQ(atlasLevel(at(i + 0.5)), static_cast<int>(i));
     // The arrays of the level it turns into (no morph arrays), one value per point and cell.
     const auto landed = at(i + 1);
     MESHLOD_CHECK_EQ(
