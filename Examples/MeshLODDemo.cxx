@@ -584,6 +584,15 @@ bool ParseArguments(int argc, char* argv[], Options& options)
   return true;
 }
 
+/// A reader of class `Reader` for `file`.
+template <typename Reader>
+vtkSmartPointer<vtkAlgorithm> NewReader(const fs::path& file)
+{
+  auto reader = vtkSmartPointer<Reader>::New();
+  reader->SetFileName(file.string().c_str());
+  return reader;
+}
+
 /// The surface in `file`, read by the reader its extension names (.vtp, .vtk, .stl, .ply, .obj),
 /// or null with the reason in `why`.
 vtkSmartPointer<vtkPolyData> ReadSurface(const fs::path& file, std::string& why)
@@ -591,38 +600,15 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const fs::path& file, std::string& why)
   std::string extension = file.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  vtkSmartPointer<vtkAlgorithm> reader;
-  if (extension == ".vtp")
-  {
-    auto xml = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-    xml->SetFileName(file.string().c_str());
-    reader = xml;
-  }
-  else if (extension == ".vtk")
-  {
-    auto legacy = vtkSmartPointer<vtkPolyDataReader>::New();
-    legacy->SetFileName(file.string().c_str());
-    reader = legacy;
-  }
-  else if (extension == ".stl")
-  {
-    auto stl = vtkSmartPointer<vtkSTLReader>::New(); // merges the copies of each corner
-    stl->SetFileName(file.string().c_str());
-    reader = stl;
-  }
-  else if (extension == ".ply")
-  {
-    auto ply = vtkSmartPointer<vtkPLYReader>::New();
-    ply->SetFileName(file.string().c_str());
-    reader = ply;
-  }
-  else if (extension == ".obj")
-  {
-    auto obj = vtkSmartPointer<vtkOBJReader>::New();
-    obj->SetFileName(file.string().c_str());
-    reader = obj;
-  }
-  else
+  // (vtkSTLReader merges the copies of each corner.)
+  const vtkSmartPointer<vtkAlgorithm> reader =
+    extension == ".vtp"   ? NewReader<vtkXMLPolyDataReader>(file)
+    : extension == ".vtk" ? NewReader<vtkPolyDataReader>(file)
+    : extension == ".stl" ? NewReader<vtkSTLReader>(file)
+    : extension == ".ply" ? NewReader<vtkPLYReader>(file)
+    : extension == ".obj" ? NewReader<vtkOBJReader>(file)
+                          : nullptr;
+  if (reader == nullptr)
   {
     why = "not a file type the demo reads (.vtp, .vtk, .stl, .ply or .obj)";
     return nullptr;
