@@ -28,6 +28,7 @@
 // multi-thread rows switch to the parallel backend and back.
 #include "BenchmarkArguments.h"
 #include "BenchmarkMethods.h"
+#include "BenchmarkTargets.h"
 #include "MeshLODSurfaceDistance.h"
 #include "MeshLODTestMeshes.h"
 
@@ -908,6 +909,27 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
   }
 
   md << this->TargetSummary();
+  std::vector<std::string> labels;
+  for (const Mesh& mesh : this->Meshes)
+  {
+    labels.push_back(mesh.Label);
+  }
+  md << meshlod::benchmark::TargetsReport(labels, this->Opts.Targets,
+    [this](size_t mesh, const std::string& method, int threads, double fraction,
+      meshlod::benchmark::Measurement& result) {
+      const Row* row = this->Find(mesh, method, threads, fraction);
+      if (!row)
+      {
+        return false;
+      }
+      result.Seconds = row->Seconds;
+      result.Hausdorff = row->Hausdorff;
+      result.Rms = row->Rms;
+      result.BytesPerTriangle = row->PeakBytes >= 0
+        ? static_cast<double>(row->PeakBytes) / row->InputTriangles
+        : -1.0;
+      return true;
+    });
 
   md << "## Settings of the methods\n\n";
   for (const Method& method : methods)
