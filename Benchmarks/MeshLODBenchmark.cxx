@@ -320,8 +320,11 @@ Run Measure(Make&& make)
 constexpr int Passes = 3;
 // Runs of over this many seconds skip the last pass (two runs in all) ...
 constexpr double LongRunSeconds = 10.0;
-// ... and runs of under this many are made twice per pass after the first (five in all).
+// ... and runs of under this many are made ShortRunRepeats times per pass after the first (nine
+// in all): a run of a fifth of a second took from 0.15 to 0.19 s in ten repeats within minutes,
+// and with five in all the two-thread row of such a run could miss its fast phases.
 constexpr double ShortRunSeconds = 1.0;
+constexpr int ShortRunRepeats = 4;
 
 /// One line of the report.
 struct Row
@@ -619,7 +622,7 @@ private:
         {
           continue;
         }
-        const int times = first.Seconds < ShortRunSeconds ? 2 : 1;
+        const int times = first.Seconds < ShortRunSeconds ? ShortRunRepeats : 1;
         for (int time = 0; time < times; ++time)
         {
           UseTimedBackend(this->Smp, rerun.Threads);
@@ -823,8 +826,8 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
   md << "## Columns\n\n"
      << "- *time*: wall time of the method alone (filter construction, Update, output), the "
         "fastest of its runs: one in each of three passes over all the methods of a mesh (two "
-        "passes for runs of over ten seconds; runs under a second twice in each pass after the "
-        "first), so that every method meets the slow and fast phases of a shared machine "
+        "passes for runs of over ten seconds; runs under a second four times in each pass after "
+        "the first), so that every method meets the slow and fast phases of a shared machine "
         "alike. Untimed: generating the input, searching a grid resolution, measuring the "
         "error.\n"
      << "- *CPU*: CPU time of the thread running the method, for single-thread rows (the whole "
