@@ -125,10 +125,11 @@
  *   (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy order stays serial: in
  *   rounds it lost much of its accuracy on a noisy surface.) For its whole hierarchy the
  *   curvature method takes 1.3-3.4x the time vtkQuadricDecimation needs for one 10% target on
- *   one thread (1.68-2.02x in Benchmarks/RESULTS.md's run), and 1.6-2.75x less on two (the
- *   quadric method: 0.29-0.57x over twelve runs on AMD EPYC processors, 0.41-0.48x in
- *   RESULTS.md's, where the run before on the same output gave 0.38-0.47x; 1.4-1.9x
- *   less on two, 1.71-1.82x in RESULTS.md's (1.63-1.72x the run before); the 154k-triangle
+ *   one thread (1.60-2.25x in Benchmarks/RESULTS.md's run), and 1.6-2.75x less on two (the
+ *   quadric method: 0.29-0.57x over fourteen runs on AMD EPYC processors, 0.40-0.51x in
+ *   RESULTS.md's, where the two runs before on the same output gave 0.37-0.47x and
+ *   0.41-0.48x; 1.4-1.9x less on two, 1.65-1.73x in RESULTS.md's (1.67-1.74x and 1.71-1.82x
+ *   the two runs before); the 154k-triangle
  *   mesh's one run of half a second swings most; the
  *   ratios move with the processor, the machine's load and what ran before in the same process:
  *   on an Intel Xeon the quadric method took 0.42-0.69x over three runs, its own times about as
@@ -689,9 +690,13 @@ public:
    * the Hausdorff distance at 1% of the triangles falls from 0.243% to 0.185% of the diagonal
    * (611k triangles; 1.02 to 0.77 times vtkQuadricDecimation's) and from 0.0627% to 0.0510%
    * (2.3M; 0.99 to 0.81 times); at 10% it stays (0.95 and 1.03 times), and the RMS distances
-   * fall by 0.4-0.6%. The whole hierarchy took 1.10-1.17 times as long on one thread (0.55,
-   * 0.55 and 0.45 times vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the
-   * 2.3M gyroid, against 0.48, 0.47 and 0.41 without flips; 1.01-1.24 times in the run before).
+   * fall by 0.4-0.6%. The whole hierarchy took 1.0-1.2 times as long on one thread in most of
+   * the benchmark's runs (1.10-1.17 and 1.01-1.24 times in two of them); in RESULTS.md's, whose
+   * times swung with the machine's load, 0.93-1.58 times (0.55, 0.41 and 0.63 times
+   * vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the 2.3M gyroid, against
+   * 0.51, 0.44 and 0.40 without flips; the 2.3M gyroid's flipped hierarchy was 2.42 times
+   * faster on two threads there, where 1.7-1.8 is usual, so its one-thread runs met a slow
+   * phase).
    * On the metaballs isosurface, with hardly a saddle, no quad is bent that much and the levels
    * are those without flips. Judging every quad bent by 0.3 times the scale (with several
    * flips per point, on a copy the collapses did not go on from) took 1.35-1.5 times as long

@@ -428,7 +428,8 @@ public:
    * triangles on the input, so its shifts differ (on a UV sphere by up to a third of the
    * level's epsilon). On the benchmark isosurfaces it lowers the RMS distance by 8-21% and changes the
    * Hausdorff distance by -9% to +1%, for 1.3-1.5 times the time on one thread and on two
-   * (Benchmarks/RESULTS.md, its last two runs; 1.6-1.75 and 1.6-1.7 before edges whose far corners are sharp
+   * (Benchmarks/RESULTS.md's runs, but for the 2.3M gyroid on one thread, 1.89, in its last;
+   * 1.6-1.75 and 1.6-1.7 before edges whose far corners are sharp
    * were left unjudged, Core/TriangulationFlips.h). On a binary mask's terraced isosurface
    * (84,380 triangles) at 1%, where the input's connectivity joins many quads of clusters the
    * wrong way, the Hausdorff and RMS distances fall from 1.51 and 1.13 to 0.97 and 0.98 times
