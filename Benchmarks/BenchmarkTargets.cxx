@@ -1,7 +1,6 @@
 #include "BenchmarkTargets.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <sstream>
 
 namespace meshlod
@@ -130,13 +129,6 @@ const Target Targets[] = {
 bool PerTargetSize(Quantity what)
 {
   return what == Quantity::HausdorffRatio || what == Quantity::RmsRatio;
-}
-
-std::string Format(const char* format, double value)
-{
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
 }
 
 std::string Percent(double fraction)

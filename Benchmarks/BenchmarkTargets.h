@@ -6,6 +6,7 @@
 #ifndef BenchmarkTargets_h
 #define BenchmarkTargets_h
 
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -14,6 +15,14 @@ namespace meshlod
 {
 namespace benchmark
 {
+/// One number as printf's `format` writes it (the report's tables and this section alike).
+inline std::string Format(const char* format, double value)
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
 /// What the benchmark measured for one method on one mesh, with one thread count, at one target
 /// size. A hierarchy method's time and memory are those of its whole hierarchy, the same in each
 /// of its target sizes' rows.

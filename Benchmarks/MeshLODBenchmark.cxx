@@ -55,6 +55,7 @@
 
 namespace
 {
+using meshlod::benchmark::Format;
 using meshlod::benchmark::Method;
 using Clock = std::chrono::steady_clock;
 using Outputs = std::vector<vtkSmartPointer<vtkPolyData>>;
@@ -86,13 +87,6 @@ std::vector<std::string> Split(const std::string& text, char separator)
     }
   }
   return parts;
-}
-
-std::string Format(const char* format, double value)
-{
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
 }
 
 //------------------------------------------------------------------------------
@@ -342,6 +336,13 @@ struct Row
   double Rms = 0.0;
   bool WholeHierarchy = false;
   int Repeats = 1;
+
+  /// Peak memory growth per input triangle, -1 when not measured.
+  double BytesPerTriangle() const
+  {
+    return this->PeakBytes >= 0 ? static_cast<double>(this->PeakBytes) / this->InputTriangles
+                                : -1.0;
+  }
 };
 
 /// The triangle counts of the targets (fractions of the input's triangles).
@@ -589,7 +590,7 @@ private:
         static_cast<long long>(row.OutputTriangles),
         row.Seconds,
         row.CpuSeconds,
-        row.PeakBytes >= 0 ? static_cast<double>(row.PeakBytes) / inputTriangles : -1.0,
+        row.BytesPerTriangle(),
         row.Hausdorff,
         row.Rms,
         yardstickSeconds);
@@ -782,12 +783,8 @@ std::string Benchmark::TargetSummary() const
       }
       const Row* two = this->Find(m, pair.Method, 2, largest);
       const Row* qd = this->Reference(*one);
-      const double memory = one->PeakBytes >= 0
-        ? static_cast<double>(one->PeakBytes) / one->InputTriangles
-        : -1.0;
-      const double qdMemory = qd && qd->PeakBytes >= 0
-        ? static_cast<double>(qd->PeakBytes) / qd->InputTriangles
-        : -1.0;
+      const double memory = one->BytesPerTriangle();
+      const double qdMemory = qd ? qd->BytesPerTriangle() : -1.0;
       md << Ratio(one->Seconds, reference->Seconds) << " | "
          << (two ? Ratio(one->Seconds, two->Seconds) : "-") << " | "
          << (memory >= 0.0 ? Format("%.0f", memory) : "n/a") << ", "
@@ -889,10 +886,8 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
           continue;
         }
         const Row* qd = this->Reference(row);
-        const double memory =
-          row.PeakBytes >= 0 ? static_cast<double>(row.PeakBytes) / row.InputTriangles : -1.0;
-        const double qdMemory =
-          qd && qd->PeakBytes >= 0 ? static_cast<double>(qd->PeakBytes) / qd->InputTriangles : -1.0;
+        const double memory = row.BytesPerTriangle();
+        const double qdMemory = qd ? qd->BytesPerTriangle() : -1.0;
         md << "| " << Format("%g", 100.0 * fraction) << "% | " << row.Method
            << (row.WholeHierarchy ? " (whole hierarchy)" : "") << " | " << row.Threads << " | "
            << Thousands(row.InputTriangles) << " | " << Thousands(row.OutputTriangles) << " | "
@@ -928,9 +923,7 @@ std::string Benchmark::Report(const std::vector<Method>& methods) const
       result.Seconds = row->Seconds;
       result.Hausdorff = row->Hausdorff;
       result.Rms = row->Rms;
-      result.BytesPerTriangle = row->PeakBytes >= 0
-        ? static_cast<double>(row->PeakBytes) / row->InputTriangles
-        : -1.0;
+      result.BytesPerTriangle = row->BytesPerTriangle();
       return true;
     });
 
