@@ -40,6 +40,7 @@ set(meshlod_private_headers
   Filters/Core/PieceGenus.h
   Filters/Core/Quadric.h
   Filters/Core/RankSelection.h
+  Filters/Core/SpatialOrder.h
   Filters/Core/TextureAtlas.h
   Filters/Core/TriangleCollapse.h
   Filters/Core/TriangleMesh.h
@@ -83,6 +84,7 @@ set(meshlod_sources
   Filters/Core/PartitionedGreedy.cxx
   Filters/Core/PieceGenus.cxx
   Filters/Core/Quadric.cxx
+  Filters/Core/SpatialOrder.cxx
   Filters/Core/TextureAtlas.cxx
   Filters/Core/TriangleCollapse.cxx
   Filters/Core/TriangleMesh.cxx

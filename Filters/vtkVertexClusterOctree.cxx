@@ -4,6 +4,7 @@
 #include "Core/FreshMemory.h"
 #include "Core/LevelCentering.h"
 #include "Core/OctreeClustering.h"
+#include "Core/SpatialOrder.h"
 #include "Core/TextureAtlas.h"
 #include "Core/Vector3.h"
 #include "MeshLODHierarchy.h"
@@ -701,6 +702,16 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
   const double unit = self->RelativeUnits ? in.Mesh.BoundingDiagonal() : 1.0;
   const std::vector<LevelRequest> requests = this->Requests(unit);
   const meshlod::OctreeClusteringOptions options = this->ClusteringOptions(unit);
+  // A mesh whose ids are scattered is clustered renumbered in space (SpatialOrder.h; level 0 is
+  // built already, the baker reads the input itself), and each level is numbered back when it
+  // is handed over, after its flips (which read the clustering's own ids).
+  meshlod::SpatialRenumbering order;
+  if (meshlod::IsOrderScattered(in.Mesh))
+  {
+    order.Apply(in.Mesh);
+    in.Topology.Build(in.Mesh);
+  }
+  bool firstEmitted = true;
   // The clustering asks the topology only which edges are boundaries.
   in.Topology.KeepBoundaryFlagsOnly();
   meshlod::OctreeClustering clustering(in.Mesh, in.Topology, options);
@@ -750,6 +761,15 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
   // false when the execution was aborted.
   auto emit = [&](meshlod::ClusterLevel& level, size_t i) -> bool
   {
+    if (!order.OldVertex.empty())
+    {
+      order.NumberBackLevelZeroTriangles(level.LevelZeroTriangle);
+      if (firstEmitted)
+      {
+        order.NumberBackFirstLevel(level.SourceParents, level.Target, level.Rank);
+      }
+    }
+    firstEmitted = false;
     if (self->CenterOnInput)
     {
       levelZero.Advance(level.Target);

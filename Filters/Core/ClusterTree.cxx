@@ -4,6 +4,7 @@
 
 #include "CacheHint.h"
 #include "FreshMemory.h"
+#include "SpatialOrder.h"
 
 #include "vtkSMPTools.h"
 
@@ -14,18 +15,7 @@ namespace meshlod
 {
 namespace
 {
-std::uint64_t SpreadBits(std::uint32_t x)
-{
-  std::uint64_t v = x & 0x1fffffu;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
-
-// The inverse of SpreadBits: every third bit of x, from bit 0 up.
+// The inverse of SpreadBits (SpatialOrder.h): every third bit of x, from bit 0 up.
 std::uint32_t CompactBits(std::uint64_t x)
 {
   std::uint64_t v = x & 0x1249249249249249ULL;

@@ -1,12 +1,16 @@
-// RunTriangleCollapse: the schedule chosen by the options, on the engine of Collapser.h.
+// RunTriangleCollapse: the schedule chosen by the options, on the engine of Collapser.h, on a
+// spatially renumbered copy of a mesh whose ids are scattered (SpatialOrder.h).
 #include "TriangleCollapse.h"
 
 #include "Collapser.h"
+#include "LevelData.h"
+#include "SpatialOrder.h"
 
 namespace meshlod
 {
-//------------------------------------------------------------------------------
-TriangleCollapseResult RunTriangleCollapse(TriangleMesh mesh, TriangleTopology topology,
+namespace
+{
+TriangleCollapseResult Run(TriangleMesh mesh, TriangleTopology topology,
   const TriangleCollapseOptions& options, const TriangleCollapseCallbacks& callbacks)
 {
   Collapser collapser(std::move(mesh), std::move(topology), options, callbacks);
@@ -16,6 +20,54 @@ TriangleCollapseResult RunTriangleCollapse(TriangleMesh mesh, TriangleTopology t
   }
   // (The partitioned run falls back to the serial one for the curvature method.)
   return options.PartitionedGreedy ? collapser.RunPartitionedGreedy() : collapser.RunGreedy();
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+TriangleCollapseResult RunTriangleCollapse(TriangleMesh mesh, TriangleTopology topology,
+  const TriangleCollapseOptions& options, const TriangleCollapseCallbacks& callbacks)
+{
+  if (!IsOrderScattered(mesh))
+  {
+    return Run(std::move(mesh), std::move(topology), options, callbacks);
+  }
+  SpatialRenumbering order;
+  order.Apply(mesh);
+  topology = TriangleTopology();
+  topology.Build(mesh);
+  // The fits' reads of the caller's points go through the renumbering too.
+  TriangleCollapseOptions renumbered = options;
+  std::vector<long long> pointIds;
+  if (options.InputPointsFloat || options.InputPointsDouble)
+  {
+    pointIds.resize(order.OldVertex.size());
+    for (std::size_t v = 0; v < pointIds.size(); ++v)
+    {
+      const Id old = order.OldVertex[v];
+      pointIds[v] = options.InputPointIds ? options.InputPointIds[old] : old;
+    }
+    renumbered.InputPointIds = pointIds.data();
+  }
+  TriangleCollapseCallbacks translated = callbacks;
+  bool first = true;
+  if (callbacks.EmitLevel)
+  {
+    translated.EmitLevel = [&](LevelData& level, LevelRetriangulation& changed) {
+      order.NumberBackLevelZeroTriangles(level.LevelZeroTriangle);
+      if (first)
+      {
+        order.NumberBackFirstLevel(level.Sources.Parents, level.Target, level.Rank);
+        first = false;
+      }
+      callbacks.EmitLevel(level, changed);
+      for (Id& t : changed.Triangles)
+      {
+        t = order.NewTriangle[t];
+      }
+    };
+  }
+  return Run(std::move(mesh), std::move(topology), renumbered, translated);
 }
 
 } // namespace meshlod

@@ -129,50 +129,67 @@ void TriangleTopology::Build(const TriangleMesh& mesh)
   AssignFresh(this->EdgeNeighbors, 3 * static_cast<size_t>(nt), BoundaryEdge);
   std::vector<std::uint8_t>().swap(this->BoundaryFlags);
 
-  // Edge neighbours: for edge (a, b) of t, the other triangles in a's row that contain b; and
-  // whether each manifold edge's two triangles run it in opposite directions.
-  const VertexTriangleAdjacency& adj = this->VertexTriangles;
-  std::atomic<bool> inconsistent(false);
-  vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
-    for (Id t = begin; t < end; ++t)
+  // Edge neighbours from the sides of the triangles listed at their lower point: the sides of
+  // an edge are consecutive in that row, so no other triangle is read. (Scanning the triangles
+  // around a corner for the other end read about eighteen triangles per triangle, at random
+  // places on a mesh whose ids are scattered: on a 611k-triangle gyroid isosurface with its ids
+  // shuffled the whole build took 0.37 s then, 0.15 s now, and in the contouring filter's order
+  // 0.048 s then, 0.040 s now, one thread.) And whether each manifold edge's two triangles run it
+  // in opposite directions.
+  std::vector<unsigned char> deleted;
+  for (Id t = 0; t < nt; ++t)
+  {
+    if (mesh.Triangle(t)[0] == InvalidId)
     {
-      const Id* tri = mesh.Triangle(t);
-      if (tri[0] == InvalidId)
+      deleted.assign(nt, 0);
+      for (Id s = t; s < nt; ++s)
       {
-        continue;
+        deleted[s] = mesh.Triangle(s)[0] == InvalidId ? 1 : 0;
       }
-      for (int k = 0; k < 3; ++k)
+      break;
+    }
+  }
+  std::vector<Id> rows;
+  std::vector<std::uint64_t> sides;
+  ListSidesByLowerPoint(mesh.Triangles.data(), nt, nv, deleted.empty() ? nullptr : deleted.data(),
+    rows, sides);
+  std::atomic<bool> inconsistent(false);
+  vtkSMPTools::For(0, nv, [&](Id begin, Id end) {
+    bool clash = false;
+    for (Id p = begin; p < end; ++p)
+    {
+      for (Id i = rows[p], next; i < rows[p + 1]; i = next)
       {
-        // The triangles with both ends: scanned from the end with fewer triangles, so that a
-        // vertex with very many (the centre of a fan) costs nothing extra.
-        Id a = tri[k];
-        Id b = tri[(k + 1) % 3];
-        if (adj.Count(b) < adj.Count(a))
+        const Id higher = SideHigherPoint(sides[i]);
+        for (next = i + 1; next < rows[p + 1] && SideHigherPoint(sides[next]) == higher; ++next)
         {
-          std::swap(a, b);
         }
-        Id found = BoundaryEdge;
-        for (Id i = adj.Begin(a); i < adj.End(a); ++i)
+        if (next - i == 2)
         {
-          const Id other = adj.Triangles[i];
-          if (other != t && CornerOf(mesh.Triangle(other), b) >= 0)
-          {
-            found = (found == BoundaryEdge) ? other : NonManifoldEdge;
-          }
+          const Id k0 = SideCorner(sides[i]);
+          const Id k1 = SideCorner(sides[i + 1]);
+          this->EdgeNeighbors[k0] = k0 / 3 == k1 / 3 ? NonManifoldEdge : k1 / 3;
+          this->EdgeNeighbors[k1] = k0 / 3 == k1 / 3 ? NonManifoldEdge : k0 / 3;
+          // Side k runs from corner k to the next: from p, or towards it.
+          clash = clash || (mesh.Triangles[k0] == p) == (mesh.Triangles[k1] == p);
         }
-        this->EdgeNeighbors[3 * static_cast<size_t>(t) + k] = found;
-        if (found >= 0)
+        else if (next - i > 2)
         {
-          // t runs tri[k] -> tri[k + 1], so the neighbour must run tri[k + 1] -> tri[k].
-          const Id* ntri = mesh.Triangle(found);
-          if (ntri[(CornerOf(ntri, tri[(k + 1) % 3]) + 1) % 3] != tri[k])
+          for (Id j = i; j < next; ++j)
           {
-            inconsistent.store(true, std::memory_order_relaxed);
+            this->EdgeNeighbors[SideCorner(sides[j])] = NonManifoldEdge;
           }
         }
       }
     }
+    if (clash)
+    {
+      inconsistent.store(true, std::memory_order_relaxed);
+    }
   });
+  Release(rows);
+  Release(sides);
+  const VertexTriangleAdjacency& adj = this->VertexTriangles;
   this->OrientedWhenBuilt = !inconsistent.load();
 
   // Vertex kinds: walk the fan of the first incident triangle; any triangle not reached means

@@ -16,8 +16,11 @@
 #include "vtkTriangleFilter.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
+#include <random>
 
 namespace meshlod
 {
@@ -653,6 +656,52 @@ vtkSmartPointer<vtkPolyData> MakeSphereWithEquatorialDisk(int around, int rings,
   mesh->SetPoints(points);
   mesh->SetPolys(triangles);
   return mesh;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> ShuffleIds(
+  vtkPolyData* mesh, unsigned int seed, std::vector<vtkIdType>* newIds)
+{
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  std::mt19937 random(seed);
+  std::vector<vtkIdType> newId(n);
+  std::iota(newId.begin(), newId.end(), 0);
+  std::shuffle(newId.begin(), newId.end(), random);
+  vtkNew<vtkPoints> points;
+  points->SetDataType(mesh->GetPoints()->GetDataType());
+  points->SetNumberOfPoints(n);
+  auto result = vtkSmartPointer<vtkPolyData>::New();
+  result->GetPointData()->CopyAllocate(mesh->GetPointData(), n);
+  for (vtkIdType p = 0; p < n; ++p)
+  {
+    points->SetPoint(newId[p], mesh->GetPoint(p));
+    result->GetPointData()->CopyData(mesh->GetPointData(), p, newId[p]);
+  }
+  std::vector<std::array<vtkIdType, 3>> triangles;
+  vtkIdType count;
+  const vtkIdType* ids;
+  vtkCellArray* polys = mesh->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
+  {
+    if (count == 3)
+    {
+      triangles.push_back({ newId[ids[0]], newId[ids[1]], newId[ids[2]] });
+    }
+  }
+  std::shuffle(triangles.begin(), triangles.end(), random);
+  vtkNew<vtkCellArray> shuffled;
+  shuffled->AllocateExact(static_cast<vtkIdType>(triangles.size()), 3 * triangles.size());
+  for (const auto& t : triangles)
+  {
+    shuffled->InsertNextCell(3, t.data());
+  }
+  result->SetPoints(points);
+  result->SetPolys(shuffled);
+  if (newIds)
+  {
+    newIds->swap(newId);
+  }
+  return result;
 }
 
 } // namespace testing
