@@ -125,10 +125,10 @@
  *   (Ranked by paper 000's weight, CurvatureCost WEIGHT, the greedy order stays serial: in
  *   rounds it lost much of its accuracy on a noisy surface.) For its whole hierarchy the
  *   curvature method takes 1.3-3.4x the time vtkQuadricDecimation needs for one 10% target on
- *   one thread (1.60-2.25x in Benchmarks/RESULTS.md's run), and 1.6-2.75x less on two (the
- *   quadric method: 0.29-0.57x over fourteen runs on AMD EPYC processors, 0.40-0.51x in
- *   RESULTS.md's, where the two runs before on the same output gave 0.37-0.47x and
- *   0.41-0.48x; 1.4-1.9x less on two, 1.65-1.73x in RESULTS.md's (1.67-1.74x and 1.71-1.82x
+ *   one thread (1.61-2.55x in Benchmarks/RESULTS.md's run), and 1.6-2.75x less on two (the
+ *   quadric method: 0.29-0.57x over fifteen runs on AMD EPYC processors, 0.35-0.53x in
+ *   RESULTS.md's, where the two runs before on the same output gave 0.40-0.51x and
+ *   0.37-0.47x; 1.4-1.9x less on two, 1.63-1.80x in RESULTS.md's (1.65-1.73x and 1.67-1.74x
  *   the two runs before); the 154k-triangle
  *   mesh's one run of half a second swings most; the
  *   ratios move with the processor, the machine's load and what ran before in the same process:
@@ -228,9 +228,10 @@
  * collapse, and on scattered ids nearly every read misses the cache. Such a mesh is told from a
  * contouring filter's, a parametric source's or a grid's by how far apart its triangles' corner
  * ids lie (Filters/Core/SpatialOrder.h); meshes of under 4,096 points are never renumbered. On
- * the 611k-triangle gyroid isosurface with its ids shuffled the whole hierarchy took 1.13 times
- * as long as on the contoured mesh, against 1.80 without the renumbering (vtkQuadricDecimation
- * 1.54, Benchmarks/RESULTS.md, "Input order"; the 1.80 from a trial run). The levels of a
+ * the 611k-triangle gyroid isosurface with its ids shuffled the whole hierarchy took 1.13-1.29
+ * times as long as on the contoured mesh in two runs, against 1.80 without the renumbering
+ * (vtkQuadricDecimation 1.37-1.54; Benchmarks/RESULTS.md, "Input order", has the 1.29 and 1.37;
+ * the others from trial runs). The levels of a
  * renumbered mesh do not depend on how it was numbered, but for the centring (CenterOnInput),
  * which samples the input's triangles in their order.
  *
@@ -390,8 +391,8 @@ public:
    * 2.3M gyroid (0.92x vtkQuadricDecimation's against 1.03x); at 1% the candidates' was 0.98,
    * 0.82 and 1.05x vtkQuadricDecimation's against the default's 0.92, 1.02 and 0.99x: more on
    * the metaballs and the 2.3M gyroid, less on the 611k gyroid (each is the distance at one
-   * spot, which moves by chance: see AreaNormalization), and the whole hierarchy took 1.3-1.45
-   * times as long (an
+   * spot, which moves by chance: see AreaNormalization), and the whole hierarchy took 1.3-1.65
+   * times as long (1.49-1.65 in the last run; an
    * eigendecomposition per solve, against one L D L^T factorisation). On faceted solids both
    * keep the faces exactly. Curvature method: not used (its collapse point comes from the fit).
    */
@@ -702,13 +703,13 @@ public:
    * the Hausdorff distance at 1% of the triangles falls from 0.243% to 0.185% of the diagonal
    * (611k triangles; 1.02 to 0.77 times vtkQuadricDecimation's) and from 0.0627% to 0.0510%
    * (2.3M; 0.99 to 0.81 times); at 10% it stays (0.95 and 1.03 times), and the RMS distances
-   * fall by 0.4-0.6%. The whole hierarchy took 1.0-1.2 times as long on one thread in most of
-   * the benchmark's runs (1.10-1.17 and 1.01-1.24 times in two of them); in RESULTS.md's, whose
-   * times swung with the machine's load, 0.93-1.58 times (0.55, 0.41 and 0.63 times
+   * fall by 0.4-0.6%. The whole hierarchy took 1.0-1.25 times as long on one thread in most of
+   * the benchmark's runs: 1.00-1.23 times in RESULTS.md's (0.53, 0.44 and 0.43 times
    * vtkQuadricDecimation's time for 10% on the metaballs, the 611k and the 2.3M gyroid, against
-   * 0.51, 0.44 and 0.40 without flips; the 2.3M gyroid's flipped hierarchy was 2.42 times
-   * faster on two threads there, where 1.7-1.8 is usual, so its one-thread runs met a slow
-   * phase).
+   * 0.53, 0.41 and 0.35 without flips), 1.10-1.17 and 1.01-1.24 times in two before; in one
+   * whose times swung with the machine's load, 0.93-1.58 times (the 2.3M gyroid's flipped
+   * hierarchy was 2.42 times faster on two threads there, where 1.7-1.9 is usual, so its
+   * one-thread runs met a slow phase).
    * On the metaballs isosurface, with hardly a saddle, no quad is bent that much and the levels
    * are those without flips. Judging every quad bent by 0.3 times the scale (with several
    * flips per point, on a copy the collapses did not go on from) took 1.35-1.5 times as long
@@ -724,8 +725,9 @@ public:
    * vtkLODGeomorph's exact-count mode, which applies level i's collapses in CollapseRank order,
    * ends the transition on the images and steps to level i + 1's flipped quads at its count.
    * Memory: the input is read in place (the output's level 0), and its adjacency is kept for the
-   * run, 14-15 bytes more per input triangle (215 instead of 200 on the 2.3M gyroid, 0.46 times
-   * vtkQuadricDecimation's growth). Default off.
+   * run, 18-20 bytes more per input triangle (219 instead of 199 on the 2.3M gyroid, 0.47 times
+   * vtkQuadricDecimation's growth; 14-15 before a level's topology was built from a list of its
+   * triangles' sides, 24 bytes per triangle of the level while it is built). Default off.
    */
   vtkSetMacro(FlipEdges, bool);
   vtkGetMacro(FlipEdges, bool);

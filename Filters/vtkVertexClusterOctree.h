@@ -218,9 +218,10 @@
  * and on scattered ids nearly every read misses the cache. Such a mesh is told from a contouring
  * filter's, a parametric source's or a grid's by how far apart its triangles' corner ids lie
  * (Filters/Core/SpatialOrder.h); meshes of under 4,096 points are never renumbered. On the
- * 611k-triangle gyroid isosurface with its ids shuffled the levels took 1.27 times as long as on
- * the contoured mesh, against 1.88 without the renumbering (vtkQuadricClustering 1.93,
- * Benchmarks/RESULTS.md, "Input order"; the 1.88 from a trial run). The levels of a renumbered
+ * 611k-triangle gyroid isosurface with its ids shuffled the levels took 1.17-1.27 times as long
+ * as on the contoured mesh in two runs, against 1.88 without the renumbering
+ * (vtkQuadricClustering 1.21-1.93; Benchmarks/RESULTS.md, "Input order", has the 1.17 and 1.21;
+ * the others from trial runs). The levels of a renumbered
  * mesh do not depend on how it was numbered, but for CenterOnInput's centring, which samples
  * the input's triangles in their order.
  *
@@ -439,8 +440,9 @@ public:
    * triangles; so do the points, but for CenterOnInput (default on), which centres the flipped
    * triangles on the input, so its shifts differ (on a UV sphere by up to a third of the
    * level's epsilon). On the benchmark isosurfaces it lowers the RMS distance by 8-21% and changes the
-   * Hausdorff distance by -9% to +1%, for 1.3-1.5 times the time on one thread and on two
-   * (Benchmarks/RESULTS.md's runs, but for the 2.3M gyroid on one thread, 1.89, in its last;
+   * Hausdorff distance by -9% to +1%, for 1.3-1.5 times the time on one thread and 1.15-1.5 on
+   * two (Benchmarks/RESULTS.md's runs; 1.34-1.46 and 1.16-1.44 in its last; the 2.3M gyroid's
+   * one-thread run 1.89 in the run before;
    * 1.6-1.75 and 1.6-1.7 before edges whose far corners are sharp
    * were left unjudged, Core/TriangulationFlips.h). On a binary mask's terraced isosurface
    * (84,380 triangles) at 1%, where the input's connectivity joins many quads of clusters the

@@ -6,10 +6,10 @@
 // cache; where the ids are scattered over the whole range (a mesh written from a hash map, its
 // points shuffled), nearly every one misses. On the 611k-triangle gyroid isosurface with its
 // point and triangle ids shuffled, one thread, vtkTriangleCollapseDecimation took 1.80 times as
-// long as on the contoured mesh, vtkVertexClusterOctree 1.88 times (vtkQuadricDecimation 1.57);
-// run on a copy renumbered in space (SpatialRenumbering), and with what they report numbered
-// back, 1.13 and 1.27 times (Benchmarks/RESULTS.md, "Input order"; the first figures from a
-// trial run without the renumbering).
+// long as on the contoured mesh, vtkVertexClusterOctree 1.88 times (vtkQuadricDecimation 1.57),
+// in a trial run without the renumbering; run on a copy renumbered in space
+// (SpatialRenumbering), with what they report numbered back, 1.13-1.29 and 1.17-1.27 times in
+// two runs (vtkQuadricDecimation 1.37-1.54; Benchmarks/RESULTS.md, "Input order").
 #ifndef meshlod_SpatialOrder_h
 #define meshlod_SpatialOrder_h
 
