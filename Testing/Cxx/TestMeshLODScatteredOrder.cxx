@@ -1,8 +1,9 @@
 // A mesh whose vertex ids are shuffled is simplified on a spatially renumbered copy
 // (Core/SpatialOrder.h): the check that tells scattered ids from a contouring filter's, the
 // renumbering itself, and both filters on two different shuffles of one isosurface, which must
-// give the same levels (the renumbered copy depends only on the geometry) and the same
-// correspondence from each one's own level 0, in its own order; and the topology of a shuffled
+// give the same levels (the renumbered copy depends only on the geometry), with the same point
+// and cell data, and the same correspondence from each one's own level 0, in its own order; and
+// the topology of a shuffled
 // mesh, whose edge neighbours are found from the sides listed by their lower point.
 #include "vtkTriangleCollapseDecimation.h"
 #include "vtkVertexClusterOctree.h"
@@ -13,6 +14,7 @@
 #include "MeshLODTestCheck.h"
 #include "MeshLODTestMeshes.h"
 
+#include "vtkCellData.h"
 #include "vtkCleanPolyData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -163,6 +165,8 @@ void TestFilterOnShuffles(
     vtkPolyData* la = Level(ha, i);
     vtkPolyData* lb = Level(hb, i);
     MESHLOD_CHECK(SameMesh(la, lb));
+    MESHLOD_CHECK(SameValues(
+      la->GetCellData()->GetArray("CellField"), lb->GetCellData()->GetArray("CellField")));
     for (const char* name : { "Field", "MorphTarget", "MorphTargetId", "CollapseRank" })
     {
       if (i + 1 < ha->GetNumberOfBlocks() || std::string(name) == "Field")
@@ -336,6 +340,24 @@ int TestMeshLODScatteredOrder(int, char*[])
     values->SetValue(p, x[0] + 2.0 * x[1] - x[2]);
   }
   isosurface->GetPointData()->AddArray(values);
+  // A cell array, each triangle's centroid's x + 2y - z: the levels' cells take it from the
+  // input triangle they descend from (level-0 triangle ids numbered back).
+  vtkNew<vtkDoubleArray> cellValues;
+  cellValues->SetName("CellField");
+  cellValues->SetNumberOfTuples(isosurface->GetNumberOfPolys());
+  vtkIdType cell = 0;
+  for (const TriangleIds& t : Triangles(isosurface))
+  {
+    double sum = 0.0;
+    for (const vtkIdType p : t)
+    {
+      double x[3];
+      isosurface->GetPoint(p, x);
+      sum += (x[0] + 2.0 * x[1] - x[2]) / 3.0;
+    }
+    cellValues->SetValue(cell++, sum);
+  }
+  isosurface->GetCellData()->AddArray(cellValues);
   const Shuffle a = MakeShuffle(isosurface, 1);
   const Shuffle b = MakeShuffle(isosurface, 2);
   TestScatteredCheck(isosurface, a.Mesh);

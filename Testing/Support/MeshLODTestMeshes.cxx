@@ -1,6 +1,7 @@
 #include "MeshLODTestMeshes.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCleanPolyData.h"
 #include "vtkFlyingEdges3D.h"
 #include "vtkFloatArray.h"
@@ -677,23 +678,26 @@ vtkSmartPointer<vtkPolyData> ShuffleIds(
     points->SetPoint(newId[p], mesh->GetPoint(p));
     result->GetPointData()->CopyData(mesh->GetPointData(), p, newId[p]);
   }
-  std::vector<std::array<vtkIdType, 3>> triangles;
+  // Each triangle with the id of its cell (cells are numbered vertices, lines, then polygons).
+  std::vector<std::array<vtkIdType, 4>> triangles;
   vtkIdType count;
   const vtkIdType* ids;
   vtkCellArray* polys = mesh->GetPolys();
-  for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
+  vtkIdType cell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+  for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cell)
   {
     if (count == 3)
     {
-      triangles.push_back({ newId[ids[0]], newId[ids[1]], newId[ids[2]] });
+      triangles.push_back({ newId[ids[0]], newId[ids[1]], newId[ids[2]], cell });
     }
   }
   std::shuffle(triangles.begin(), triangles.end(), random);
   vtkNew<vtkCellArray> shuffled;
   shuffled->AllocateExact(static_cast<vtkIdType>(triangles.size()), 3 * triangles.size());
+  result->GetCellData()->CopyAllocate(mesh->GetCellData(), triangles.size());
   for (const auto& t : triangles)
   {
-    shuffled->InsertNextCell(3, t.data());
+    result->GetCellData()->CopyData(mesh->GetCellData(), t[3], shuffled->InsertNextCell(3, t.data()));
   }
   result->SetPoints(points);
   result->SetPolys(shuffled);

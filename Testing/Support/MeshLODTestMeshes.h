@@ -122,7 +122,7 @@ vtkSmartPointer<vtkPolyData> MakeTwinTouchingAt(vtkPolyData* mesh,
 /// `mesh`'s triangles with their ids scattered, as a mesh written from a hash map has them: the
 /// points renumbered by a random permutation drawn from `seed` (newIds[old] = new, returned when
 /// `newIds` is given), point data carried along, and the triangles in a random order, each
-/// keeping its corners' order (so its orientation). Other cells are left out.
+/// keeping its corners' order (so its orientation) and its cell data. Other cells are left out.
 vtkSmartPointer<vtkPolyData> ShuffleIds(
   vtkPolyData* mesh, unsigned int seed, std::vector<vtkIdType>* newIds = nullptr);
 
