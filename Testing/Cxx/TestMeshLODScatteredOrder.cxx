@@ -3,8 +3,8 @@
 // renumbering itself, and both filters on two different shuffles of one isosurface, which must
 // give the same levels (the renumbered copy depends only on the geometry), with the same point
 // and cell data, and the same correspondence from each one's own level 0, in its own order; and
-// the topology of a shuffled
-// mesh, whose edge neighbours are found from the sides listed by their lower point.
+// the topology of a shuffled mesh, whose edge neighbours are found from the sides listed by
+// their lower point.
 #include "vtkTriangleCollapseDecimation.h"
 #include "vtkVertexClusterOctree.h"
 
