@@ -706,12 +706,7 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
   // built already, the baker reads the input itself), and each level is numbered back when it
   // is handed over, after its flips (which read the clustering's own ids).
   meshlod::SpatialRenumbering order;
-  if (meshlod::IsOrderScattered(in.Mesh))
-  {
-    order.Apply(in.Mesh);
-    in.Topology.Build(in.Mesh);
-  }
-  bool firstEmitted = true;
+  order.ApplyIfScattered(in.Mesh, in.Topology);
   // The clustering asks the topology only which edges are boundaries.
   in.Topology.KeepBoundaryFlagsOnly();
   meshlod::OctreeClustering clustering(in.Mesh, in.Topology, options);
@@ -761,15 +756,7 @@ bool vtkVertexClusterOctree::LevelMaker::MakeLevels()
   // false when the execution was aborted.
   auto emit = [&](meshlod::ClusterLevel& level, size_t i) -> bool
   {
-    if (!order.OldVertex.empty())
-    {
-      order.NumberBackLevelZeroTriangles(level.LevelZeroTriangle);
-      if (firstEmitted)
-      {
-        order.NumberBackFirstLevel(level.SourceParents, level.Target, level.Rank);
-      }
-    }
-    firstEmitted = false;
+    order.NumberBack(level.LevelZeroTriangle, level.SourceParents, level.Target, level.Rank);
     if (self->CenterOnInput)
     {
       levelZero.Advance(level.Target);

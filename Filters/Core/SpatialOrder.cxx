@@ -114,7 +114,9 @@ void SpatialRenumbering::Apply(TriangleMesh& mesh)
 
   // Triangles by their corners' new ids, sorted: distinct for distinct triangles (a validated
   // mesh has no two with the same corners), so again a strict order.
+  // Each triangle's new corners, and the same sorted as its key.
   std::vector<Id> corners(mesh.Triangles.size());
+  std::vector<Id> keys(corners.size());
   vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
     for (Id t = begin; t < end; ++t)
     {
@@ -123,15 +125,8 @@ void SpatialRenumbering::Apply(TriangleMesh& mesh)
       {
         tri[k] = this->NewVertex[mesh.Triangle(t)[k]];
       }
-    }
-  });
-  // Each triangle's new corner ids, sorted, as its key.
-  std::vector<Id> keys(corners.size());
-  vtkSMPTools::For(0, nt, [&](Id begin, Id end) {
-    for (Id t = begin; t < end; ++t)
-    {
       Id* key = keys.data() + 3 * static_cast<std::size_t>(t);
-      std::copy_n(corners.data() + 3 * static_cast<std::size_t>(t), 3, key);
+      std::copy_n(tri, 3, key);
       std::sort(key, key + 3);
     }
   });
@@ -165,18 +160,34 @@ void SpatialRenumbering::Apply(TriangleMesh& mesh)
 }
 
 //------------------------------------------------------------------------------
-void SpatialRenumbering::NumberBackLevelZeroTriangles(std::vector<Id>& levelZeroTriangles) const
+bool SpatialRenumbering::ApplyIfScattered(TriangleMesh& mesh, TriangleTopology& topology)
 {
+  if (!IsOrderScattered(mesh))
+  {
+    return false;
+  }
+  this->Apply(mesh);
+  topology.Build(mesh);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void SpatialRenumbering::NumberBack(std::vector<Id>& levelZeroTriangles,
+  std::vector<Id>& parents, std::vector<Id>& target, std::vector<Id>& rank)
+{
+  if (this->OldVertex.empty())
+  {
+    return;
+  }
   for (Id& t : levelZeroTriangles)
   {
     t = this->OldTriangle[t];
   }
-}
-
-//------------------------------------------------------------------------------
-void SpatialRenumbering::NumberBackFirstLevel(
-  std::vector<Id>& parents, std::vector<Id>& target, std::vector<Id>& rank) const
-{
+  if (this->FirstLevelNumberedBack)
+  {
+    return;
+  }
+  this->FirstLevelNumberedBack = true;
   for (Id& p : parents)
   {
     p = this->OldVertex[p];

@@ -65,14 +65,20 @@ struct VTKFILTERSMESHLOD_EXPORT SpatialRenumbering
   /// Renumber `mesh` in place and keep the maps.
   void Apply(TriangleMesh& mesh);
 
-  /// A level made from the renumbered mesh, in the mesh's old ids: the level-0 triangles its
-  /// triangles descend from (every level) ...
-  void NumberBackLevelZeroTriangles(std::vector<Id>& levelZeroTriangles) const;
-  /// ... and, for the first level (whose previous level is level 0), the previous-level parents
-  /// of its points and the rows indexed by previous-level points (MorphTargetId, CollapseRank;
-  /// an empty row stays empty).
-  void NumberBackFirstLevel(
-    std::vector<Id>& parents, std::vector<Id>& target, std::vector<Id>& rank) const;
+  /// Where IsOrderScattered(mesh): Apply, and build `topology` again for the renumbered mesh.
+  /// Returns whether it renumbered.
+  bool ApplyIfScattered(TriangleMesh& mesh, TriangleTopology& topology);
+
+  /// The next level made from the renumbered mesh (levels in order, finest first), in the mesh's
+  /// old ids: the level-0 triangles its triangles descend from and, for the first level (whose
+  /// previous level is level 0), the previous-level parents of its points and the rows indexed
+  /// by previous-level points (MorphTargetId, CollapseRank; an empty row stays empty). Nothing
+  /// when the mesh was not renumbered.
+  void NumberBack(std::vector<Id>& levelZeroTriangles, std::vector<Id>& parents,
+    std::vector<Id>& target, std::vector<Id>& rank);
+
+private:
+  bool FirstLevelNumberedBack = false;
 };
 
 } // namespace meshlod

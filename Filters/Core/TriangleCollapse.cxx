@@ -28,14 +28,11 @@ TriangleCollapseResult Run(TriangleMesh mesh, TriangleTopology topology,
 TriangleCollapseResult RunTriangleCollapse(TriangleMesh mesh, TriangleTopology topology,
   const TriangleCollapseOptions& options, const TriangleCollapseCallbacks& callbacks)
 {
-  if (!IsOrderScattered(mesh))
+  SpatialRenumbering order;
+  if (!order.ApplyIfScattered(mesh, topology))
   {
     return Run(std::move(mesh), std::move(topology), options, callbacks);
   }
-  SpatialRenumbering order;
-  order.Apply(mesh);
-  topology = TriangleTopology();
-  topology.Build(mesh);
   // The fits' reads of the caller's points go through the renumbering too.
   TriangleCollapseOptions renumbered = options;
   std::vector<long long> pointIds;
@@ -50,16 +47,10 @@ TriangleCollapseResult RunTriangleCollapse(TriangleMesh mesh, TriangleTopology t
     renumbered.InputPointIds = pointIds.data();
   }
   TriangleCollapseCallbacks translated = callbacks;
-  bool first = true;
   if (callbacks.EmitLevel)
   {
     translated.EmitLevel = [&](LevelData& level, LevelRetriangulation& changed) {
-      order.NumberBackLevelZeroTriangles(level.LevelZeroTriangle);
-      if (first)
-      {
-        order.NumberBackFirstLevel(level.Sources.Parents, level.Target, level.Rank);
-        first = false;
-      }
+      order.NumberBack(level.LevelZeroTriangle, level.Sources.Parents, level.Target, level.Rank);
       callbacks.EmitLevel(level, changed);
       for (Id& t : changed.Triangles)
       {
